@@ -1,0 +1,277 @@
+//! Located diagnostics, rendered the way rustc and miette do: a headline, `file:line:column`,
+//! and an excerpt with a caret under the offending text.
+
+use super::source::{Location, SourceMap, Span};
+use std::fmt;
+
+/// How serious a diagnostic is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    /// The input is rejected.
+    Error,
+    /// Suspicious but accepted.
+    Warning,
+    /// For information.
+    Note,
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        })
+    }
+}
+
+/// A secondary label: another place that explains the primary one.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Label {
+    /// Where.
+    pub span: Span,
+    /// What to say there.
+    pub text: String,
+}
+
+/// One message about the input, with where it points.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    /// Error, warning or note.
+    pub severity: Severity,
+    /// A stable, machine-readable kind: `syntax`, `input`, `undefined-action`, ...
+    pub code: String,
+    /// The headline: what is wrong.
+    pub message: String,
+    /// The place it is about, if it has one (a missing file has none).
+    pub span: Option<Span>,
+    /// Text under the caret.
+    pub label: Option<String>,
+    /// Further places.
+    pub secondary: Vec<Label>,
+    /// How to fix it.
+    pub help: Option<String>,
+    /// When the diagnostic is not about a span but about a file as a whole.
+    pub file: Option<String>,
+}
+
+impl Diagnostic {
+    /// An error of the given code.
+    pub fn error(code: impl Into<String>, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Error,
+            code: code.into(),
+            message: message.into(),
+            span: None,
+            label: None,
+            secondary: Vec::new(),
+            help: None,
+            file: None,
+        }
+    }
+
+    /// A warning of the given code.
+    pub fn warning(code: impl Into<String>, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(code, message)
+        }
+    }
+
+    /// A syntax error at `span`: "expected X, found Y".
+    pub fn syntax(span: Span, message: impl Into<String>, label: impl Into<String>) -> Diagnostic {
+        Diagnostic::error("syntax", message).with_label(span, label)
+    }
+
+    /// Points the diagnostic at `span`, with `text` under the caret.
+    pub fn with_label(mut self, span: Span, text: impl Into<String>) -> Diagnostic {
+        self.span = Some(span);
+        let text = text.into();
+        self.label = (!text.is_empty()).then_some(text);
+        self
+    }
+
+    /// Points the diagnostic at `span` with no text under the caret.
+    pub fn at(mut self, span: Span) -> Diagnostic {
+        self.span = Some(span);
+        self
+    }
+
+    /// Adds another place.
+    pub fn with_secondary(mut self, span: Span, text: impl Into<String>) -> Diagnostic {
+        self.secondary.push(Label {
+            span,
+            text: text.into(),
+        });
+        self
+    }
+
+    /// Adds a hint.
+    pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
+        self.help = Some(help.into());
+        self
+    }
+
+    /// Names the file a span-less diagnostic is about.
+    pub fn in_file(mut self, file: impl Into<String>) -> Diagnostic {
+        self.file = Some(file.into());
+        self
+    }
+
+    /// `file:line:column` of the primary span, or the file alone.
+    pub fn location(&self, map: &SourceMap) -> Option<Location> {
+        match (self.span, &self.file) {
+            (Some(span), _) => Some(map.location(span)),
+            (None, Some(file)) => Some(Location {
+                file: file.clone(),
+                line: 1,
+                column: 1,
+            }),
+            (None, None) => None,
+        }
+    }
+
+    /// Renders the diagnostic: a `file:line:column: severity[code]: message` headline (so that
+    /// editors and `grep` find it) followed by miette's excerpt with carets.
+    pub fn render(&self, map: &SourceMap, color: bool) -> String {
+        let mut out = String::new();
+        match self.location(map) {
+            Some(loc) => out.push_str(&format!("{loc}: ")),
+            None => {}
+        }
+        out.push_str(&format!(
+            "{}[{}]: {}\n",
+            self.severity, self.code, self.message
+        ));
+        if let Some(span) = self.span {
+            if let Some(file) = map.get(span.file) {
+                out.push_str(&render_excerpt(self, map, file, color));
+            }
+        } else if let Some(help) = &self.help {
+            out.push_str(&format!("  help: {help}\n"));
+        }
+        out
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}[{}]: {}", self.severity, self.code, self.message)
+    }
+}
+
+/// The miette view of a diagnostic, for its graphical excerpt.
+#[derive(Debug)]
+struct MietteView {
+    message: String,
+    severity: miette::Severity,
+    source: miette::NamedSource<String>,
+    labels: Vec<miette::LabeledSpan>,
+    help: Option<String>,
+}
+
+impl fmt::Display for MietteView {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for MietteView {}
+
+impl miette::Diagnostic for MietteView {
+    fn severity(&self) -> Option<miette::Severity> {
+        Some(self.severity)
+    }
+    fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
+        self.help
+            .as_ref()
+            .map(|h| Box::new(h) as Box<dyn fmt::Display + 'a>)
+    }
+    fn source_code(&self) -> Option<&dyn miette::SourceCode> {
+        Some(&self.source)
+    }
+    fn labels(&self) -> Option<Box<dyn Iterator<Item = miette::LabeledSpan> + '_>> {
+        Some(Box::new(self.labels.iter().cloned()))
+    }
+}
+
+fn render_excerpt(
+    d: &Diagnostic,
+    map: &SourceMap,
+    file: &super::source::SourceFile,
+    color: bool,
+) -> String {
+    let clamp = |s: Span| {
+        let start = (s.start as usize).min(file.text.len());
+        let end = (s.end as usize).clamp(start, file.text.len());
+        (start, end - start)
+    };
+    let mut labels = Vec::new();
+    if let Some(span) = d.span {
+        labels.push(miette::LabeledSpan::new_primary_with_span(
+            d.label.clone(),
+            clamp(span),
+        ));
+    }
+    // Secondary labels in other files cannot share one excerpt; they are listed as notes.
+    let mut elsewhere = String::new();
+    for l in &d.secondary {
+        if l.span.file == file.id {
+            labels.push(miette::LabeledSpan::new_with_span(
+                Some(l.text.clone()),
+                clamp(l.span),
+            ));
+        } else {
+            elsewhere.push_str(&format!("  note: {}: {}\n", map.location(l.span), l.text));
+        }
+    }
+    let view = MietteView {
+        message: d.message.clone(),
+        severity: match d.severity {
+            Severity::Error => miette::Severity::Error,
+            Severity::Warning => miette::Severity::Warning,
+            Severity::Note => miette::Severity::Advice,
+        },
+        source: miette::NamedSource::new(file.name.clone(), file.text.clone()),
+        labels,
+        help: d.help.clone(),
+    };
+    let theme = if color {
+        miette::GraphicalTheme::unicode()
+    } else {
+        miette::GraphicalTheme::unicode_nocolor()
+    };
+    let handler = miette::GraphicalReportHandler::new_themed(theme)
+        .with_context_lines(1)
+        .with_width(100);
+    let mut out = String::new();
+    if handler.render_report(&mut out, &view).is_err() {
+        out.clear();
+    }
+    // The headline is already printed by `render`; keep miette's excerpt only.
+    let excerpt: Vec<&str> = out.lines().skip(1).collect();
+    let mut s = excerpt.join("\n");
+    s.push('\n');
+    s.push_str(&elsewhere);
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn render_names_file_line_column_and_shows_caret() {
+        let mut map = SourceMap::new();
+        let id = map.add("x.asl", "x.asl", "+!g <- a(.\n".to_string());
+        let d = Diagnostic::syntax(Span::new(id, 9, 10), "expected a term, found `.`", "here");
+        let text = d.render(&map, false);
+        assert!(
+            text.starts_with("x.asl:1:10: error[syntax]: expected a term"),
+            "{text}"
+        );
+        assert!(text.contains("+!g <- a(."), "{text}");
+        assert!(text.contains("here"), "{text}");
+    }
+}

@@ -1,0 +1,1 @@
+//! Writes an AST back as Jason text.
