@@ -1,1 +1,165 @@
-//! Reports.
+//! What the commands print: the JSON report of SPEC §3 and its human rendering.
+//!
+//! Every command builds a [`Report`]; `--format` decides how it is written. Exit codes
+//! follow SPEC §2 and are derived from the report alone ([`Report::exit_code`]), so a
+//! verdict and its exit code can never disagree.
+
+pub mod outline;
+
+use crate::syntax::{Diagnostic, Location, Severity, SourceMap};
+use serde::Serialize;
+
+/// The tool's name and version, as reports name it.
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct Tool {
+    /// `bdi-check`
+    pub name: &'static str,
+    /// The crate version.
+    pub version: &'static str,
+}
+
+impl Default for Tool {
+    fn default() -> Tool {
+        Tool {
+            name: "bdi-check",
+            version: env!("CARGO_PKG_VERSION"),
+        }
+    }
+}
+
+/// The overall outcome of a command.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq, PartialOrd, Ord)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// Every check holds and the search was complete.
+    Pass,
+    /// Something was not decided (a bound, a solver `unknown`), nothing failed.
+    Incomplete,
+    /// At least one check failed.
+    Fail,
+    /// The input is malformed.
+    Error,
+}
+
+impl Verdict {
+    /// The exit status of SPEC §2: 0 pass, 1 fail, 2 bad input, 3 undecided.
+    pub fn exit_code(self) -> i32 {
+        match self {
+            Verdict::Pass => 0,
+            Verdict::Fail => 1,
+            Verdict::Error => 2,
+            Verdict::Incomplete => 3,
+        }
+    }
+}
+
+/// Whether a finding's check held.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// The check failed.
+    Fail,
+    /// The check held.
+    Pass,
+    /// The check could not be decided.
+    Unknown,
+}
+
+/// One finding of SPEC §3.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Finding {
+    /// A stable id: `check:file:line`.
+    pub id: String,
+    /// The check's fixed name (`input`, `dead-plan`, `invariant`, ...).
+    pub check: String,
+    /// error, warning or note.
+    pub severity: Severity,
+    /// fail, pass or unknown.
+    pub status: Status,
+    /// What is wrong, in one sentence.
+    pub message: String,
+    /// Where, if it is about a place.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub location: Option<Location>,
+}
+
+impl Finding {
+    /// The finding SPEC §2 asks for when input is malformed: check `input`, severity error.
+    pub fn from_input_diagnostic(d: &Diagnostic, map: &SourceMap) -> Finding {
+        let location = d.location(map);
+        let id = match &location {
+            Some(l) => format!("input:{}:{}", l.file, l.line),
+            None => "input".to_string(),
+        };
+        Finding {
+            id,
+            check: "input".into(),
+            severity: d.severity,
+            status: if d.severity == Severity::Error {
+                Status::Fail
+            } else {
+                Status::Pass
+            },
+            message: d.message.clone(),
+            location,
+        }
+    }
+}
+
+/// Output formats of `--format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Format {
+    /// Text for people (the default).
+    #[default]
+    Human,
+    /// The JSON report of SPEC §3.
+    Json,
+}
+
+/// The verdict of a set of findings: `error` if an input finding is an error, else `fail` if
+/// any finding of severity error failed, else `incomplete` if any is unknown, else `pass`.
+pub fn verdict_of(findings: &[Finding]) -> Verdict {
+    let failed = |f: &&Finding| f.severity == Severity::Error && f.status == Status::Fail;
+    if findings.iter().filter(failed).any(|f| f.check == "input") {
+        Verdict::Error
+    } else if findings.iter().any(|f| failed(&f)) {
+        Verdict::Fail
+    } else if findings.iter().any(|f| f.status == Status::Unknown) {
+        Verdict::Incomplete
+    } else {
+        Verdict::Pass
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn finding(check: &str, severity: Severity, status: Status) -> Finding {
+        Finding {
+            id: check.into(),
+            check: check.into(),
+            severity,
+            status,
+            message: String::new(),
+            location: None,
+        }
+    }
+
+    #[test]
+    fn verdicts_and_exit_codes() {
+        assert_eq!(verdict_of(&[]), Verdict::Pass);
+        let warn = finding("coverage-gap", Severity::Warning, Status::Fail);
+        assert_eq!(verdict_of(&[warn.clone()]), Verdict::Pass);
+        let unknown = finding("dead-plan", Severity::Error, Status::Unknown);
+        assert_eq!(verdict_of(&[warn.clone(), unknown.clone()]), Verdict::Incomplete);
+        let fail = finding("dead-plan", Severity::Error, Status::Fail);
+        assert_eq!(verdict_of(&[unknown.clone(), fail.clone()]), Verdict::Fail);
+        let input = finding("input", Severity::Error, Status::Fail);
+        assert_eq!(verdict_of(&[fail, input]), Verdict::Error);
+        assert_eq!(
+            [Verdict::Pass, Verdict::Fail, Verdict::Error, Verdict::Incomplete].map(Verdict::exit_code),
+            [0, 1, 2, 3]
+        );
+    }
+}

@@ -249,9 +249,15 @@ fn render_excerpt(
     if handler.render_report(&mut out, &view).is_err() {
         out.clear();
     }
-    // The headline is already printed by `render`; keep miette's excerpt only.
-    let excerpt: Vec<&str> = out.lines().skip(1).collect();
+    // The headline is already printed by `render` (miette may wrap it over several lines):
+    // keep miette's excerpt, which starts with the box's top-left corner.
+    let excerpt: Vec<&str> = out.lines().skip_while(|l| !l.contains('╭')).collect();
     let mut s = excerpt.join("\n");
+    if excerpt.is_empty() {
+        if let Some(help) = &d.help {
+            s.push_str(&format!("  help: {help}"));
+        }
+    }
     s.push('\n');
     s.push_str(&elsewhere);
     s

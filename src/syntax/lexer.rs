@@ -298,7 +298,7 @@ pub fn lex(file: FileId, text: &str) -> (Vec<Token>, Vec<Diagnostic>) {
             i = end;
             tok
         } else if c == b'"' {
-            match lex_string(text, i) {
+            match lex_string(text, i, &mut errs, file) {
                 Ok((s, end)) => {
                     i = end;
                     Tok::Str(s)
@@ -447,7 +447,14 @@ fn lex_number(text: &str, start: usize) -> (Tok, usize) {
 }
 
 /// A string literal with Jason's escapes: `\n \t \b \r \f \\ \' \"` and octal `\0`..`\377`.
-fn lex_string(text: &str, start: usize) -> Result<(String, usize), (String, usize)> {
+/// A bad escape is reported and kept as written, so the string still ends at its closing
+/// quote and one mistake gives one error.
+fn lex_string(
+    text: &str,
+    start: usize,
+    errs: &mut Vec<Diagnostic>,
+    file: FileId,
+) -> Result<(String, usize), (String, usize)> {
     let mut out = String::new();
     let mut chars = text[start + 1..].char_indices().peekable();
     while let Some((k, c)) = chars.next() {
@@ -485,10 +492,13 @@ fn lex_string(text: &str, start: usize) -> Result<(String, usize), (String, usiz
                         out.push(char::from_u32(v).unwrap_or('\u{fffd}'));
                     }
                     other => {
-                        return Err((
+                        errs.push(Diagnostic::syntax(
+                            Span::new(file, pos, pos + 1 + other.len_utf8()),
                             format!("unknown escape `\\{}` in string", other.escape_default()),
-                            pos + 1 + other.len_utf8(),
+                            "Jason knows \\n \\t \\b \\r \\f \\\\ \\' \\\" and octal escapes",
                         ));
+                        out.push('\\');
+                        out.push(other);
                     }
                 },
                 None => return Err(("unterminated string".into(), text.len())),

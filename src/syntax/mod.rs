@@ -8,7 +8,9 @@ pub mod ast;
 pub mod diagnostic;
 pub mod lexer;
 pub mod loader;
+pub mod manifest;
 pub mod parser;
+pub mod pddl;
 pub mod printer;
 pub mod source;
 

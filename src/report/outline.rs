@@ -1,0 +1,258 @@
+//! `bdi-check parse`: load files, report every error, and outline what they hold.
+//!
+//! The human output summarises each file (beliefs, rules, initial goals, plans grouped by
+//! trigger); `--format json` gives the outline of every plan (trigger, context and body steps
+//! as Jason text, with locations) and the input findings of SPEC §3.
+
+use super::{verdict_of, Finding, Format, Tool, Verdict};
+use crate::syntax::ast::{Item, Plan};
+use crate::syntax::printer::{print_expr, print_literal, print_step, print_trigger};
+use crate::syntax::{load_agent, Diagnostic, Location, SourceMap};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// The result of parsing some files: their outlines and every diagnostic.
+pub struct ParseRun {
+    /// Every file read, so that diagnostics render with excerpts.
+    pub map: SourceMap,
+    /// Every error met, in file order.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The JSON-serialisable report.
+    pub report: ParseReport,
+}
+
+/// The report of `bdi-check parse --format json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct ParseReport {
+    /// The tool.
+    pub tool: Tool,
+    /// `parse`.
+    pub command: &'static str,
+    /// `pass` when every file parsed, `error` otherwise.
+    pub verdict: Verdict,
+    /// One outline per file named on the command line that parsed.
+    pub files: Vec<FileOutline>,
+    /// One `input` finding per error.
+    pub findings: Vec<Finding>,
+}
+
+/// What one agent file (with its includes) holds.
+#[derive(Clone, Debug, Serialize)]
+pub struct FileOutline {
+    /// The file as named on the command line.
+    pub file: String,
+    /// Files brought in by `include`, in the order met.
+    pub includes: Vec<String>,
+    /// Initial beliefs.
+    pub beliefs: Vec<Entry>,
+    /// Rules.
+    pub rules: Vec<Entry>,
+    /// Initial goals.
+    pub initial_goals: Vec<Entry>,
+    /// Plans, in source order.
+    pub plans: Vec<PlanOutline>,
+}
+
+/// A belief, rule or goal as Jason text, with its place.
+#[derive(Clone, Debug, Serialize)]
+pub struct Entry {
+    /// Jason text.
+    pub text: String,
+    /// Where it is.
+    pub location: Location,
+}
+
+/// A plan's outline.
+#[derive(Clone, Debug, Serialize)]
+pub struct PlanOutline {
+    /// `@label`, if any.
+    pub label: Option<String>,
+    /// The trigger, e.g. `+!storeCup(C)`.
+    pub trigger: String,
+    /// The context, if any.
+    pub context: Option<String>,
+    /// Each body step as Jason text.
+    pub body: Vec<String>,
+    /// Where the plan starts.
+    pub location: Location,
+}
+
+/// Parses every file. Files that are not AgentSpeak are refused with a located error.
+pub fn parse_files(paths: &[PathBuf]) -> ParseRun {
+    let mut map = SourceMap::new();
+    let mut diagnostics = Vec::new();
+    let mut files = Vec::new();
+    for path in paths {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("asl") => match load_agent(path, &mut map) {
+                Ok(agent) => files.push(outline(path, &agent, &map)),
+                Err(errs) => diagnostics.extend(errs),
+            },
+            _ => diagnostics.push(
+                Diagnostic::error(
+                    "input",
+                    format!("`{}` is not an AgentSpeak file (`.asl`)", path.display()),
+                )
+                .in_file(path.display().to_string())
+                .with_help("`parse` reads Jason AgentSpeak files ending in `.asl`"),
+            ),
+        }
+    }
+    let findings: Vec<Finding> = diagnostics
+        .iter()
+        .map(|d| Finding::from_input_diagnostic(d, &map))
+        .collect();
+    let report = ParseReport {
+        tool: Tool::default(),
+        command: "parse",
+        verdict: verdict_of(&findings),
+        files,
+        findings,
+    };
+    ParseRun {
+        map,
+        diagnostics,
+        report,
+    }
+}
+
+fn outline(path: &Path, agent: &crate::syntax::LoadedAgent, map: &SourceMap) -> FileOutline {
+    let loc = |span| map.location(span);
+    let mut o = FileOutline {
+        file: path.display().to_string(),
+        includes: agent
+            .included
+            .iter()
+            .map(|i| map.file(i.file).name.clone())
+            .collect(),
+        beliefs: Vec::new(),
+        rules: Vec::new(),
+        initial_goals: Vec::new(),
+        plans: Vec::new(),
+    };
+    for item in agent.items() {
+        match item {
+            Item::Belief(b) => o.beliefs.push(Entry {
+                text: print_literal(&b.literal),
+                location: loc(b.span),
+            }),
+            Item::Rule(r) => o.rules.push(Entry {
+                text: format!("{} :- {}", print_literal(&r.head), print_expr(&r.body)),
+                location: loc(r.span),
+            }),
+            Item::InitialGoal(g) => o.initial_goals.push(Entry {
+                text: format!("!{}", print_literal(&g.literal)),
+                location: loc(g.span),
+            }),
+            Item::Plan(p) => push_plan(&mut o.plans, p, map),
+            // `items()` has already replaced directives by what they stand for.
+            Item::Directive(_) => {}
+        }
+    }
+    o
+}
+
+fn push_plan(out: &mut Vec<PlanOutline>, p: &Plan, map: &SourceMap) {
+    out.push(PlanOutline {
+        label: p.label.as_ref().and_then(|l| l.name.clone()),
+        trigger: print_trigger(&p.trigger),
+        context: p.context.as_ref().map(print_expr),
+        body: p
+            .body
+            .as_ref()
+            .map(|b| b.steps.iter().map(print_step).collect())
+            .unwrap_or_default(),
+        location: map.location(p.span),
+    });
+    for sub in &p.sub_plans {
+        push_plan(out, sub, map);
+    }
+}
+
+/// The run written in the requested format: `(stdout, stderr)`.
+pub fn render(run: &ParseRun, format: Format, color: bool) -> (String, String) {
+    match format {
+        Format::Json => {
+            let json = serde_json::to_string_pretty(&run.report)
+                .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
+            (json + "\n", String::new())
+        }
+        Format::Human => (render_summary(&run.report), render_diagnostics(run, color)),
+    }
+}
+
+/// Every diagnostic with its excerpt, as rustc prints them.
+pub fn render_diagnostics(run: &ParseRun, color: bool) -> String {
+    let mut err = String::new();
+    for d in &run.diagnostics {
+        err.push_str(&d.render(&run.map, color));
+        err.push('\n');
+    }
+    err
+}
+
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+fn render_summary(r: &ParseReport) -> String {
+    let mut out = String::new();
+    for f in &r.files {
+        let mut triggers: Vec<(&str, Vec<&PlanOutline>)> = Vec::new();
+        for p in &f.plans {
+            match triggers.iter_mut().find(|(t, _)| *t == p.trigger) {
+                Some((_, v)) => v.push(p),
+                None => triggers.push((&p.trigger, vec![p])),
+            }
+        }
+        out.push_str(&format!(
+            "{}: {}, {}, {}, {} for {}\n",
+            f.file,
+            plural(f.beliefs.len(), "belief", "beliefs"),
+            plural(f.rules.len(), "rule", "rules"),
+            plural(f.initial_goals.len(), "initial goal", "initial goals"),
+            plural(f.plans.len(), "plan", "plans"),
+            plural(triggers.len(), "trigger", "triggers"),
+        ));
+        if !f.includes.is_empty() {
+            out.push_str(&format!("  includes       {}\n", f.includes.join(", ")));
+        }
+        let list = |entries: &[Entry]| {
+            entries
+                .iter()
+                .map(|e| e.text.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if !f.beliefs.is_empty() {
+            out.push_str(&format!("  beliefs        {}\n", list(&f.beliefs)));
+        }
+        for r in &f.rules {
+            out.push_str(&format!("  rule           {}\n", r.text));
+        }
+        if !f.initial_goals.is_empty() {
+            out.push_str(&format!("  initial goals  {}\n", list(&f.initial_goals)));
+        }
+        if !triggers.is_empty() {
+            out.push_str("  plans by trigger\n");
+            let width = triggers.iter().map(|(t, _)| t.len()).max().unwrap_or(0);
+            for (t, plans) in &triggers {
+                let places: Vec<String> = plans
+                    .iter()
+                    .map(|p| format!("{}:{}", p.location.file, p.location.line))
+                    .collect();
+                out.push_str(&format!(
+                    "    {t:width$}  {}  {}\n",
+                    plural(plans.len(), "plan ", "plans"),
+                    places.join(", ")
+                ));
+            }
+        }
+    }
+    let errors = r.findings.len();
+    out.push_str(&match errors {
+        0 => format!("parsed {}: no errors\n", plural(r.files.len(), "file", "files")),
+        n => format!("{}: the input is malformed\n", plural(n, "error", "errors")),
+    });
+    out
+}

@@ -1,0 +1,3 @@
+// expect: 3:10 unexpected character `#`
+// `#` is not an AgentSpeak token.
+cupboard(#top).

@@ -1,0 +1,2 @@
+// included-only: a correct library that the invalid agents may include.
+shelf(top).

@@ -1,0 +1,1 @@
+// placeholder plan library for the manifest tests

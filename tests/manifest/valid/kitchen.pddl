@@ -1,0 +1,1 @@
+; placeholder action model for the manifest tests

@@ -1,0 +1,4 @@
+; expect: 4:17 undefined type `dish`
+(define (domain d)
+  (:requirements :typing)
+  (:types cup - dish))
