@@ -66,7 +66,11 @@ fn main() -> ExitCode {
             let color = output.is_none() && std::io::stdout().is_terminal();
             let (mut out, err) = report::outline::render(&run, format, color);
             if quiet && matches!(format, Format::Human) {
-                out = out.lines().last().map(|l| format!("{l}\n")).unwrap_or_default();
+                out = out
+                    .lines()
+                    .last()
+                    .map(|l| format!("{l}\n"))
+                    .unwrap_or_default();
             }
             eprint!("{err}");
             let code = run.report.verdict.exit_code();
@@ -84,8 +88,9 @@ fn main() -> ExitCode {
 /// Writes the report to `-o FILE` or stdout.
 fn emit(text: &str, output: Option<PathBuf>) -> std::io::Result<()> {
     match output {
-        Some(path) => std::fs::write(&path, text)
-            .map_err(|e| std::io::Error::new(e.kind(), format!("cannot write `{}`: {e}", path.display()))),
+        Some(path) => std::fs::write(&path, text).map_err(|e| {
+            std::io::Error::new(e.kind(), format!("cannot write `{}`: {e}", path.display()))
+        }),
         None => {
             let mut stdout = std::io::stdout().lock();
             stdout.write_all(text.as_bytes())?;

@@ -8,7 +8,9 @@ use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 
 fn dir(sub: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/pddl").join(sub)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/pddl")
+        .join(sub)
 }
 
 fn pddl_files(sub: &str) -> Vec<PathBuf> {
@@ -26,7 +28,11 @@ fn load(path: &Path) -> (SourceMap, Option<Domain>, Vec<Diagnostic>) {
     let text = std::fs::read_to_string(path).expect("readable");
     let name = format!(
         "{}/{}",
-        path.parent().unwrap().file_name().unwrap().to_string_lossy(),
+        path.parent()
+            .unwrap()
+            .file_name()
+            .unwrap()
+            .to_string_lossy(),
         path.file_name().unwrap().to_string_lossy()
     );
     let mut map = SourceMap::new();
@@ -50,7 +56,10 @@ fn kitchen_domain_parses_without_diagnostics() {
     assert_eq!(d.constants.len(), 7);
     assert_eq!(d.predicates.len(), 8);
     assert_eq!(d.actions.len(), 7);
-    assert_eq!(map.location(d.name_span).to_string(), "valid/kitchen.pddl:5:17");
+    assert_eq!(
+        map.location(d.name_span).to_string(),
+        "valid/kitchen.pddl:5:17"
+    );
 
     // Typing with inheritance.
     assert_eq!(d.type_ancestors("cup"), ["dish", "item", "object"]);
@@ -72,13 +81,19 @@ fn kitchen_domain_parses_without_diagnostics() {
 
     // Spans point into the file, and printing gives PDDL back.
     let nav = d.action("navigateTo").unwrap();
-    assert_eq!(map.location(nav.name_span).to_string(), "valid/kitchen.pddl:34:12");
+    assert_eq!(
+        map.location(nav.name_span).to_string(),
+        "valid/kitchen.pddl:34:12"
+    );
     assert_eq!(
         nav.precondition.as_ref().unwrap().to_string(),
         "(and (not (robotAt ?to)) (exists (?from - location) \
          (and (robotAt ?from) (reachable ?from ?to))))"
     );
-    assert_eq!(map.slice(nav.span).lines().next(), Some("(:action navigateTo"));
+    assert_eq!(
+        map.slice(nav.span).lines().next(),
+        Some("(:action navigateTo")
+    );
 
     // Every constant used is declared here; none is left for the manifest.
     assert!(d.undeclared_constants().is_empty());
@@ -106,7 +121,11 @@ fn invalid_files_yield_exactly_the_expected_diagnostics() {
     let mut failures = Vec::new();
     for path in &files {
         let expected = expectations(path);
-        assert!(!expected.is_empty(), "{} has no `; expect:` line", path.display());
+        assert!(
+            !expected.is_empty(),
+            "{} has no `; expect:` line",
+            path.display()
+        );
         let (map, _, errs) = load(path);
         let mut actual: Vec<(usize, usize, String)> = errs
             .iter()
@@ -268,6 +287,8 @@ proptest! {
     }
 }
 
+/// Prints every diagnostic of the invalid files, to review their wording:
+/// `cargo test --release --test pddl show_all -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn show_all() {

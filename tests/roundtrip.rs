@@ -174,13 +174,11 @@ fn bool_lit(b: bool) -> Expr {
 fn list(elem: BoxedStrategy<Expr>, non_empty: bool) -> BoxedStrategy<ListExpr> {
     let tail = prop_oneof![
         var_name().prop_map(plain_var),
-        prop::collection::vec(elem.clone(), 0..2).prop_map(|elems| ex(ExprKind::List(
-            ListExpr {
-                elems,
-                tail: None,
-                span: Span::default(),
-            }
-        ))),
+        prop::collection::vec(elem.clone(), 0..2).prop_map(|elems| ex(ExprKind::List(ListExpr {
+            elems,
+            tail: None,
+            span: Span::default(),
+        }))),
     ];
     (
         prop::collection::vec(elem, 0..3),
@@ -776,7 +774,10 @@ fn roundtrip_file(path: &Path) -> Option<String> {
 #[test]
 fn test_files_roundtrip() {
     let mut files = Vec::new();
-    asl_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests"), &mut files);
+    asl_files(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests"),
+        &mut files,
+    );
     files.sort();
     let failures: Vec<String> = files.iter().filter_map(|p| roundtrip_file(p)).collect();
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
@@ -796,4 +797,3 @@ fn jason_examples_roundtrip() {
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
-

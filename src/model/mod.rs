@@ -17,7 +17,10 @@ pub mod from_ast;
 pub mod print;
 pub mod subst;
 pub mod term;
+pub mod universe;
+pub mod vocabulary;
 
 pub use from_ast::{term_from_expr, ConvertError, ConvertErrorKind, Converter};
 pub use subst::{match_pattern, unifier, unify, Substitution};
 pub use term::{Cons, Num, Struct, Term, Var};
+pub use universe::{ObjectId, Origin, TypeId, Universe};

@@ -150,15 +150,24 @@ mod tests {
     fn verdicts_and_exit_codes() {
         assert_eq!(verdict_of(&[]), Verdict::Pass);
         let warn = finding("coverage-gap", Severity::Warning, Status::Fail);
-        assert_eq!(verdict_of(&[warn.clone()]), Verdict::Pass);
+        assert_eq!(verdict_of(std::slice::from_ref(&warn)), Verdict::Pass);
         let unknown = finding("dead-plan", Severity::Error, Status::Unknown);
-        assert_eq!(verdict_of(&[warn.clone(), unknown.clone()]), Verdict::Incomplete);
+        assert_eq!(
+            verdict_of(&[warn.clone(), unknown.clone()]),
+            Verdict::Incomplete
+        );
         let fail = finding("dead-plan", Severity::Error, Status::Fail);
         assert_eq!(verdict_of(&[unknown.clone(), fail.clone()]), Verdict::Fail);
         let input = finding("input", Severity::Error, Status::Fail);
         assert_eq!(verdict_of(&[fail, input]), Verdict::Error);
         assert_eq!(
-            [Verdict::Pass, Verdict::Fail, Verdict::Error, Verdict::Incomplete].map(Verdict::exit_code),
+            [
+                Verdict::Pass,
+                Verdict::Fail,
+                Verdict::Error,
+                Verdict::Incomplete
+            ]
+            .map(Verdict::exit_code),
             [0, 1, 2, 3]
         );
     }

@@ -251,7 +251,10 @@ fn render_summary(r: &ParseReport) -> String {
     }
     let errors = r.findings.len();
     out.push_str(&match errors {
-        0 => format!("parsed {}: no errors\n", plural(r.files.len(), "file", "files")),
+        0 => format!(
+            "parsed {}: no errors\n",
+            plural(r.files.len(), "file", "files")
+        ),
         n => format!("{}: the input is malformed\n", plural(n, "error", "errors")),
     });
     out

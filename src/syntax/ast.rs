@@ -25,6 +25,8 @@ pub struct AgentFile {
 }
 
 /// A top-level component of an agent.
+// Trees are built once per file and walked a few times: boxing plans would buy nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum Item {
     /// `p(a).`
@@ -450,6 +452,7 @@ pub struct PlanTerm {
 }
 
 /// What a term in braces holds.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum PlanTermKind {
     /// `{ @l +!g : c <- b }` (sub-plans are not allowed in a plan term).

@@ -136,9 +136,8 @@ impl Diagnostic {
     /// editors and `grep` find it) followed by miette's excerpt with carets.
     pub fn render(&self, map: &SourceMap, color: bool) -> String {
         let mut out = String::new();
-        match self.location(map) {
-            Some(loc) => out.push_str(&format!("{loc}: ")),
-            None => {}
+        if let Some(loc) = self.location(map) {
+            out.push_str(&format!("{loc}: "));
         }
         out.push_str(&format!(
             "{}[{}]: {}\n",

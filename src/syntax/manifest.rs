@@ -8,7 +8,7 @@
 //! Formulas written as TOML strings are parsed with the AgentSpeak parser, and their AST spans
 //! point *into the TOML file* (one [`FileId`] for the manifest and everything in it), so a
 //! syntax error in `always = "not cupAt(C,, floor)"` shows the manifest line with a caret under
-//! the second comma. See [`StrMap`] for how string contents are mapped back to the file.
+//! the second comma. See `StrMap` (private) for how string contents are mapped back to the file.
 //!
 //! # Defaults
 //!

@@ -10,6 +10,7 @@ use super::ast::*;
 use super::diagnostic::Diagnostic;
 use super::lexer::{lex, Tok, Token};
 use super::source::{FileId, Span};
+use std::collections::HashMap;
 
 /// Deepest nesting of brackets and expressions accepted; Jason programs stay far below it,
 /// and the bound keeps hostile input from overflowing the stack.
@@ -78,7 +79,13 @@ struct Parser<'t> {
     prev_end: u32,
     errors: Vec<Diagnostic>,
     depth: usize,
+    /// Outcome of the speculative `log_expr` at a body position starting with `(`.
+    speculated: HashMap<usize, Option<(Expr, usize, u32)>>,
+    /// Plan terms already parsed, by position: result, position after, end, errors.
+    plan_terms: HashMap<usize, PlanTermMemo>,
 }
+
+type PlanTermMemo = (PResult<Expr>, usize, u32, Vec<Diagnostic>);
 
 impl<'t> Parser<'t> {
     fn new(file: FileId, text: &'t str, toks: Vec<Token>) -> Parser<'t> {
@@ -90,6 +97,8 @@ impl<'t> Parser<'t> {
             prev_end: 0,
             errors: Vec::new(),
             depth: 0,
+            speculated: HashMap::new(),
+            plan_terms: HashMap::new(),
         }
     }
 
@@ -688,13 +697,27 @@ impl<'t> Parser<'t> {
                 }
             }
             Prefix::None if self.peek() == &Tok::LParen => {
-                // Jason: LOOKAHEAD(log_expr()) first, else `( plan_body )`.
+                // Jason: LOOKAHEAD(log_expr()) first, else `( plan_body )`. The attempt is
+                // remembered per position: nested groups would otherwise retry it
+                // exponentially often.
                 let (save_pos, save_err, save_end) = (self.pos, self.errors.len(), self.prev_end);
-                match self.log_expr() {
-                    Ok(e) => return self.formula_step(Prefix::None, e, prefix_span, start),
-                    Err(()) => {
+                let attempt = match self.speculated.get(&save_pos) {
+                    Some(hit) => hit.clone(),
+                    None => {
+                        let r = self.log_expr().ok().map(|e| (e, self.pos, self.prev_end));
+                        self.speculated.insert(save_pos, r.clone());
+                        r
+                    }
+                };
+                self.errors.truncate(save_err);
+                match attempt {
+                    Some((e, pos, end)) => {
+                        self.pos = pos;
+                        self.prev_end = end;
+                        return self.formula_step(Prefix::None, e, prefix_span, start);
+                    }
+                    None => {
                         self.pos = save_pos;
-                        self.errors.truncate(save_err);
                         self.prev_end = save_end;
                     }
                 }
@@ -811,7 +834,30 @@ impl<'t> Parser<'t> {
     }
 
     /// `rule_plan_term`: `{ plan }`, `{ trigger }`, `{ body }`, `{ head :- body }`.
+    ///
+    /// A plan term parses the same wherever it is met, so its result (errors included) is
+    /// remembered by position; speculative parses of enclosing groups then cost nothing twice.
     fn plan_term(&mut self) -> PResult<Expr> {
+        let at = self.pos;
+        if let Some((r, pos, end, errs)) = self.plan_terms.get(&at).cloned() {
+            self.pos = pos;
+            self.prev_end = end;
+            for e in errs {
+                if self.errors.len() < MAX_ERRORS {
+                    self.errors.push(e);
+                }
+            }
+            return r;
+        }
+        let first_error = self.errors.len();
+        let r = self.plan_term_uncached();
+        let errs = self.errors.get(first_error..).unwrap_or_default().to_vec();
+        self.plan_terms
+            .insert(at, (r.clone(), self.pos, self.prev_end, errs));
+        r
+    }
+
+    fn plan_term_uncached(&mut self) -> PResult<Expr> {
         self.nested(|p| {
             let start = p.start();
             p.expect(&Tok::LBrace, "`{`")?;
@@ -1033,6 +1079,28 @@ impl<'t> Parser<'t> {
 
     /// `arithm_expr`: terms joined by `+` and `-`, left-associative.
     fn arith_expr(&mut self) -> PResult<Expr> {
+        let saved = self.depth;
+        let r = self.arith_expr_chain();
+        self.depth = saved;
+        r
+    }
+
+    /// Each link of a left-associative chain nests the tree one level deeper, so it counts
+    /// against the nesting bound like a parenthesis does.
+    fn deepen(&mut self) -> PResult<()> {
+        if self.depth >= MAX_DEPTH {
+            let span = self.span_here();
+            return self.error_at(
+                span,
+                format!("expression nested deeper than {MAX_DEPTH} levels"),
+                "too deeply nested",
+            );
+        }
+        self.depth += 1;
+        Ok(())
+    }
+
+    fn arith_expr_chain(&mut self) -> PResult<Expr> {
         let start = self.start();
         let mut lhs = self.arith_trm()?;
         loop {
@@ -1042,6 +1110,7 @@ impl<'t> Parser<'t> {
                 _ => return Ok(lhs),
             };
             self.bump();
+            self.deepen()?;
             let rhs = self.arith_trm()?;
             lhs = Expr {
                 kind: ExprKind::Arith(op, Box::new(lhs), Box::new(rhs)),
@@ -1052,6 +1121,13 @@ impl<'t> Parser<'t> {
 
     /// `arithm_expr_trm`: factors joined by `* / div mod`, left-associative.
     fn arith_trm(&mut self) -> PResult<Expr> {
+        let saved = self.depth;
+        let r = self.arith_trm_chain();
+        self.depth = saved;
+        r
+    }
+
+    fn arith_trm_chain(&mut self) -> PResult<Expr> {
         let start = self.start();
         let mut lhs = self.arith_factor()?;
         loop {
@@ -1063,6 +1139,7 @@ impl<'t> Parser<'t> {
                 _ => return Ok(lhs),
             };
             self.bump();
+            self.deepen()?;
             let rhs = self.arith_factor()?;
             lhs = Expr {
                 kind: ExprKind::Arith(op, Box::new(lhs), Box::new(rhs)),
@@ -1129,18 +1206,18 @@ impl<'t> Parser<'t> {
     // ----- literals and terms -----------------------------------------------------------------
 
     fn starts_literal(&self) -> bool {
-        match self.peek() {
+        matches!(
+            self.peek(),
             Tok::Atom(_)
-            | Tok::Begin
-            | Tok::End
-            | Tok::Var(_)
-            | Tok::UnnamedVar(_)
-            | Tok::Tilde
-            | Tok::NsSep
-            | Tok::True
-            | Tok::False => true,
-            _ => false,
-        }
+                | Tok::Begin
+                | Tok::End
+                | Tok::Var(_)
+                | Tok::UnnamedVar(_)
+                | Tok::Tilde
+                | Tok::NsSep
+                | Tok::True
+                | Tok::False
+        )
     }
 
     /// `literal`: `[ns::] [~] (pred | var) | true | false`.
@@ -1405,7 +1482,10 @@ mod tests {
         assert!(matches!(plan_term("{}"), PlanTermKind::Body(b) if b.steps.is_empty()));
         for bad in ["{ +!h; a }", "{ @l +b; a }", "{ +b : c; a }"] {
             let errs = parse_expr(FileId(0), bad).expect_err(bad);
-            assert!(errs[0].message.contains("wrong place for `;`"), "{bad}: {errs:?}");
+            assert!(
+                errs[0].message.contains("wrong place for `;`"),
+                "{bad}: {errs:?}"
+            );
         }
     }
 
@@ -1416,14 +1496,31 @@ mod tests {
         assert!(matches!(step("X = 1 + 2"), StepKind::Constraint(_)));
         assert!(matches!(step("-+b(1)"), StepKind::DelAddBel(_)));
         assert!(matches!(step("+<b"), StepKind::AddBel(_)));
-        let (file, errs) = parse_agent(FileId(0), "+!g <- (a; b); a |&| b ||| (c; d) ||| (e ||| f).");
+        let (file, errs) = parse_agent(
+            FileId(0),
+            "+!g <- (a; b); a |&| b ||| (c; d) ||| (e ||| f).",
+        );
         assert!(errs.is_empty(), "{errs:?}");
-        let Item::Plan(p) = &file.items[0] else { panic!() };
+        let Item::Plan(p) = &file.items[0] else {
+            panic!()
+        };
         let steps = &p.body.as_ref().unwrap().steps;
         assert!(matches!(&steps[0].kind, StepKind::Group(b) if b.steps.len() == 2));
         // `|&|` binds tighter than `|||`, and nested `|||` forks are flattened as Jason does.
-        let StepKind::Fork { op: ForkOp::Or, branches } = &steps[1].kind else { panic!() };
+        let StepKind::Fork {
+            op: ForkOp::Or,
+            branches,
+        } = &steps[1].kind
+        else {
+            panic!()
+        };
         assert_eq!(branches.len(), 4);
-        assert!(matches!(&branches[0].steps[0].kind, StepKind::Fork { op: ForkOp::And, .. }));
+        assert!(matches!(
+            &branches[0].steps[0].kind,
+            StepKind::Fork {
+                op: ForkOp::And,
+                ..
+            }
+        ));
     }
 }

@@ -873,6 +873,21 @@ fn atom_text(a: &Atom) -> String {
     }
 }
 
+/// Where "found ..." points for an element: a list by its `(` and head, which is what
+/// [`describe`] shows (the whole list may span many lines).
+fn head_span(e: &SExpr) -> Span {
+    match &e.kind {
+        SKind::List(items, _) => match items.first() {
+            Some(h) if !matches!(h.kind, SKind::List(..)) => e.span.shrink_to_start().to(h.span),
+            _ => Span {
+                end: e.span.start + 1,
+                ..e.span
+            },
+        },
+        _ => e.span,
+    }
+}
+
 /// The span and description of a list's end, for "expected X, found `)`".
 fn list_end(close: Span) -> (Span, String) {
     let found = if close.is_empty() {
@@ -973,7 +988,14 @@ impl Reader {
         if matches!(e.kind, SKind::Bad) {
             return Err(());
         }
-        self.expected(e.span, what, describe(e))
+        self.expected(head_span(e), what, describe(e))
+    }
+
+    /// Adds help to the diagnostic just reported.
+    fn help_last(&mut self, help: &str) {
+        if let Some(d) = self.errors.last_mut() {
+            d.help = Some(help.to_string());
+        }
     }
 
     fn unsupported<T>(&mut self, span: Span, msg: String, help: &str) -> PResult<T> {
@@ -1016,7 +1038,9 @@ impl Reader {
         match items.first() {
             Some(h) if name_of(h).map(keyword_name).as_deref() == Some("define") => {}
             Some(h) => {
-                let _: PResult<()> = self.expected_elem(h, "`define`");
+                if !matches!(h.kind, SKind::Bad) {
+                    let _: PResult<()> = self.expected_elem(def, "`(define (domain NAME) ...)`");
+                }
                 return None;
             }
             None => {
@@ -1071,10 +1095,8 @@ impl Reader {
                 self.section(e, &mut d, &mut seen);
             } else if !stray_reported && !matches!(e.kind, SKind::Bad) {
                 stray_reported = true;
-                let _: PResult<()> = self.expected_elem(
-                    e,
-                    "the end of the file after the domain (one file holds one domain)",
-                );
+                let _: PResult<()> = self.expected_elem(e, "the end of the file");
+                self.help_last("a file holds one domain, and nothing after it");
             }
         }
         header_ok.then_some(d)
@@ -1124,7 +1146,7 @@ impl Reader {
     }
 
     fn section(&mut self, e: &SExpr, d: &mut Domain, seen: &mut HashMap<String, Span>) {
-        const WHAT: &str = "a section such as `(:predicates ...)` or `(:action ...)`";
+        const WHAT: &str = "a section such as `(:action ...)`";
         let (items, close) = match &e.kind {
             SKind::List(items, close) => (items, *close),
             _ => {
@@ -1607,10 +1629,16 @@ impl Reader {
                 );
             }
             _ => {
-                return self.expected_elem(
-                    head,
-                    "a predicate name or `and`, `or`, `not`, `imply`, `exists`, `forall`, `=`",
-                )
+                let r = self.expected_elem(head, "a predicate name or a connective such as `and`");
+                self.help_last(if matches!(head.kind, SKind::List(..)) {
+                    "one pair of parentheses too many? A goal description is `(p t...)`, \
+                     `(and ...)`, `(or ...)`, `(not G)`, `(imply G G)`, `(exists (?x) G)`, \
+                     `(forall (?x) G)` or `(= t t)`"
+                } else {
+                    "a goal description is `(p t...)`, `(and ...)`, `(or ...)`, `(not G)`, \
+                     `(imply G G)`, `(exists (?x) G)`, `(forall (?x) G)` or `(= t t)`"
+                });
+                return r;
             }
         };
         Ok(Gd { kind, span })
@@ -1643,21 +1671,18 @@ impl Reader {
                 span: e.span,
             }),
             SKind::List(..) => {
-                let _: PResult<()> = self.expected_elem(e, "a variable or a constant");
-                if let Some(d) = self.errors.last_mut() {
-                    d.help = Some(
-                        "function terms need `:object-fluents`, which bdi-check does not support"
-                            .to_string(),
-                    );
-                }
-                Err(())
+                let r = self.expected_elem(e, "a variable or a constant");
+                self.help_last(
+                    "function terms need `:object-fluents`, which bdi-check does not support",
+                );
+                r
             }
             _ => self.expected_elem(e, "a variable or a constant"),
         }
     }
 
     fn effect(&mut self, e: &SExpr) -> PResult<Effect> {
-        const WHAT: &str = "an effect such as `(p ?x)`, `(not (p ?x))` or `(and ...)`";
+        const WHAT: &str = "an effect such as `(p ?x)` or `(and ...)`";
         let span = e.span;
         let SKind::List(items, close) = &e.kind else {
             return self.expected_elem(e, WHAT);
@@ -1722,8 +1747,15 @@ impl Reader {
                 ))
             }
             _ => {
-                return self
-                    .expected_elem(head, "a predicate name or `and`, `not`, `forall`, `when`")
+                let r = self.expected_elem(head, "a predicate name or a connective such as `and`");
+                self.help_last(if matches!(head.kind, SKind::List(..)) {
+                    "one pair of parentheses too many? An effect is `(p t...)`, \
+                     `(not (p t...))`, `(and ...)`, `(forall (?x) E)` or `(when G E)`"
+                } else {
+                    "an effect is `(p t...)`, `(not (p t...))`, `(and ...)`, `(forall (?x) E)` \
+                     or `(when G E)`"
+                });
+                return r;
             }
         };
         Ok(Effect { kind, span })
@@ -2000,7 +2032,7 @@ impl<'d, 'e> Checker<'d, 'e> {
                             a.args.len()
                         ),
                     )
-                    .with_label(a.span, format!("{} argument(s)", a.args.len()))
+                    .with_label(a.span, format!("{} given", a.args.len()))
                     .with_secondary(p.span, "declared here"),
                 );
             }
@@ -2250,6 +2282,36 @@ mod tests {
         assert!(d.is_none());
         assert_eq!(errs.len(), 1);
         assert!(errs[0].message.contains("found the end of the file"));
+    }
+
+    #[test]
+    fn a_broken_action_is_left_out_and_the_rest_is_read() {
+        let (d, errs) = parse(
+            "(define (domain d) (:predicates (p))
+               (:action a :precondition (not) :effect (and (p) 3))
+               (:action b :effect (p)))",
+        );
+        // Both values of `a` are reported, then `b` is read.
+        assert_eq!(errs.len(), 2, "{errs:#?}");
+        let d = d.unwrap();
+        assert_eq!(d.actions.len(), 1);
+        assert_eq!(d.actions[0].name, "b");
+    }
+
+    #[test]
+    fn a_file_without_define_or_with_two_domains() {
+        let (d, errs) = parse("(:action a :effect (p))");
+        assert!(d.is_none());
+        assert_eq!(errs.len(), 1);
+        assert_eq!(
+            errs[0].message,
+            "expected `(define (domain NAME) ...)`, found `(:action`"
+        );
+        assert_eq!(errs[0].span.unwrap().len(), "(:action".len());
+        let (d, errs) = parse("(define (domain d))\n(define (domain e))");
+        assert_eq!(d.unwrap().name, "d");
+        assert_eq!(errs.len(), 1);
+        assert!(errs[0].message.contains("expected the end of the file"));
     }
 
     #[test]

@@ -530,7 +530,8 @@ fn literal_to(out: &mut String, l: &Literal) {
     }
 }
 
-/// `(a, b)`, or nothing when there are no arguments (`p()` is not Jason).
+/// `(a,b)` as Jason prints arguments (no space, like the model's term printer), or nothing
+/// when there are no arguments (`p()` is not Jason).
 fn args_to(out: &mut String, args: &[Expr]) {
     if args.is_empty() {
         return;
@@ -538,7 +539,7 @@ fn args_to(out: &mut String, args: &[Expr]) {
     out.push('(');
     for (i, a) in args.iter().enumerate() {
         if i > 0 {
-            out.push_str(", ");
+            out.push(',');
         }
         expr_to(out, a, Slot::Log);
     }
@@ -549,12 +550,12 @@ fn list_to(out: &mut String, l: &ListExpr) {
     out.push('[');
     for (i, e) in l.elems.iter().enumerate() {
         if i > 0 {
-            out.push_str(", ");
+            out.push(',');
         }
         expr_to(out, e, Slot::RelOperand);
     }
     if let Some(t) = &l.tail {
-        out.push_str(if l.elems.is_empty() { "|" } else { " | " });
+        out.push('|');
         expr_to(out, t, Slot::Log);
     }
     out.push(']');
@@ -610,8 +611,8 @@ mod tests {
         expr_roundtrip("-(2 ** 2)", "-(2 ** 2)");
         expr_roundtrip("X = (\"a\")", "X = \"a\"");
         expr_roundtrip("(\"a\") + 1 > 0", "(\"a\") + 1 > 0");
-        expr_roundtrip("[(a & b), 1 + 2 * 3]", "[(a & b), 1 + 2 * 3]");
-        expr_roundtrip("p(a & b, (c))", "p(a & b, c)");
+        expr_roundtrip("[(a & b), 1 + 2 * 3]", "[(a & b),1 + 2 * 3]");
+        expr_roundtrip("p(a & b, (c))", "p(a & b,c)");
     }
 
     #[test]

@@ -1,4 +1,4 @@
-; expect: 7:51 expected a predicate name or `and`, `or`, `not`, `imply`, `exists`, `forall`, `=`, found `(clean`
+; expect: 7:51 expected a predicate name or a connective such as `and`, found `(clean`
 ; expect: 10:36 undefined predicate `dirty`
 ; expect: 11:31 undefined variable `?d`
 ; Three independent errors: a syntax error in one action, an undefined predicate in

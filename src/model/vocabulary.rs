@@ -1,0 +1,1 @@
+//! Type checking across the agent, the PDDL domain and the manifest.
