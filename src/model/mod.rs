@@ -13,8 +13,14 @@
 //! * [`from_ast`]: conversion from AST expressions, with fresh anonymous variables and
 //!   evaluation of ground arithmetic.
 
+pub mod atoms;
+pub mod cond;
+pub mod formula;
 pub mod from_ast;
+pub mod ground;
+pub mod initial;
 pub mod print;
+pub mod project;
 pub mod subst;
 pub mod term;
 pub mod universe;

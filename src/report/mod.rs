@@ -4,6 +4,7 @@
 //! follow SPEC §2 and are derived from the report alone ([`Report::exit_code`]), so a
 //! verdict and its exit code can never disagree.
 
+pub mod domain;
 pub mod outline;
 
 use crate::syntax::{Diagnostic, Location, Severity, SourceMap};

@@ -4,8 +4,13 @@
 //! trigger); `--format json` gives the outline of every plan (trigger, context and body steps
 //! as Jason text, with locations) and the input findings of SPEC §3.
 
+use super::domain::{
+    domain_outline, project_outline, render_domain, render_project, DomainOutline, ProjectOutline,
+};
 use super::{verdict_of, Finding, Format, Tool, Verdict};
+use crate::model::project::load_project;
 use crate::syntax::ast::{Item, Plan};
+use crate::syntax::pddl::parse_domain;
 use crate::syntax::printer::{print_expr, print_literal, print_step, print_trigger};
 use crate::syntax::{load_agent, Diagnostic, Location, SourceMap};
 use serde::Serialize;
@@ -31,9 +36,21 @@ pub struct ParseReport {
     /// `pass` when every file parsed, `error` otherwise.
     pub verdict: Verdict,
     /// One outline per file named on the command line that parsed.
-    pub files: Vec<FileOutline>,
+    pub files: Vec<FileReport>,
     /// One `input` finding per error.
     pub findings: Vec<Finding>,
+}
+
+/// The outline of one file named on the command line, by kind.
+#[derive(Clone, Debug, Serialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum FileReport {
+    /// An AgentSpeak file.
+    Agent(FileOutline),
+    /// A PDDL domain.
+    Domain(DomainOutline),
+    /// A manifest: the whole project, grounded.
+    Project(ProjectOutline),
 }
 
 /// What one agent file (with its includes) holds.
@@ -77,24 +94,54 @@ pub struct PlanOutline {
     pub location: Location,
 }
 
-/// Parses every file. Files that are not AgentSpeak are refused with a located error.
+/// Parses every file: `.asl` agents (with their includes), `.pddl` domains, and manifests
+/// (`.toml`: the whole project is loaded, checked and grounded). Other files are refused.
 pub fn parse_files(paths: &[PathBuf]) -> ParseRun {
     let mut map = SourceMap::new();
     let mut diagnostics = Vec::new();
     let mut files = Vec::new();
     for path in paths {
+        let name = path.display().to_string();
         match path.extension().and_then(|e| e.to_str()) {
             Some("asl") => match load_agent(path, &mut map) {
-                Ok(agent) => files.push(outline(path, &agent, &map)),
+                Ok(agent) => files.push(FileReport::Agent(outline(path, &agent, &map))),
                 Err(errs) => diagnostics.extend(errs),
+            },
+            Some("pddl") => match std::fs::read_to_string(path) {
+                Ok(text) => {
+                    let id = map.add(path, name.clone(), text);
+                    let text = map.file(id).text.clone();
+                    match parse_domain(id, &text) {
+                        (Some(d), errs) if errs.is_empty() => {
+                            files.push(FileReport::Domain(domain_outline(&name, &d, &map)))
+                        }
+                        (_, errs) => diagnostics.extend(errs),
+                    }
+                }
+                Err(e) => diagnostics.push(
+                    Diagnostic::error("input", format!("cannot read `{name}`: {e}")).in_file(name),
+                ),
+            },
+            Some("toml") => match load_project(path) {
+                Ok(p) => {
+                    files.push(FileReport::Project(project_outline(&name, &p)));
+                    // Keep the project's files so that later diagnostics still render.
+                    absorb(&mut map, p.map);
+                }
+                Err(e) => {
+                    // Diagnostics point into the project's own source map: re-home them.
+                    let base = map.files().len() as u32;
+                    absorb(&mut map, e.map);
+                    diagnostics.extend(e.diagnostics.into_iter().map(|d| rebase(d, base)));
+                }
             },
             _ => diagnostics.push(
                 Diagnostic::error(
                     "input",
-                    format!("`{}` is not an AgentSpeak file (`.asl`)", path.display()),
+                    format!("`{name}` is not an AgentSpeak file, a PDDL domain or a manifest"),
                 )
-                .in_file(path.display().to_string())
-                .with_help("`parse` reads Jason AgentSpeak files ending in `.asl`"),
+                .in_file(name)
+                .with_help("`parse` reads `.asl`, `.pddl` and `bdi-check.toml` files"),
             ),
         }
     }
@@ -114,6 +161,25 @@ pub fn parse_files(paths: &[PathBuf]) -> ParseRun {
         diagnostics,
         report,
     }
+}
+
+/// Appends another map's files to `map` (their ids shift by `map`'s length).
+fn absorb(map: &mut SourceMap, other: SourceMap) {
+    for f in other.files() {
+        map.add(&f.path, f.name.clone(), f.text.clone());
+    }
+}
+
+/// Shifts a diagnostic's file ids by `base`, after [`absorb`].
+fn rebase(mut d: Diagnostic, base: u32) -> Diagnostic {
+    let shift = |s: &mut crate::syntax::Span| s.file = crate::syntax::FileId(s.file.0 + base);
+    if let Some(s) = &mut d.span {
+        shift(s);
+    }
+    for l in &mut d.secondary {
+        shift(&mut l.span);
+    }
+    d
 }
 
 fn outline(path: &Path, agent: &crate::syntax::LoadedAgent, map: &SourceMap) -> FileOutline {
@@ -198,55 +264,10 @@ fn plural(n: usize, one: &str, many: &str) -> String {
 fn render_summary(r: &ParseReport) -> String {
     let mut out = String::new();
     for f in &r.files {
-        let mut triggers: Vec<(&str, Vec<&PlanOutline>)> = Vec::new();
-        for p in &f.plans {
-            match triggers.iter_mut().find(|(t, _)| *t == p.trigger) {
-                Some((_, v)) => v.push(p),
-                None => triggers.push((&p.trigger, vec![p])),
-            }
-        }
-        out.push_str(&format!(
-            "{}: {}, {}, {}, {} for {}\n",
-            f.file,
-            plural(f.beliefs.len(), "belief", "beliefs"),
-            plural(f.rules.len(), "rule", "rules"),
-            plural(f.initial_goals.len(), "initial goal", "initial goals"),
-            plural(f.plans.len(), "plan", "plans"),
-            plural(triggers.len(), "trigger", "triggers"),
-        ));
-        if !f.includes.is_empty() {
-            out.push_str(&format!("  includes       {}\n", f.includes.join(", ")));
-        }
-        let list = |entries: &[Entry]| {
-            entries
-                .iter()
-                .map(|e| e.text.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        if !f.beliefs.is_empty() {
-            out.push_str(&format!("  beliefs        {}\n", list(&f.beliefs)));
-        }
-        for r in &f.rules {
-            out.push_str(&format!("  rule           {}\n", r.text));
-        }
-        if !f.initial_goals.is_empty() {
-            out.push_str(&format!("  initial goals  {}\n", list(&f.initial_goals)));
-        }
-        if !triggers.is_empty() {
-            out.push_str("  plans by trigger\n");
-            let width = triggers.iter().map(|(t, _)| t.len()).max().unwrap_or(0);
-            for (t, plans) in &triggers {
-                let places: Vec<String> = plans
-                    .iter()
-                    .map(|p| format!("{}:{}", p.location.file, p.location.line))
-                    .collect();
-                out.push_str(&format!(
-                    "    {t:width$}  {}  {}\n",
-                    plural(plans.len(), "plan ", "plans"),
-                    places.join(", ")
-                ));
-            }
+        match f {
+            FileReport::Agent(a) => out.push_str(&render_agent(a)),
+            FileReport::Domain(d) => out.push_str(&render_domain(d)),
+            FileReport::Project(p) => out.push_str(&render_project(p)),
         }
     }
     let errors = r.findings.len();
@@ -257,5 +278,61 @@ fn render_summary(r: &ParseReport) -> String {
         ),
         n => format!("{}: the input is malformed\n", plural(n, "error", "errors")),
     });
+    out
+}
+
+/// Human text for one agent file.
+fn render_agent(f: &FileOutline) -> String {
+    let mut out = String::new();
+    let mut triggers: Vec<(&str, Vec<&PlanOutline>)> = Vec::new();
+    for p in &f.plans {
+        match triggers.iter_mut().find(|(t, _)| *t == p.trigger) {
+            Some((_, v)) => v.push(p),
+            None => triggers.push((&p.trigger, vec![p])),
+        }
+    }
+    out.push_str(&format!(
+        "{}: {}, {}, {}, {} for {}\n",
+        f.file,
+        plural(f.beliefs.len(), "belief", "beliefs"),
+        plural(f.rules.len(), "rule", "rules"),
+        plural(f.initial_goals.len(), "initial goal", "initial goals"),
+        plural(f.plans.len(), "plan", "plans"),
+        plural(triggers.len(), "trigger", "triggers"),
+    ));
+    if !f.includes.is_empty() {
+        out.push_str(&format!("  includes       {}\n", f.includes.join(", ")));
+    }
+    let list = |entries: &[Entry]| {
+        entries
+            .iter()
+            .map(|e| e.text.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if !f.beliefs.is_empty() {
+        out.push_str(&format!("  beliefs        {}\n", list(&f.beliefs)));
+    }
+    for r in &f.rules {
+        out.push_str(&format!("  rule           {}\n", r.text));
+    }
+    if !f.initial_goals.is_empty() {
+        out.push_str(&format!("  initial goals  {}\n", list(&f.initial_goals)));
+    }
+    if !triggers.is_empty() {
+        out.push_str("  plans by trigger\n");
+        let width = triggers.iter().map(|(t, _)| t.len()).max().unwrap_or(0);
+        for (t, plans) in &triggers {
+            let places: Vec<String> = plans
+                .iter()
+                .map(|p| format!("{}:{}", p.location.file, p.location.line))
+                .collect();
+            out.push_str(&format!(
+                "    {t:width$}  {}  {}\n",
+                plural(plans.len(), "plan ", "plans"),
+                places.join(", ")
+            ));
+        }
+    }
     out
 }

@@ -1,0 +1,210 @@
+//! The command line as a user meets it: exit codes, human and JSON output.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn bdi_check(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("bdi-check runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn parse_summarises_a_valid_file_and_exits_0() {
+    let o = bdi_check(&["parse", "tests/asl/valid/kitchen_story.asl"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("tests/asl/valid/kitchen_story.asl: "), "{out}");
+    assert!(out.contains("plans by trigger"), "{out}");
+    assert!(out.contains("+!storeCup(C)"), "{out}");
+    assert!(out.ends_with("parsed 1 file: no errors\n"), "{out}");
+    assert!(stderr(&o).is_empty());
+}
+
+#[test]
+fn parse_reports_every_error_with_location_and_exits_2() {
+    let o = bdi_check(&["parse", "tests/asl/invalid/three_errors.asl"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    for loc in [
+        "three_errors.asl:7:1: error[syntax]",
+        "three_errors.asl:8:21: error[syntax]",
+        "three_errors.asl:9:2: error[syntax]",
+    ] {
+        assert!(err.contains(loc), "missing {loc} in\n{err}");
+    }
+    // The excerpt shows the offending line with a caret.
+    assert!(err.contains("+!wash(C) <- rinse(C; dry(C)."), "{err}");
+    assert!(stdout(&o).contains("3 errors"), "{}", stdout(&o));
+}
+
+#[test]
+fn parse_json_outlines_plans_with_locations() {
+    let o = bdi_check(&["parse", "--format", "json", "specs/paper/paper.asl"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("valid JSON");
+    assert_eq!(v["tool"]["name"], "bdi-check");
+    assert_eq!(v["verdict"], "pass");
+    let plans = v["files"][0]["plans"].as_array().expect("plans");
+    assert_eq!(plans.len(), 2);
+    assert_eq!(plans[0]["trigger"], "+!storeCup(C)");
+    assert_eq!(plans[0]["context"], "used(C)");
+    let body: Vec<&str> = plans[0]["body"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        body,
+        [
+            "!openDishwasherIfNeed",
+            "navigateTo(table)",
+            "pickUp(C)",
+            "navigateTo(dishwasher)",
+            "putDown(C)"
+        ]
+    );
+    assert_eq!(
+        plans[1]["context"],
+        "not dishwasherDoor(open) & holding(none)"
+    );
+    assert_eq!(plans[0]["location"]["file"], "specs/paper/paper.asl");
+    assert_eq!(plans[0]["location"]["line"], 11);
+    assert_eq!(plans[0]["location"]["column"], 1);
+}
+
+#[test]
+fn parse_json_turns_errors_into_input_findings() {
+    let o = bdi_check(&[
+        "parse",
+        "--format",
+        "json",
+        "tests/asl/invalid/missing_dot.asl",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("valid JSON");
+    assert_eq!(v["verdict"], "error");
+    let f = &v["findings"][0];
+    assert_eq!(f["check"], "input");
+    assert_eq!(f["severity"], "error");
+    assert_eq!(f["location"]["file"], "tests/asl/invalid/missing_dot.asl");
+    assert!(f["location"]["line"].as_u64().unwrap() >= 1);
+    // JSON goes to stdout only; nothing else on stderr.
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+}
+
+#[test]
+fn missing_file_is_bad_input_not_a_panic() {
+    let o = bdi_check(&["parse", "no/such/file.asl"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.contains("no/such/file.asl"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn usage_errors_exit_2_and_help_exits_0() {
+    assert_eq!(bdi_check(&["parse"]).status.code(), Some(2));
+    assert_eq!(bdi_check(&["no-such-command"]).status.code(), Some(2));
+    let help = bdi_check(&["--help"]);
+    assert_eq!(help.status.code(), Some(0));
+    assert!(stdout(&help).contains("parse"));
+}
+
+#[test]
+fn quiet_prints_the_verdict_line_only_and_output_writes_a_file() {
+    let o = bdi_check(&["parse", "-q", "specs/paper/paper.asl"]);
+    assert_eq!(stdout(&o), "parsed 1 file: no errors\n");
+    let dir = std::env::temp_dir().join(format!("bdi-check-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("report.json");
+    let o = bdi_check(&[
+        "parse",
+        "--format",
+        "json",
+        "-o",
+        file.to_str().unwrap(),
+        "specs/paper/paper.asl",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(stdout(&o).is_empty());
+    let written = std::fs::read_to_string(&file).unwrap();
+    assert!(written.contains("\"command\": \"parse\""));
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("specs/paper/paper.asl")
+        .exists());
+}
+
+#[test]
+fn parse_a_manifest_prints_the_grounded_domain() {
+    let o = bdi_check(&["parse", "specs/kitchen/bdi-check.toml"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    // 3 locations x robotAt, 3 items x holding, 2 cups x 3 locations x cupAt, 2 x used,
+    // 2 door states, 3 x dirty; 7 schemas over 3 locations or 2 cups; 5 x 5 x 2 x 2 states.
+    let header = out.lines().next().unwrap();
+    assert_eq!(
+        header,
+        "specs/kitchen/bdi-check.toml: 8 objects, 19 ground atoms, 19 ground actions, 100 initial states"
+    );
+    let o = bdi_check(&["parse", "--format", "json", "specs/kitchen/bdi-check.toml"]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let p = &v["files"][0];
+    assert_eq!(p["kind"], "project");
+    assert_eq!(p["atoms"].as_array().unwrap().len(), 19);
+    assert_eq!(p["actions"].as_array().unwrap().len(), 19);
+    assert_eq!(p["initial"]["count"], 100);
+    let states = p["initial"]["states"].as_array().unwrap();
+    assert_eq!(states.len(), 100);
+    // Every initial state holds the facts and places each cup once.
+    for s in states {
+        let atoms: Vec<&str> = s
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a.as_str().unwrap())
+            .collect();
+        assert!(atoms.contains(&"robotAt(table)") && atoms.contains(&"holding(none)"));
+        for cup in ["cup1", "cup2"] {
+            assert_eq!(
+                atoms
+                    .iter()
+                    .filter(|a| a.starts_with(&format!("cupAt({cup},")))
+                    .count(),
+                1
+            );
+        }
+    }
+}
+
+#[test]
+fn parse_a_broken_project_locates_the_error_in_the_manifest() {
+    let o = bdi_check(&["parse", "tests/project/unknown_type/bdi-check.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.starts_with(
+            "tests/project/unknown_type/bdi-check.toml:7:1: error[input]: `mug` is not a type"
+        ),
+        "{err}"
+    );
+    let o = bdi_check(&[
+        "parse",
+        "specs/paper/kitchen.pddl",
+        "specs/paper/bdi-check.toml",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("parsed 2 files: no errors"));
+}

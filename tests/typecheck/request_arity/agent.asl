@@ -1,0 +1,1 @@
++!storeCup(C) : used(C) <- pickUp(C).
