@@ -19,6 +19,7 @@ pub mod formula;
 pub mod from_ast;
 pub mod ground;
 pub mod initial;
+pub mod plans;
 pub mod print;
 pub mod project;
 pub mod subst;

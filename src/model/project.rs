@@ -6,6 +6,7 @@ use super::cond::Cond;
 use super::formula;
 use super::ground::GroundActions;
 use super::initial::{self, TooMany};
+use super::plans::PlanLibrary;
 use super::universe::Universe;
 use super::vocabulary::{self, Vocabulary};
 use crate::syntax::ast::{ExprKind, Item, Literal};
@@ -42,6 +43,8 @@ pub struct Project {
     pub universe: Universe,
     /// Predicates, actions and goals, type-checked.
     pub vocabulary: Vocabulary,
+    /// The plan library, compiled to model terms.
+    pub plans: PlanLibrary,
     /// Every ground atom.
     pub atoms: AtomTable,
     /// Every ground action.
@@ -84,6 +87,10 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
     };
     let vocabulary = match vocabulary::check(&agent, &domain, &manifest, &universe, &map) {
         Ok(v) => v,
+        Err(d) => return fail(map, d),
+    };
+    let plans = match PlanLibrary::compile(&agent) {
+        Ok(p) => p,
         Err(d) => return fail(map, d),
     };
     let predicates: Vec<(Arc<str>, Vec<_>)> = vocabulary
@@ -193,6 +200,7 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         domain,
         universe,
         vocabulary,
+        plans,
         atoms,
         actions,
         constraints,

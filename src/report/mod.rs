@@ -82,6 +82,111 @@ pub struct Finding {
     /// Where, if it is about a place.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub location: Option<Location>,
+    /// A concrete run (or, for static checks, a state) that shows the violation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub counterexample: Option<Counterexample>,
+}
+
+/// A counterexample of SPEC §3: where it starts, what the user asked, and what happened.
+#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+pub struct Counterexample {
+    /// Every atom true at the start (the rest are false), as Jason terms.
+    pub initial: Vec<String>,
+    /// The requests, in arrival order.
+    pub requests: Vec<String>,
+    /// The run, step by step (empty for a static finding, whose counterexample is a state).
+    pub steps: Vec<TraceStep>,
+}
+
+/// The kinds of step of a run.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum StepKindTag {
+    /// A user request arrives.
+    Request,
+    /// An event is taken from the queue.
+    Event,
+    /// A plan is chosen for an event.
+    Plan,
+    /// An environment action runs.
+    Action,
+    /// A belief is added or removed by the agent.
+    Belief,
+    /// An internal action runs.
+    Internal,
+    /// An explanation is given.
+    Explanation,
+}
+
+/// One step of a counterexample run.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct TraceStep {
+    /// What kind of step.
+    pub kind: StepKindTag,
+    /// The step as Jason text: the action, the event, the plan's trigger.
+    pub text: String,
+    /// The intention it belongs to (1-based), if any.
+    pub intention: Option<usize>,
+    /// `file:line` of the plan it comes from, if any.
+    pub plan: Option<String>,
+    /// Atoms that became true.
+    pub added: Vec<String>,
+    /// Atoms that became false.
+    pub removed: Vec<String>,
+    /// The explanation given at this step, if any.
+    pub explanation: Option<String>,
+}
+
+/// Search statistics of SPEC §3.
+#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+pub struct Stats {
+    /// Initial states explored.
+    pub initial_states: usize,
+    /// Distinct states reached.
+    pub states: usize,
+    /// Transitions taken.
+    pub transitions: usize,
+    /// Length of the longest shortest path.
+    pub depth: usize,
+    /// Wall-clock time.
+    pub seconds: f64,
+    /// `states / seconds`.
+    pub states_per_second: f64,
+    /// Whether the search covered every reachable state.
+    pub complete: bool,
+}
+
+/// The report every project command writes (SPEC §3).
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// The tool.
+    pub tool: Tool,
+    /// The project as named on the command line.
+    pub project: String,
+    /// The overall verdict.
+    pub verdict: Verdict,
+    /// Every finding, failing and passing.
+    pub findings: Vec<Finding>,
+    /// Explanations given (filled by `explain`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub explanations: Vec<serde_json::Value>,
+    /// Search statistics (filled by `verify`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stats: Option<Stats>,
+}
+
+impl Report {
+    /// A report whose verdict is derived from its findings.
+    pub fn new(project: impl Into<String>, findings: Vec<Finding>) -> Report {
+        Report {
+            tool: Tool::default(),
+            project: project.into(),
+            verdict: verdict_of(&findings),
+            findings,
+            explanations: Vec::new(),
+            stats: None,
+        }
+    }
 }
 
 impl Finding {
@@ -103,6 +208,7 @@ impl Finding {
             },
             message: d.message.clone(),
             location,
+            counterexample: None,
         }
     }
 }
@@ -144,6 +250,7 @@ mod tests {
             status,
             message: String::new(),
             location: None,
+            counterexample: None,
         }
     }
 

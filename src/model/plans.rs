@@ -1,0 +1,383 @@
+//! The plan library `Π` of the paper's model: every plan compiled from the AST into model
+//! terms, with its trigger, context and body, ready for the static checks and for the
+//! reasoning cycle.
+//!
+//! Variables are per plan (one [`Converter`] per plan, so `_` is fresh at each occurrence
+//! and named variables are shared by trigger, context and body). Arithmetic that cannot be
+//! evaluated at load time (`N + 1`) is kept as a structure whose functor is the operator
+//! (`+`, `-`, `*`, `/`, `div`, `mod`, `**`), to be evaluated once its variables are bound;
+//! users cannot write such functors unquoted, so they never clash with a literal.
+
+use super::from_ast::{ConvertError, Converter};
+use super::term::Term;
+use crate::syntax::ast::{
+    self, ArithOp, Expr, ExprKind, Item, RelOp, StepKind, TriggerKind, TriggerOp, UnaryOp,
+};
+use crate::syntax::{Diagnostic, LoadedAgent, Span};
+
+/// A logical formula over terms: a plan context, a test goal, a condition of `if`/`while`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Formula {
+    /// Always holds.
+    True,
+    /// A literal queried against the beliefs (it may hold variables).
+    Literal(Term),
+    /// Negation as failure.
+    Not(Box<Formula>),
+    /// Both.
+    And(Box<Formula>, Box<Formula>),
+    /// Either (answers of the left first).
+    Or(Box<Formula>, Box<Formula>),
+    /// A relation between two terms (arithmetic evaluated when bound).
+    Rel(RelOp, Term, Term),
+    /// An internal action used as a condition: `.count(q, N)`, `.desire(g)`, `.member(x, l)`.
+    Call(Term),
+}
+
+impl Formula {
+    /// Every literal the formula queries, with whether it occurs under an odd number of
+    /// `not`s (a negative occurrence).
+    pub fn literals(&self) -> Vec<(&Term, bool)> {
+        let mut out = Vec::new();
+        self.collect(false, &mut out);
+        out
+    }
+
+    fn collect<'a>(&'a self, negative: bool, out: &mut Vec<(&'a Term, bool)>) {
+        match self {
+            Formula::True | Formula::Rel(..) | Formula::Call(_) => {}
+            Formula::Literal(t) => out.push((t, negative)),
+            Formula::Not(f) => f.collect(!negative, out),
+            Formula::And(a, b) | Formula::Or(a, b) => {
+                a.collect(negative, out);
+                b.collect(negative, out);
+            }
+        }
+    }
+}
+
+/// One step of a plan body.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BodyStep {
+    /// An environment action `a(x)`.
+    Action(Term),
+    /// An internal action `.print(x)`.
+    Internal(Term),
+    /// `!g` (`new_focus`: `!!g`).
+    Achieve {
+        /// The goal literal.
+        goal: Term,
+        /// `!!g`: in a new intention.
+        new_focus: bool,
+    },
+    /// `?f`.
+    Test(Formula),
+    /// `+b` (also `+>b`, `++b`).
+    AddBel(Term),
+    /// `-b` (also `--b`).
+    DelBel(Term),
+    /// `-+b`.
+    DelAddBel(Term),
+    /// `X = Y + 1`, `N > 0` as a step.
+    Constraint(RelOp, Term, Term),
+    /// `if (c) {...} elif ... else {...}`.
+    If {
+        /// Conditions and bodies, in order.
+        branches: Vec<(Formula, Vec<Step>)>,
+        /// The `else` body (empty when absent).
+        else_body: Vec<Step>,
+    },
+    /// `while (c) {...}`.
+    While(Formula, Vec<Step>),
+    /// `for (c) {...}`.
+    For(Formula, Vec<Step>),
+}
+
+/// A body step with its place.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    /// What it does.
+    pub kind: BodyStep,
+    /// Where it is written.
+    pub span: Span,
+}
+
+/// A plan's triggering event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trigger {
+    /// `+`, `-` or `^`.
+    pub op: TriggerOp,
+    /// Belief, achievement or test goal.
+    pub kind: TriggerKind,
+    /// The literal.
+    pub literal: Term,
+}
+
+impl std::fmt::Display for Trigger {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let op = match self.op {
+            TriggerOp::Add => "+",
+            TriggerOp::Del => "-",
+            TriggerOp::GoalState => "^",
+        };
+        let kind = match self.kind {
+            TriggerKind::Belief => "",
+            TriggerKind::Achieve => "!",
+            TriggerKind::Test => "?",
+        };
+        write!(f, "{op}{kind}{}", self.literal)
+    }
+}
+
+/// A plan of the library.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// Its position in source order (Jason's default selection picks the first applicable).
+    pub index: usize,
+    /// `@label`, if any.
+    pub label: Option<String>,
+    /// The triggering event.
+    pub trigger: Trigger,
+    /// The context (`True` when absent).
+    pub context: Formula,
+    /// The body.
+    pub body: Vec<Step>,
+    /// The plan's span (its start is the plan's location in reports).
+    pub span: Span,
+    /// The context's span, if written.
+    pub context_span: Option<Span>,
+}
+
+impl Plan {
+    /// A name for messages: the label, or the trigger.
+    pub fn name(&self) -> String {
+        match &self.label {
+            Some(l) => format!("@{l}"),
+            None => self.trigger.to_string(),
+        }
+    }
+}
+
+/// The plan library, in source order (includes expanded where they stand).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PlanLibrary {
+    /// Every plan.
+    pub plans: Vec<Plan>,
+    /// The agent's initial goals `!g.`, in order.
+    pub initial_goals: Vec<(Term, Span)>,
+}
+
+impl PlanLibrary {
+    /// Compiles the plans of a loaded agent. Constructs the model checker does not model
+    /// (forks, plan terms, goal conditions, sub-plans) are refused with a located error.
+    pub fn compile(agent: &LoadedAgent) -> Result<PlanLibrary, Vec<Diagnostic>> {
+        let mut lib = PlanLibrary::default();
+        let mut errors = Vec::new();
+        for item in agent.items() {
+            match item {
+                Item::Plan(p) => match compile_plan(lib.plans.len(), p) {
+                    Ok(plan) => lib.plans.push(plan),
+                    Err(d) => errors.push(d),
+                },
+                Item::InitialGoal(g) => {
+                    let mut conv = Converter::new();
+                    match conv.literal(&g.literal) {
+                        Ok(t) => lib.initial_goals.push((t, g.span)),
+                        Err(e) => errors.push(convert_error(e)),
+                    }
+                }
+                _ => {}
+            }
+        }
+        if errors.is_empty() {
+            Ok(lib)
+        } else {
+            Err(errors)
+        }
+    }
+
+    /// The plans relevant for a trigger kind and functor/arity, in source order.
+    pub fn relevant<'a>(
+        &'a self,
+        op: TriggerOp,
+        kind: TriggerKind,
+        functor: &'a str,
+        arity: usize,
+    ) -> impl Iterator<Item = &'a Plan> + 'a {
+        self.plans.iter().filter(move |p| {
+            p.trigger.op == op
+                && p.trigger.kind == kind
+                && p.trigger.literal.functor() == Some(functor)
+                && p.trigger.literal.arity() == arity
+        })
+    }
+}
+
+fn convert_error(e: ConvertError) -> Diagnostic {
+    Diagnostic::error("input", e.message).with_label(e.span, "here")
+}
+
+fn unsupported(span: Span, what: &str) -> Diagnostic {
+    Diagnostic::error("input", format!("{what} are not modelled by bdi-check yet"))
+        .with_label(span, "not supported by the model checker")
+        .with_help("rewrite this part of the plan without it, or leave the plan out of the checked library")
+}
+
+fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
+    if p.goal_condition.is_some() {
+        return Err(unsupported(p.span, "goal conditions (`<:`)"));
+    }
+    if !p.sub_plans.is_empty() {
+        return Err(unsupported(p.span, "sub-plans"));
+    }
+    let mut c = Converter::new();
+    let literal = match &p.trigger.literal.kind {
+        ExprKind::Literal(l) => c.literal(l).map_err(convert_error)?,
+        _ => return Err(unsupported(p.trigger.span, "variables as triggers")),
+    };
+    let context = match &p.context {
+        Some(e) => formula(&mut c, e)?,
+        None => Formula::True,
+    };
+    let body = match &p.body {
+        Some(b) => steps(&mut c, &b.steps)?,
+        None => Vec::new(),
+    };
+    Ok(Plan {
+        index,
+        label: p.label.as_ref().and_then(|l| l.name.clone()),
+        trigger: Trigger {
+            op: p.trigger.op,
+            kind: p.trigger.kind,
+            literal,
+        },
+        context,
+        body,
+        span: p.span,
+        context_span: p.context.as_ref().map(|e| e.span),
+    })
+}
+
+/// A term, or an arithmetic expression kept as an operator structure.
+fn value(c: &mut Converter, e: &Expr) -> Result<Term, Diagnostic> {
+    match &e.kind {
+        ExprKind::Arith(op, a, b) => match c.term(e) {
+            Ok(t) => Ok(t),
+            Err(_) => {
+                let name = match op {
+                    ArithOp::Add => "+",
+                    ArithOp::Sub => "-",
+                    ArithOp::Mul => "*",
+                    ArithOp::Div => "/",
+                    ArithOp::IntDiv => "div",
+                    ArithOp::Mod => "mod",
+                    ArithOp::Pow => "**",
+                };
+                Ok(Term::structure(name, vec![value(c, a)?, value(c, b)?]))
+            }
+        },
+        ExprKind::Unary(UnaryOp::Neg, inner) => match c.term(e) {
+            Ok(t) => Ok(t),
+            Err(_) => Ok(Term::structure("-", vec![value(c, inner)?])),
+        },
+        _ => c.term(e).map_err(convert_error),
+    }
+}
+
+fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
+    Ok(match &e.kind {
+        ExprKind::Literal(l) if l.functor == "true" && l.args.is_empty() => Formula::True,
+        ExprKind::Literal(l) if l.functor == "false" && l.args.is_empty() => {
+            Formula::Not(Box::new(Formula::True))
+        }
+        ExprKind::Literal(l) if l.is_internal_action() => {
+            let args = l
+                .args
+                .iter()
+                .map(|a| value(c, a))
+                .collect::<Result<Vec<_>, _>>()?;
+            Formula::Call(Term::structure(&l.functor, args))
+        }
+        ExprKind::Literal(l) => Formula::Literal(c.literal(l).map_err(convert_error)?),
+        ExprKind::Not(a) => Formula::Not(Box::new(formula(c, a)?)),
+        ExprKind::And(a, b) => Formula::And(Box::new(formula(c, a)?), Box::new(formula(c, b)?)),
+        ExprKind::Or(a, b) => Formula::Or(Box::new(formula(c, a)?), Box::new(formula(c, b)?)),
+        ExprKind::Rel(op, a, b) => Formula::Rel(*op, value(c, a)?, value(c, b)?),
+        ExprKind::Var(_) => return Err(unsupported(e.span, "variables as formulas")),
+        _ => {
+            return Err(Diagnostic::error("input", "not a logical formula")
+                .with_label(e.span, "expected a literal, `not`, `&`, `|` or a comparison"))
+        }
+    })
+}
+
+fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnostic> {
+    let mut out = Vec::new();
+    for s in steps_in {
+        let lit = |c: &mut Converter, e: &Expr| -> Result<Term, Diagnostic> {
+            match &e.kind {
+                ExprKind::Literal(l) => c.literal(l).map_err(convert_error),
+                _ => Err(unsupported(e.span, "variables in this position")),
+            }
+        };
+        let kind = match &s.kind {
+            StepKind::Action(e) => {
+                let t = lit(c, e)?;
+                match &e.kind {
+                    ExprKind::Literal(l) if l.is_internal_action() => BodyStep::Internal(t),
+                    _ => BodyStep::Action(t),
+                }
+            }
+            StepKind::Achieve(e) => BodyStep::Achieve {
+                goal: lit(c, e)?,
+                new_focus: false,
+            },
+            StepKind::AchieveNewFocus(e) => BodyStep::Achieve {
+                goal: lit(c, e)?,
+                new_focus: true,
+            },
+            StepKind::Test(e) => BodyStep::Test(formula(c, e)?),
+            StepKind::AddBel(e) | StepKind::AddBelEnd(e) | StepKind::AddBelNewFocus(e) => {
+                if matches!(e.kind, ExprKind::PlanTerm(_)) {
+                    return Err(unsupported(s.span, "plans added at run time"));
+                }
+                BodyStep::AddBel(lit(c, e)?)
+            }
+            StepKind::DelBel(e) | StepKind::DelBelNewFocus(e) => {
+                if matches!(e.kind, ExprKind::PlanTerm(_)) {
+                    return Err(unsupported(s.span, "plans removed at run time"));
+                }
+                BodyStep::DelBel(lit(c, e)?)
+            }
+            StepKind::DelAddBel(e) => BodyStep::DelAddBel(lit(c, e)?),
+            StepKind::Constraint(e) => match &e.kind {
+                ExprKind::Rel(op, a, b) => BodyStep::Constraint(*op, value(c, a)?, value(c, b)?),
+                _ => return Err(unsupported(e.span, "such constraints")),
+            },
+            StepKind::If {
+                branches,
+                else_body,
+            } => BodyStep::If {
+                branches: branches
+                    .iter()
+                    .map(|(cond, body)| Ok((formula(c, cond)?, steps(c, &body.steps)?)))
+                    .collect::<Result<Vec<_>, Diagnostic>>()?,
+                else_body: match else_body {
+                    Some(b) => steps(c, &b.steps)?,
+                    None => Vec::new(),
+                },
+            },
+            StepKind::While { cond, body } => {
+                BodyStep::While(formula(c, cond)?, steps(c, &body.steps)?)
+            }
+            StepKind::For { cond, body } => BodyStep::For(formula(c, cond)?, steps(c, &body.steps)?),
+            StepKind::Fork { .. } => return Err(unsupported(s.span, "forks (`|&|`, `|||`)")),
+            StepKind::Group(b) => {
+                out.extend(steps(c, &b.steps)?);
+                continue;
+            }
+        };
+        out.push(Step { kind, span: s.span });
+    }
+    Ok(out)
+}
