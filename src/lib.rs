@@ -10,6 +10,8 @@
 
 #![warn(missing_docs)]
 
+pub mod check;
 pub mod model;
 pub mod report;
+pub mod semantics;
 pub mod syntax;

@@ -1,7 +1,7 @@
 //! The `bdi-check` command line: argument parsing and dispatch, nothing else.
 
-use bdi_check::report::{self, Format};
-use clap::{Parser, Subcommand, ValueEnum};
+use bdi_check::report::{self, verify::Detail, Format};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -23,22 +23,82 @@ enum FormatArg {
     Json,
 }
 
+/// Options every command shares.
+#[derive(Args, Debug)]
+struct Output {
+    /// Output format.
+    #[arg(long, value_enum, default_value = "human")]
+    format: FormatArg,
+    /// Write the report to this file instead of stdout.
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Print the verdict line only.
+    #[arg(short, long)]
+    quiet: bool,
+    /// Print every check, passed ones too.
+    #[arg(short, long)]
+    verbose: bool,
+}
+
+impl Output {
+    fn format(&self) -> Format {
+        match self.format {
+            FormatArg::Human => Format::Human,
+            FormatArg::Json => Format::Json,
+        }
+    }
+
+    fn detail(&self) -> Detail {
+        if self.quiet {
+            Detail::Quiet
+        } else if self.verbose {
+            Detail::Verbose
+        } else {
+            Detail::Normal
+        }
+    }
+
+    fn color(&self) -> bool {
+        self.output.is_none() && std::io::stdout().is_terminal()
+    }
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Parse AgentSpeak (.asl) files and report every error.
+    /// Parse .asl, .pddl or bdi-check.toml files and report every error.
     Parse {
         /// The files to parse.
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// Output format.
-        #[arg(long, value_enum, default_value = "human")]
-        format: FormatArg,
-        /// Write the report to this file instead of stdout.
-        #[arg(short = 'o', long = "output")]
-        output: Option<PathBuf>,
-        /// Print the verdict line only.
-        #[arg(short, long)]
-        quiet: bool,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// Explore every reachable state of a project and check its properties.
+    Verify {
+        /// The project folder or its bdi-check.toml.
+        project: PathBuf,
+        /// Stop after this many distinct states (overrides `[bounds] max_states`).
+        #[arg(long)]
+        max_states: Option<u64>,
+        /// Do not expand states deeper than this (overrides `[bounds] max_depth`).
+        #[arg(long)]
+        max_depth: Option<u64>,
+        /// Stop after this many seconds.
+        #[arg(long)]
+        timeout: Option<f64>,
+        /// Write one replayable scenario file per counterexample into this folder.
+        #[arg(long)]
+        scenarios: Option<PathBuf>,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// Replay the counterexamples of a JSON report against the project as it is now.
+    Replay {
+        /// A report written by `verify --format json`.
+        report: PathBuf,
+        /// Replay only this finding.
+        #[arg(long)]
+        finding: Option<String>,
     },
 }
 
@@ -52,49 +112,135 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
-        Command::Parse {
-            files,
-            format,
-            output,
-            quiet,
-        } => {
+        Command::Parse { files, out } => {
             let run = report::outline::parse_files(&files);
-            let format = match format {
-                FormatArg::Human => Format::Human,
-                FormatArg::Json => Format::Json,
-            };
-            let color = output.is_none() && std::io::stdout().is_terminal();
-            let (mut out, err) = report::outline::render(&run, format, color);
-            if quiet && matches!(format, Format::Human) {
-                out = out
+            let (mut text, err) = report::outline::render(&run, out.format(), out.color());
+            if out.quiet && out.format() == Format::Human {
+                text = text
                     .lines()
                     .last()
                     .map(|l| format!("{l}\n"))
                     .unwrap_or_default();
             }
             eprint!("{err}");
-            let code = run.report.verdict.exit_code();
-            match emit(&out, output) {
-                Ok(()) => ExitCode::from(code as u8),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::from(2)
+            finish(&text, out.output, run.report.verdict.exit_code())
+        }
+        Command::Verify {
+            project,
+            max_states,
+            max_depth,
+            timeout,
+            scenarios,
+            out,
+        } => {
+            let bar = Progress::new();
+            let run = report::verify::run(&project, max_states, max_depth, timeout, |n, d, t| {
+                bar.tick(n, d, t)
+            });
+            bar.finish();
+            if let Some(dir) = &scenarios {
+                if let Err(e) = report::verify::write_scenarios(&run.report, dir) {
+                    eprintln!(
+                        "error: cannot write scenarios into `{}`: {e}",
+                        dir.display()
+                    );
+                    return ExitCode::from(2);
                 }
             }
+            let text = match out.format() {
+                Format::Json => {
+                    serde_json::to_string_pretty(&run.report).unwrap_or_default() + "\n"
+                }
+                Format::Human => report::verify::render_human(&run, out.detail(), out.color()),
+            };
+            finish(&text, out.output, run.report.verdict.exit_code())
+        }
+        Command::Replay {
+            report: path,
+            finding,
+        } => match report::replay::replay(&path, finding.as_deref()) {
+            Err(errs) => {
+                for e in errs {
+                    eprintln!("{}", e.render(&bdi_check::syntax::SourceMap::new(), false));
+                }
+                ExitCode::from(2)
+            }
+            Ok(results) => {
+                let mut reached = false;
+                for r in &results {
+                    let verdict = if r.reached {
+                        "still reaches"
+                    } else {
+                        "no longer reaches"
+                    };
+                    println!("{}: {verdict} its violation ({})", r.id, r.detail);
+                    reached |= r.reached;
+                }
+                ExitCode::from(u8::from(reached))
+            }
+        },
+    }
+}
+
+/// A spinner on stderr with states, depth and states/s, shown once a run passes a second
+/// and only when stderr is a terminal.
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+}
+
+impl Progress {
+    fn new() -> Progress {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let b = indicatif::ProgressBar::hidden();
+            b.set_style(
+                indicatif::ProgressStyle::with_template("{spinner} {msg}")
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+            );
+            b
+        });
+        Progress { bar }
+    }
+
+    fn tick(&self, states: usize, depth: u32, seconds: f64) {
+        if let Some(b) = &self.bar {
+            if seconds > 1.0 {
+                if b.is_hidden() {
+                    b.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+                }
+                b.set_message(format!(
+                    "{states} states, depth {depth}, {:.0} states/s",
+                    states as f64 / seconds
+                ));
+                b.tick();
+            }
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(b) = &self.bar {
+            b.finish_and_clear();
         }
     }
 }
 
-/// Writes the report to `-o FILE` or stdout.
-fn emit(text: &str, output: Option<PathBuf>) -> std::io::Result<()> {
-    match output {
+/// Writes the report to `-o FILE` or stdout and exits with `code`.
+fn finish(text: &str, output: Option<PathBuf>, code: i32) -> ExitCode {
+    let written = match output {
         Some(path) => std::fs::write(&path, text).map_err(|e| {
             std::io::Error::new(e.kind(), format!("cannot write `{}`: {e}", path.display()))
         }),
         None => {
             let mut stdout = std::io::stdout().lock();
-            stdout.write_all(text.as_bytes())?;
-            stdout.flush()
+            stdout
+                .write_all(text.as_bytes())
+                .and_then(|_| stdout.flush())
+        }
+    };
+    match written {
+        Ok(()) => ExitCode::from(code as u8),
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
     }
 }

@@ -305,8 +305,12 @@ fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
         ExprKind::Rel(op, a, b) => Formula::Rel(*op, value(c, a)?, value(c, b)?),
         ExprKind::Var(_) => return Err(unsupported(e.span, "variables as formulas")),
         _ => {
-            return Err(Diagnostic::error("input", "not a logical formula")
-                .with_label(e.span, "expected a literal, `not`, `&`, `|` or a comparison"))
+            return Err(
+                Diagnostic::error("input", "not a logical formula").with_label(
+                    e.span,
+                    "expected a literal, `not`, `&`, `|` or a comparison",
+                ),
+            )
         }
     })
 }
@@ -370,7 +374,9 @@ fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnos
             StepKind::While { cond, body } => {
                 BodyStep::While(formula(c, cond)?, steps(c, &body.steps)?)
             }
-            StepKind::For { cond, body } => BodyStep::For(formula(c, cond)?, steps(c, &body.steps)?),
+            StepKind::For { cond, body } => {
+                BodyStep::For(formula(c, cond)?, steps(c, &body.steps)?)
+            }
             StepKind::Fork { .. } => return Err(unsupported(s.span, "forks (`|&|`, `|||`)")),
             StepKind::Group(b) => {
                 out.extend(steps(c, &b.steps)?);

@@ -1992,7 +1992,7 @@ fn suggest<'c>(name: &str, candidates: impl IntoIterator<Item = &'c str>) -> Opt
         } else {
             edit_distance(name, c)
         };
-        if d <= limit && best.map_or(true, |(bd, _)| d < bd) {
+        if d <= limit && best.is_none_or(|(bd, _)| d < bd) {
             best = Some((d, c));
         }
     }

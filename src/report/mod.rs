@@ -6,6 +6,8 @@
 
 pub mod domain;
 pub mod outline;
+pub mod replay;
+pub mod verify;
 
 use crate::syntax::{Diagnostic, Location, Severity, SourceMap};
 use serde::Serialize;
@@ -85,6 +87,9 @@ pub struct Finding {
     /// A concrete run (or, for static checks, a state) that shows the violation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub counterexample: Option<Counterexample>,
+    /// The span behind `location`, for source excerpts in human output.
+    #[serde(skip)]
+    pub span: Option<crate::syntax::Span>,
 }
 
 /// A counterexample of SPEC §3: where it starts, what the user asked, and what happened.
@@ -96,6 +101,10 @@ pub struct Counterexample {
     pub requests: Vec<String>,
     /// The run, step by step (empty for a static finding, whose counterexample is a state).
     pub steps: Vec<TraceStep>,
+    /// For a liveness violation (a lasso): the index in `steps` where the loop starts; the
+    /// steps from there on repeat forever.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub loop_start: Option<usize>,
 }
 
 /// The kinds of step of a run.
@@ -209,6 +218,7 @@ impl Finding {
             message: d.message.clone(),
             location,
             counterexample: None,
+            span: d.span,
         }
     }
 }
@@ -251,6 +261,7 @@ mod tests {
             message: String::new(),
             location: None,
             counterexample: None,
+            span: None,
         }
     }
 

@@ -130,7 +130,7 @@ pub struct Label {
 }
 
 /// `+`, `-` or `^` (goal state) in a trigger.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum TriggerOp {
     /// `+`
     Add,
@@ -141,7 +141,7 @@ pub enum TriggerOp {
 }
 
 /// What a trigger is about.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum TriggerKind {
     /// A belief: `+b`, `-b`.
     Belief,

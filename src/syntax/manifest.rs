@@ -520,7 +520,7 @@ fn decode_raw(raw: &str) -> Option<(String, Vec<(usize, usize)>, usize)> {
                 _ => return None,
             };
             out.push(ch);
-            map.extend(std::iter::repeat((i, i + len)).take(ch.len_utf8()));
+            map.extend(std::iter::repeat_n((i, i + len), ch.len_utf8()));
             i += len;
         } else {
             out.push(c);

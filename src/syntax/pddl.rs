@@ -2076,9 +2076,7 @@ fn suggest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<
         } else {
             edit_distance(name, c)
         };
-        if dist <= 2
-            && dist < name.chars().count()
-            && best.map_or(true, |(b, s)| (dist, c) < (b, s))
+        if dist <= 2 && dist < name.chars().count() && best.is_none_or(|(b, s)| (dist, c) < (b, s))
         {
             best = Some((dist, c));
         }

@@ -68,7 +68,7 @@ pub fn print_literal(l: &Literal) -> String {
 const INDENT: usize = 3;
 
 fn spaces(out: &mut String, n: usize) {
-    out.extend(std::iter::repeat(' ').take(n));
+    out.extend(std::iter::repeat_n(' ', n));
 }
 
 fn item_to(out: &mut String, item: &Item) {

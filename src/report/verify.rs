@@ -1,0 +1,299 @@
+//! `bdi-check verify`: the report of the model checker, for people (counterexamples told
+//! as numbered stories) and for machines (SPEC §3 JSON), and scenario files.
+
+use super::{Counterexample, Finding, Report, Stats, Status, StepKindTag, Verdict};
+use crate::check::explore::{Bound, Limits};
+use crate::check::verify;
+use crate::model::project::{load_project, Project};
+use crate::syntax::{Diagnostic, Severity, SourceMap};
+use std::path::Path;
+
+/// The outcome of `verify` on one project.
+pub struct VerifyRun {
+    /// The report.
+    pub report: Report,
+    /// The files read, for excerpts.
+    pub map: SourceMap,
+    /// Input errors, when the project did not load.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The bound that cut the search short, if any.
+    pub bound: Option<Bound>,
+}
+
+/// The limits of a project's search: the manifest's `[bounds]`, overridden by options.
+pub fn limits(
+    project: &Project,
+    max_states: Option<u64>,
+    max_depth: Option<u64>,
+    timeout: Option<f64>,
+) -> Limits {
+    Limits {
+        max_states: max_states.unwrap_or(project.manifest.bounds.max_states),
+        max_depth: max_depth.unwrap_or(project.manifest.bounds.max_depth),
+        timeout,
+    }
+}
+
+/// Loads and verifies a project.
+pub fn run(
+    path: &Path,
+    max_states: Option<u64>,
+    max_depth: Option<u64>,
+    timeout: Option<f64>,
+    progress: impl FnMut(usize, u32, f64),
+) -> VerifyRun {
+    let name = path.display().to_string();
+    let project = match load_project(path) {
+        Ok(p) => p,
+        Err(e) => return input_failure(name, e.map, e.diagnostics),
+    };
+    let lim = limits(&project, max_states, max_depth, timeout);
+    match verify(&project, lim, progress) {
+        Err(diagnostics) => input_failure(name, project.map, diagnostics),
+        Ok(v) => {
+            let mut report = Report::new(name, v.findings);
+            if report.verdict == Verdict::Pass && !v.stats.complete {
+                report.verdict = Verdict::Incomplete;
+            }
+            report.stats = Some(v.stats);
+            VerifyRun {
+                report,
+                map: project.map,
+                diagnostics: Vec::new(),
+                bound: v.bound,
+            }
+        }
+    }
+}
+
+fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> VerifyRun {
+    let findings: Vec<Finding> = diagnostics
+        .iter()
+        .map(|d| Finding::from_input_diagnostic(d, &map))
+        .collect();
+    let mut report = Report::new(name, findings);
+    report.verdict = Verdict::Error;
+    VerifyRun {
+        report,
+        map,
+        diagnostics,
+        bound: None,
+    }
+}
+
+/// What the human output shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Detail {
+    /// The verdict line only (`-q`).
+    Quiet,
+    /// Failures with their counterexamples, then the summary.
+    Normal,
+    /// Every check, passed ones too (`-v`).
+    Verbose,
+}
+
+/// The probability that two of `n` distinct states share a 64-bit fingerprint.
+pub fn collision_probability(n: usize) -> f64 {
+    let n = n as f64;
+    (n * n / 2f64.powi(65)).min(1.0)
+}
+
+/// The human report: failing findings with excerpts and counterexample stories, then the
+/// statistics and the verdict line.
+pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
+    let mut out = String::new();
+    let r = &run.report;
+    if detail != Detail::Quiet {
+        for d in &run.diagnostics {
+            out.push_str(&d.render(&run.map, color));
+            out.push('\n');
+        }
+        if run.diagnostics.is_empty() {
+            for f in &r.findings {
+                let shown = f.status != Status::Pass || detail == Detail::Verbose;
+                if !shown {
+                    continue;
+                }
+                out.push_str(&render_finding(f, &run.map, color));
+                out.push('\n');
+            }
+        }
+        if let Some(s) = &r.stats {
+            out.push_str(&render_stats(s, run.bound));
+        }
+    }
+    out.push_str(&summary(r));
+    out
+}
+
+fn render_finding(f: &Finding, map: &SourceMap, color: bool) -> String {
+    let severity = match (f.status, f.severity) {
+        (Status::Pass, _) => Severity::Note,
+        (_, s) => s,
+    };
+    let status = match f.status {
+        Status::Fail => "",
+        Status::Pass => "passed: ",
+        Status::Unknown => "undecided: ",
+    };
+    let d = Diagnostic {
+        severity,
+        code: f.check.clone(),
+        message: format!("{status}{}", f.message),
+        span: f.span,
+        label: None,
+        secondary: Vec::new(),
+        help: None,
+        file: f.location.as_ref().map(|l| l.file.clone()),
+    };
+    let mut out = if f.status == Status::Pass {
+        // Passed checks: one line each.
+        match &f.location {
+            Some(l) => format!("{l}: {}[{}]: {}{}\n", severity, f.check, status, f.message),
+            None => format!("{}[{}]: {}{}\n", severity, f.check, status, f.message),
+        }
+    } else {
+        d.render(map, color)
+    };
+    if f.status == Status::Fail {
+        if let Some(c) = &f.counterexample {
+            out.push_str(&render_counterexample(c));
+        }
+    }
+    out
+}
+
+/// A counterexample as a numbered story.
+pub fn render_counterexample(c: &Counterexample) -> String {
+    let mut out = String::new();
+    out.push_str(&format!("  counterexample ({} steps)\n", c.steps.len()));
+    out.push_str(&format!("    initially: {}\n", c.initial.join(", ")));
+    if !c.requests.is_empty() {
+        out.push_str(&format!("    requests:  {}\n", c.requests.join(", ")));
+    }
+    for (i, s) in c.steps.iter().enumerate() {
+        if c.loop_start == Some(i) {
+            out.push_str("    -- from here the run repeats forever --\n");
+        }
+        let kind = match s.kind {
+            StepKindTag::Request => "request",
+            StepKindTag::Event => "event",
+            StepKindTag::Plan => "plan",
+            StepKindTag::Action => "action",
+            StepKindTag::Belief => "belief",
+            StepKindTag::Internal => "internal",
+            StepKindTag::Explanation => "explain",
+        };
+        let mut line = format!("    {:>3}. {kind:<8} {}", i + 1, s.text);
+        if let Some(p) = &s.plan {
+            line.push_str(&format!("  ({p})"));
+        }
+        if let Some(n) = s.intention {
+            line.push_str(&format!("  [intention {n}]"));
+        }
+        let changes: Vec<String> = s
+            .added
+            .iter()
+            .map(|a| format!("+{a}"))
+            .chain(s.removed.iter().map(|a| format!("-{a}")))
+            .collect();
+        if !changes.is_empty() {
+            line.push_str(&format!("\n           beliefs: {}", changes.join(" ")));
+        }
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out
+}
+
+fn render_stats(s: &Stats, bound: Option<Bound>) -> String {
+    let mut out = format!(
+        "explored {} states ({} initial), {} transitions, depth {}, in {:.2}s ({:.0} states/s); fingerprint collision probability {:.1e}\n",
+        s.states,
+        s.initial_states,
+        s.transitions,
+        s.depth,
+        s.seconds,
+        s.states_per_second,
+        collision_probability(s.states)
+    );
+    if let Some(b) = bound {
+        let why = match b {
+            Bound::States => "the state bound (`--max-states`, `[bounds] max_states`) was reached",
+            Bound::Depth => "the depth bound (`--max-depth`, `[bounds] max_depth`) was reached",
+            Bound::Time => "the time limit (`--timeout`) was reached",
+        };
+        out.push_str(&format!("the search is incomplete: {why}\n"));
+    }
+    out
+}
+
+/// The closing verdict line.
+pub fn summary(r: &Report) -> String {
+    let failed = r
+        .findings
+        .iter()
+        .filter(|f| f.status == Status::Fail && f.severity == Severity::Error)
+        .count();
+    let unknown = r
+        .findings
+        .iter()
+        .filter(|f| f.status == Status::Unknown)
+        .count();
+    let verdict = match r.verdict {
+        Verdict::Pass => "pass",
+        Verdict::Fail => "fail",
+        Verdict::Incomplete => "incomplete",
+        Verdict::Error => "error",
+    };
+    let mut line = format!(
+        "verdict: {verdict} ({} checks, {failed} failed",
+        r.findings.len()
+    );
+    if unknown > 0 {
+        line.push_str(&format!(", {unknown} undecided"));
+    }
+    if let Some(s) = &r.stats {
+        line.push_str(&format!(", {} states, {:.2}s", s.states, s.seconds));
+    }
+    line.push_str(")\n");
+    line
+}
+
+/// Writes each failing finding's counterexample as a scenario file in `dir`; returns the
+/// paths written.
+pub fn write_scenarios(r: &Report, dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = Vec::new();
+    for f in r.findings.iter().filter(|f| f.status == Status::Fail) {
+        let Some(c) = &f.counterexample else { continue };
+        let file: String =
+            f.id.chars()
+                .map(|ch| {
+                    if ch.is_ascii_alphanumeric() || ch == '-' {
+                        ch
+                    } else {
+                        '_'
+                    }
+                })
+                .collect();
+        let path = dir.join(format!("{file}.toml"));
+        let quote = |v: &[String]| {
+            v.iter()
+                .map(|s| serde_json::to_string(s).unwrap_or_default())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let text = format!(
+            "# {}: {}\n# A run of {} (SPEC §2 scenario): every atom true at the start, and the requests.\ninitial = [{}]\nrequests = [{}]\n",
+            f.id,
+            f.message.replace('\n', " "),
+            r.project,
+            quote(&c.initial),
+            quote(&c.requests)
+        );
+        std::fs::write(&path, text)?;
+        written.push(path);
+    }
+    Ok(written)
+}

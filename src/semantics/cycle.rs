@@ -1,0 +1,1114 @@
+//! Jason's reasoning cycle as a transition function `State -> [(notes, State)]`.
+//!
+//! One transition is one reasoning cycle, or the arrival of one request:
+//!
+//! 1. *Deliberate*: the first event of the queue is handled (Jason's default event selection
+//!    is FIFO). Relevant plans are those whose trigger unifies with it; applicable ones have a
+//!    context with an answer; Jason's default option selection takes the first applicable
+//!    plan in source order with the first answer (`plan_selection = "any"` branches over
+//!    every applicable plan). An external event starts an intention; an internal one pushes
+//!    the plan on the intention that posted it, with Jason's tail-recursion optimisation (a
+//!    recursive subgoal that is the last step of its plan replaces that plan's frame).
+//! 2. *Act*: the first running intention executes one body step and goes to the back of the
+//!    queue (round-robin). Finished plans are removed in the same cycle, and the bindings a
+//!    subgoal made flow back into the plan that posted it.
+//!
+//! Environment actions run when their PDDL precondition holds; their effects are perceived
+//! at once as `+p`/`-p` events. Events that no plan is relevant for are not queued at all:
+//! Jason would queue and then discard them, which only costs cycles. A failing step (an
+//! action whose precondition fails, a test goal with no answer, a subgoal with no applicable
+//! plan) fails the plan as Jason does: the first goal on the intention stack, from the top,
+//! with a relevant `-!g` plan gets a `-!g` event, and the frames above it go; with no such
+//! goal the intention is dropped and the failure is reported.
+
+use super::query::{eval, relation, Beliefs};
+use super::state::{Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, State};
+use crate::model::atoms::{AtomId, AtomSet};
+use crate::model::plans::{BodyStep, Formula, Step};
+use crate::model::project::Project;
+use crate::model::term::Term;
+use crate::model::universe::ObjectId;
+use crate::model::{unify, Substitution};
+use crate::syntax::ast::{TriggerKind, TriggerOp};
+use crate::syntax::manifest::{Arrival, PlanSelection};
+use crate::syntax::{Diagnostic, Span};
+use std::collections::HashMap;
+
+/// What a transition did: the material of traces and of the dynamic checks.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Note {
+    /// The user's request arrived.
+    Request {
+        /// Its index in [`Semantics::requests`].
+        index: u8,
+    },
+    /// An event was taken from the queue.
+    Event(EventTrigger),
+    /// A plan was chosen for it.
+    Plan {
+        /// The plan's index.
+        plan: u32,
+        /// Whose intention.
+        origin: Origin,
+    },
+    /// An environment action ran.
+    Action {
+        /// `navigateTo(table)`.
+        text: String,
+        /// The plan it belongs to.
+        plan: u32,
+        /// The step.
+        span: Span,
+        /// Atoms made true.
+        added: Vec<AtomId>,
+        /// Atoms made false.
+        removed: Vec<AtomId>,
+        /// Whose intention.
+        origin: Origin,
+    },
+    /// The agent changed a mental note.
+    Belief {
+        /// `+visited(table)`.
+        text: String,
+        /// The plan.
+        plan: u32,
+        /// Atoms made true.
+        added: Vec<AtomId>,
+        /// Atoms made false.
+        removed: Vec<AtomId>,
+        /// Whose intention.
+        origin: Origin,
+    },
+    /// An internal action (or test goal, or constraint) ran.
+    Internal {
+        /// `.print("x")`.
+        text: String,
+        /// The plan.
+        plan: u32,
+        /// Whose intention.
+        origin: Origin,
+    },
+    /// An action was attempted whose precondition does not hold (or that is not defined).
+    ActionFailed {
+        /// The action.
+        text: String,
+        /// The plan.
+        plan: u32,
+        /// The step.
+        span: Span,
+        /// Why.
+        reason: String,
+    },
+    /// A goal failed and nothing handled it: the intention was dropped.
+    GoalFailed {
+        /// The goal at the bottom of the dropped intention (the one the user or the agent
+        /// set out to achieve).
+        goal: EventTrigger,
+        /// What failed first: the subgoal with no applicable plan, or the goal of the plan
+        /// whose step failed.
+        cause: EventTrigger,
+        /// The plan whose step failed, if a step failed.
+        plan: Option<u32>,
+        /// The failing step, if any.
+        span: Option<Span>,
+        /// Why.
+        reason: String,
+        /// Whose intention.
+        origin: Origin,
+    },
+    /// An intention ended successfully.
+    Finished(Origin),
+}
+
+/// One successor.
+#[derive(Clone, Debug)]
+pub struct Transition {
+    /// What happened, in order.
+    pub notes: Vec<Note>,
+    /// The state after.
+    pub next: State,
+}
+
+/// A compound step's sub-bodies, by block id.
+#[derive(Clone, Debug, Default)]
+struct Blocks<'p> {
+    blocks: Vec<&'p [Step]>,
+    /// For the compound step at (block, pos): its child blocks (if: one per branch, then
+    /// else; while/for: one).
+    children: HashMap<(u16, u16), Vec<u16>>,
+}
+
+fn index_blocks<'p>(body: &'p [Step], b: &mut Blocks<'p>) -> u16 {
+    let id = b.blocks.len() as u16;
+    b.blocks.push(body);
+    for (pos, step) in body.iter().enumerate() {
+        let kids = match &step.kind {
+            BodyStep::If {
+                branches,
+                else_body,
+            } => {
+                let mut kids: Vec<u16> = branches
+                    .iter()
+                    .map(|(_, body)| index_blocks(body, b))
+                    .collect();
+                kids.push(index_blocks(else_body, b));
+                kids
+            }
+            BodyStep::While(_, body) | BodyStep::For(_, body) => vec![index_blocks(body, b)],
+            _ => continue,
+        };
+        b.children.insert((id, pos as u16), kids);
+    }
+    id
+}
+
+/// The transition system of one project.
+pub struct Semantics<'p> {
+    /// The project.
+    pub project: &'p Project,
+    /// Every ground request the user may make, in order.
+    pub requests: Vec<Term>,
+    environment: Vec<bool>,
+    blocks: Vec<Blocks<'p>>,
+    relevant: HashMap<(u8, u8, String, usize), Vec<u32>>,
+    max_requests: u32,
+    arrival_any: bool,
+    select_any: bool,
+}
+
+fn op_key(op: TriggerOp) -> u8 {
+    match op {
+        TriggerOp::Add => 0,
+        TriggerOp::Del => 1,
+        TriggerOp::GoalState => 2,
+    }
+}
+
+fn kind_key(k: TriggerKind) -> u8 {
+    match k {
+        TriggerKind::Belief => 0,
+        TriggerKind::Achieve => 1,
+        TriggerKind::Test => 2,
+    }
+}
+
+/// Most requests a run can track (one bit each in [`State::requested`]).
+pub const MAX_REQUESTS: usize = 64;
+
+impl<'p> Semantics<'p> {
+    /// The transition system of a loaded project. Fails when the requests cannot be
+    /// grounded (more than [`MAX_REQUESTS`] instances, or a goal with unknown parameters).
+    pub fn new(project: &'p Project) -> Result<Semantics<'p>, Vec<Diagnostic>> {
+        let environment = (0..project.atoms.pred_count())
+            .map(|p| {
+                let name = project
+                    .atoms
+                    .pred_name(crate::model::atoms::PredId(p as u32));
+                project
+                    .vocabulary
+                    .predicate(name)
+                    .is_some_and(|(_, sig)| sig.is_environment())
+            })
+            .collect();
+        let mut blocks = Vec::new();
+        let mut relevant: HashMap<(u8, u8, String, usize), Vec<u32>> = HashMap::new();
+        for plan in &project.plans.plans {
+            let mut b = Blocks::default();
+            index_blocks(&plan.body, &mut b);
+            blocks.push(b);
+            let t = &plan.trigger;
+            relevant
+                .entry((
+                    op_key(t.op),
+                    kind_key(t.kind),
+                    t.literal.functor().unwrap_or("").to_string(),
+                    t.literal.arity(),
+                ))
+                .or_default()
+                .push(plan.index as u32);
+        }
+        let requests = ground_requests(project)?;
+        let m = &project.manifest;
+        Ok(Semantics {
+            project,
+            requests,
+            environment,
+            blocks,
+            relevant,
+            max_requests: m.requests.max,
+            arrival_any: m.requests.arrival == Arrival::Any,
+            select_any: m.bounds.plan_selection == PlanSelection::Any,
+        })
+    }
+
+    fn beliefs<'s>(&'s self, state: &'s State) -> Beliefs<'s> {
+        Beliefs {
+            atoms: &self.project.atoms,
+            universe: &self.project.universe,
+            environment: &self.environment,
+            state,
+        }
+    }
+
+    fn relevant_plans(&self, t: &EventTrigger) -> &[u32] {
+        self.relevant
+            .get(&(
+                op_key(t.op),
+                kind_key(t.kind),
+                t.literal.functor().unwrap_or("").to_string(),
+                t.literal.arity(),
+            ))
+            .map_or(&[], |v| v.as_slice())
+    }
+
+    /// The initial states of the transition system: one per initial state of the project,
+    /// with the agent's initial goals and the perception of every initial percept queued.
+    pub fn initial_states(&self) -> Vec<State> {
+        self.project
+            .initial
+            .states
+            .iter()
+            .map(|beliefs| {
+                let mut s = State {
+                    beliefs: beliefs.clone(),
+                    events: Vec::new(),
+                    intentions: Vec::new(),
+                    requested: 0,
+                };
+                let empty = AtomSet::empty(self.project.atoms.len());
+                let added: Vec<AtomId> = beliefs.iter().collect();
+                self.perceive(&mut s, &empty, &added, &[]);
+                for (k, (goal, _)) in self.project.plans.initial_goals.iter().enumerate() {
+                    s.events.push(Event {
+                        trigger: EventTrigger {
+                            op: TriggerOp::Add,
+                            kind: TriggerKind::Achieve,
+                            literal: goal.clone(),
+                        },
+                        intention: None,
+                        origin: Origin::InitialGoal(k as u8),
+                        posted_at: None,
+                    });
+                }
+                s
+            })
+            .collect()
+    }
+
+    /// Queues `+p`/`-p` for changed atoms that some plan is relevant for.
+    fn perceive(&self, s: &mut State, _before: &AtomSet, added: &[AtomId], removed: &[AtomId]) {
+        let b = self.beliefs(s);
+        let mut new_events = Vec::new();
+        for (atoms, op) in [(removed, TriggerOp::Del), (added, TriggerOp::Add)] {
+            for a in atoms {
+                let trigger = EventTrigger {
+                    op,
+                    kind: TriggerKind::Belief,
+                    literal: b.atom_term(*a),
+                };
+                if !self.relevant_plans(&trigger).is_empty() {
+                    new_events.push(Event {
+                        trigger,
+                        intention: None,
+                        origin: Origin::Spawned,
+                        posted_at: None,
+                    });
+                }
+            }
+        }
+        s.events.extend(new_events);
+    }
+
+    /// Every successor of `state`.
+    pub fn successors(&self, state: &State) -> Vec<Transition> {
+        let mut out = Vec::new();
+        let made = state.requested.count_ones();
+        if made < self.max_requests && (self.arrival_any || state.is_idle()) {
+            for (r, goal) in self.requests.iter().enumerate() {
+                if state.requested >> r & 1 == 1 {
+                    continue;
+                }
+                let mut next = state.clone();
+                next.requested |= 1 << r;
+                next.events.push(Event {
+                    trigger: EventTrigger {
+                        op: TriggerOp::Add,
+                        kind: TriggerKind::Achieve,
+                        literal: goal.clone(),
+                    },
+                    intention: None,
+                    origin: Origin::Request(r as u8),
+                    posted_at: None,
+                });
+                out.push(Transition {
+                    notes: vec![Note::Request { index: r as u8 }],
+                    next,
+                });
+            }
+        }
+        if !state.is_idle() {
+            out.extend(self.cycle(state));
+        }
+        out
+    }
+
+    /// One reasoning cycle: deliberate on the first event, then act on the first intention.
+    fn cycle(&self, state: &State) -> Vec<Transition> {
+        let mut options: Vec<(State, Vec<Note>)> = Vec::new();
+        if state.events.is_empty() {
+            options.push((state.clone(), Vec::new()));
+        } else {
+            let mut s = state.clone();
+            let ev = s.events.remove(0);
+            options = self.deliberate(s, ev);
+        }
+        options
+            .into_iter()
+            .map(|(mut s, mut notes)| {
+                self.act(&mut s, &mut notes);
+                Transition { notes, next: s }
+            })
+            .collect()
+    }
+
+    /// Handles one event: every option the plan selection allows, as its own state.
+    fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
+        let mut notes = vec![Note::Event(ev.trigger.clone())];
+        let b = self.beliefs(&s);
+        let mut applicable: Vec<(u32, Substitution)> = Vec::new();
+        for &pi in self.relevant_plans(&ev.trigger) {
+            let plan = &self.project.plans.plans[pi as usize];
+            let mut u = Substitution::new();
+            if !unify(&plan.trigger.literal, &ev.trigger.literal, &mut u) {
+                continue;
+            }
+            if let Some(answer) = b.answers(&plan.context, &u).into_iter().next() {
+                applicable.push((pi, answer));
+                if !self.select_any {
+                    break;
+                }
+            }
+        }
+        if applicable.is_empty() {
+            let mut s = s;
+            if ev.trigger.op == TriggerOp::Add && ev.trigger.kind == TriggerKind::Achieve {
+                let reason = if self.relevant_plans(&ev.trigger).is_empty() {
+                    "no relevant plan"
+                } else {
+                    "no applicable plan"
+                };
+                self.goal_failed_from_event(&mut s, ev, reason, &mut notes);
+            } else if ev.trigger.op == TriggerOp::Del && ev.trigger.kind == TriggerKind::Achieve {
+                // A failure event nothing can handle: the intention is dropped.
+                notes.push(Note::GoalFailed {
+                    goal: ev.trigger.clone(),
+                    cause: ev.trigger.clone(),
+                    plan: ev.posted_at.map(|(p, _)| p),
+                    span: ev.posted_at.map(|(_, sp)| sp),
+                    reason: "no applicable failure plan".into(),
+                    origin: ev.origin,
+                });
+            }
+            // Belief events with no applicable plan are discarded, as in Jason.
+            return vec![(s, notes)];
+        }
+        applicable
+            .into_iter()
+            .map(|(pi, answer)| {
+                let mut s = s.clone();
+                let mut notes = notes.clone();
+                let plan = &self.project.plans.plans[pi as usize];
+                let mut frame = Frame {
+                    plan: pi,
+                    subst: answer,
+                    cursors: if plan.body.is_empty() {
+                        Vec::new()
+                    } else {
+                        vec![Cursor {
+                            block: 0,
+                            pos: 0,
+                            kind: CursorKind::Seq,
+                        }]
+                    },
+                    trigger: ev.trigger.clone(),
+                };
+                self.normalize(&mut frame, &s);
+                let origin = match &ev.intention {
+                    Some(i) => i.origin,
+                    None => ev.origin,
+                };
+                notes.push(Note::Plan { plan: pi, origin });
+                match ev.intention.clone() {
+                    None => s.intentions.push(Intention {
+                        frames: vec![frame],
+                        origin,
+                    }),
+                    Some(mut int) => {
+                        let is_goal_add = ev.trigger.op == TriggerOp::Add
+                            && ev.trigger.kind == TriggerKind::Achieve;
+                        if let Some(top) = int.frames.last() {
+                            // Jason's TRO: a recursive subgoal that is the last step of its plan.
+                            if is_goal_add
+                                && top.cursors.is_empty()
+                                && top.trigger.op == TriggerOp::Add
+                                && top.trigger.kind == TriggerKind::Achieve
+                                && top.trigger.literal.functor() == ev.trigger.literal.functor()
+                                && top.trigger.literal.arity() == ev.trigger.literal.arity()
+                            {
+                                int.frames.pop();
+                            }
+                        }
+                        int.frames.push(frame);
+                        s.intentions.push(int);
+                    }
+                }
+                (s, notes)
+            })
+            .collect()
+    }
+
+    /// No plan for `+!g`: Jason's `generateGoalDeletionFromEvent`.
+    fn goal_failed_from_event(
+        &self,
+        s: &mut State,
+        ev: Event,
+        reason: &str,
+        notes: &mut Vec<Note>,
+    ) {
+        let fail = EventTrigger {
+            op: TriggerOp::Del,
+            kind: TriggerKind::Achieve,
+            literal: ev.trigger.literal.clone(),
+        };
+        if !self.relevant_plans(&fail).is_empty() {
+            s.events.push(Event {
+                trigger: fail,
+                intention: ev.intention,
+                origin: ev.origin,
+                posted_at: ev.posted_at,
+            });
+            return;
+        }
+        match ev.intention {
+            // A subgoal: the goals below it may have failure plans.
+            Some(int) => self.fail_intention(s, int, &ev.trigger, ev.posted_at, reason, notes),
+            None => notes.push(Note::GoalFailed {
+                goal: ev.trigger.clone(),
+                cause: ev.trigger,
+                plan: ev.posted_at.map(|(p, _)| p),
+                span: ev.posted_at.map(|(_, sp)| sp),
+                reason: reason.into(),
+                origin: ev.origin,
+            }),
+        }
+    }
+
+    /// The top plan of `int` failed: Jason's `generateGoalDeletion`. The highest goal with a
+    /// relevant `-!g` plan gets the failure event; with none, the intention is dropped.
+    fn fail_intention(
+        &self,
+        s: &mut State,
+        mut int: Intention,
+        failed: &EventTrigger,
+        step: Option<(u32, Span)>,
+        reason: &str,
+        notes: &mut Vec<Note>,
+    ) {
+        while let Some(top) = int.frames.last() {
+            if top.trigger.op == TriggerOp::Add && top.trigger.kind == TriggerKind::Achieve {
+                let fail = EventTrigger {
+                    op: TriggerOp::Del,
+                    kind: TriggerKind::Achieve,
+                    literal: top.trigger.literal.clone(),
+                };
+                if !self.relevant_plans(&fail).is_empty() {
+                    let origin = int.origin;
+                    s.events.push(Event {
+                        trigger: fail,
+                        intention: Some(int),
+                        origin,
+                        posted_at: step,
+                    });
+                    return;
+                }
+            }
+            if int.frames.len() == 1 {
+                break;
+            }
+            int.frames.pop();
+        }
+        let goal = int
+            .frames
+            .first()
+            .map(|f| f.trigger.clone())
+            .unwrap_or_else(|| failed.clone());
+        notes.push(Note::GoalFailed {
+            goal,
+            cause: failed.clone(),
+            plan: step.map(|(p, _)| p),
+            span: step.map(|(_, sp)| sp),
+            reason: reason.into(),
+            origin: int.origin,
+        });
+    }
+
+    /// Moves a frame's cursors to the next step to execute, leaving loops and blocks that
+    /// have ended; `cursors` is empty when the body is done.
+    fn normalize(&self, f: &mut Frame, s: &State) {
+        let blocks = &self.blocks[f.plan as usize];
+        // Each round either returns or pops/restarts one cursor; an empty `while` body
+        // whose condition keeps holding stops here and is retried next cycle.
+        for _ in 0..256 {
+            let Some(c) = f.cursors.last_mut() else {
+                return;
+            };
+            let block = blocks.blocks[c.block as usize];
+            if (c.pos as usize) < block.len() {
+                return;
+            }
+            match c.kind.clone() {
+                CursorKind::Seq => {
+                    f.cursors.pop();
+                }
+                CursorKind::While { outer, at } => {
+                    let cond = match &blocks.blocks[outer as usize][at as usize].kind {
+                        BodyStep::While(cond, _) => cond,
+                        _ => unreachable!("a while cursor points at a while step"),
+                    };
+                    match self.beliefs(s).answers(cond, &f.subst).into_iter().next() {
+                        Some(a) => {
+                            f.subst = a;
+                            if let Some(c) = f.cursors.last_mut() {
+                                c.pos = 0;
+                            }
+                            if block.is_empty() {
+                                return;
+                            }
+                        }
+                        None => {
+                            f.cursors.pop();
+                        }
+                    }
+                }
+                CursorKind::For { mut rest, base } => {
+                    if rest.is_empty() {
+                        f.subst = base;
+                        f.cursors.pop();
+                    } else {
+                        f.subst = rest.remove(0);
+                        if let Some(c) = f.cursors.last_mut() {
+                            c.pos = 0;
+                            c.kind = CursorKind::For { rest, base };
+                        }
+                        if block.is_empty() {
+                            return;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The act phase: the first intention runs one step.
+    fn act(&self, s: &mut State, notes: &mut Vec<Note>) {
+        if s.intentions.is_empty() {
+            return;
+        }
+        let mut int = s.intentions.remove(0);
+        let finished_top = int.frames.last().is_none_or(|f| f.cursors.is_empty());
+        if !finished_top {
+            match self.step(s, &mut int, notes) {
+                Flow::Continue => {}
+                Flow::Suspended | Flow::Gone => return,
+            }
+        }
+        if self.clear_finished(s, &mut int, notes) {
+            s.intentions.push(int);
+        }
+    }
+
+    /// Pops finished plans; returns whether the intention is still alive.
+    fn clear_finished(&self, s: &State, int: &mut Intention, notes: &mut Vec<Note>) -> bool {
+        while let Some(top) = int.frames.last() {
+            if !top.cursors.is_empty() {
+                return true;
+            }
+            let Some(done) = int.frames.pop() else { break };
+            let depth = int.frames.len();
+            // A finished failure plan also ends the goal it handled.
+            if done.trigger.op == TriggerOp::Del && done.trigger.kind == TriggerKind::Achieve {
+                if let Some(below) = int.frames.last() {
+                    if below.trigger.op == TriggerOp::Add
+                        && below.trigger.kind == TriggerKind::Achieve
+                        && below.trigger.literal == done.trigger.literal
+                    {
+                        int.frames.pop();
+                    }
+                }
+            } else if let Some(parent) = int.frames.last_mut() {
+                // The subgoal's bindings flow back into the plan that posted it.
+                let result = done.subst.apply(&done.trigger.literal).map_vars(&mut |v| {
+                    if v.generation() == 0 {
+                        Term::from(v.with_generation(1_000_000 + depth as u32))
+                    } else {
+                        Term::from(v.clone())
+                    }
+                });
+                let asked = done.trigger.literal.map_vars(&mut |v| {
+                    if v.generation() == depth as u32 {
+                        Term::from(v.with_generation(0))
+                    } else {
+                        Term::from(v.clone())
+                    }
+                });
+                let mut u = parent.subst.clone();
+                if unify(&asked, &result, &mut u) {
+                    parent.subst = u;
+                }
+            }
+            if let Some(parent) = int.frames.last_mut() {
+                self.normalize(parent, s);
+            }
+        }
+        notes.push(Note::Finished(int.origin));
+        false
+    }
+
+    /// Executes the next step of the top frame.
+    fn step(&self, s: &mut State, int: &mut Intention, notes: &mut Vec<Note>) -> Flow {
+        let depth = int.frames.len() - 1;
+        // `.drop_intention(g)` may drop the very intention that runs it.
+        let drops_itself = |g: &Term| {
+            int.frames.iter().any(|f| {
+                f.trigger.kind == TriggerKind::Achieve
+                    && crate::model::unifier(g, &f.trigger.literal).is_some()
+            })
+        };
+        let own_drop = int.frames.last().and_then(|f| {
+            let c = f.cursors.last()?;
+            match &self.blocks[f.plan as usize].blocks[c.block as usize][c.pos as usize].kind {
+                BodyStep::Internal(t)
+                    if matches!(t.functor(), Some(".drop_desire" | ".drop_intention")) =>
+                {
+                    Some(drops_itself(&f.subst.apply(t.args().first()?)))
+                }
+                _ => None,
+            }
+        });
+        let frame = int.frames.last_mut().expect("an intention has a frame");
+        let plan = frame.plan;
+        let blocks = &self.blocks[plan as usize];
+        let Some(cursor) = frame.cursors.last_mut() else {
+            return Flow::Continue;
+        };
+        let (block, pos) = (cursor.block, cursor.pos);
+        let step = &blocks.blocks[block as usize][pos as usize];
+        cursor.pos += 1;
+        let origin = int.origin;
+        let fail = |sem: &Self,
+                    s: &mut State,
+                    int: Intention,
+                    text: &str,
+                    reason: String,
+                    notes: &mut Vec<Note>| {
+            let failed = int.frames.last().map(|f| f.trigger.clone()).expect("frame");
+            sem.fail_intention(
+                s,
+                int,
+                &failed,
+                Some((plan, step.span)),
+                &format!("{text}: {reason}"),
+                notes,
+            );
+            Flow::Gone
+        };
+        match &step.kind {
+            BodyStep::Action(t) => {
+                let term = eval(t, &frame.subst);
+                let text = term.to_string();
+                match self.ground_action(&term) {
+                    Err(reason) => {
+                        notes.push(Note::ActionFailed {
+                            text: text.clone(),
+                            plan,
+                            span: step.span,
+                            reason: reason.clone(),
+                        });
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(self, s, int, &text, reason, notes);
+                    }
+                    Ok(ga) => {
+                        if !ga.applicable(&s.beliefs) {
+                            let reason = "its precondition does not hold".to_string();
+                            notes.push(Note::ActionFailed {
+                                text: text.clone(),
+                                plan,
+                                span: step.span,
+                                reason: reason.clone(),
+                            });
+                            let int = std::mem::replace(int, empty_intention(origin));
+                            return fail(self, s, int, &text, reason, notes);
+                        }
+                        let before = s.beliefs.clone();
+                        s.beliefs = ga.apply(&before);
+                        let (added, removed) = diff(&before, &s.beliefs);
+                        self.perceive(s, &before, &added, &removed);
+                        notes.push(Note::Action {
+                            text,
+                            plan,
+                            span: step.span,
+                            added,
+                            removed,
+                            origin,
+                        });
+                    }
+                }
+            }
+            BodyStep::Internal(t) => {
+                let term = eval(t, &frame.subst);
+                let text = term.to_string();
+                match term.functor().unwrap_or("") {
+                    ".print" | ".println" => {}
+                    ".drop_desire" | ".drop_intention" => {
+                        let g = term.args().first().cloned().unwrap_or_else(Term::nil);
+                        let matches = |i: &Intention| {
+                            i.frames.iter().any(|f| {
+                                f.trigger.kind == TriggerKind::Achieve
+                                    && crate::model::unifier(&g, &f.trigger.literal).is_some()
+                            })
+                        };
+                        s.intentions.retain(|i| !matches(i));
+                        s.events.retain(|e| {
+                            let goal_matches = e.trigger.kind == TriggerKind::Achieve
+                                && crate::model::unifier(&g, &e.trigger.literal).is_some();
+                            !(goal_matches || e.intention.as_ref().is_some_and(matches))
+                        });
+                        if own_drop == Some(true) {
+                            notes.push(Note::Internal { text, plan, origin });
+                            return Flow::Gone;
+                        }
+                    }
+                    _ => {
+                        let f = Formula::Call(t.clone());
+                        match self.beliefs(s).answers(&f, &frame.subst).into_iter().next() {
+                            Some(a) => frame.subst = a,
+                            None => {
+                                notes.push(Note::Internal {
+                                    text: text.clone(),
+                                    plan,
+                                    origin,
+                                });
+                                let int = std::mem::replace(int, empty_intention(origin));
+                                return fail(self, s, int, &text, "it has no answer".into(), notes);
+                            }
+                        }
+                    }
+                }
+                notes.push(Note::Internal { text, plan, origin });
+            }
+            BodyStep::Achieve { goal, new_focus } => {
+                let literal = frame.subst.apply(goal).map_vars(&mut |v| {
+                    if v.generation() == 0 {
+                        Term::from(v.with_generation(depth as u32 + 1))
+                    } else {
+                        Term::from(v.clone())
+                    }
+                });
+                let trigger = EventTrigger {
+                    op: TriggerOp::Add,
+                    kind: TriggerKind::Achieve,
+                    literal,
+                };
+                if *new_focus {
+                    s.events.push(Event {
+                        trigger,
+                        intention: None,
+                        origin: Origin::Spawned,
+                        posted_at: Some((plan, step.span)),
+                    });
+                } else {
+                    self.normalize(frame, s);
+                    let suspended = std::mem::replace(int, empty_intention(origin));
+                    s.events.push(Event {
+                        trigger,
+                        intention: Some(suspended),
+                        origin,
+                        posted_at: Some((plan, step.span)),
+                    });
+                    return Flow::Suspended;
+                }
+            }
+            BodyStep::Test(f) => {
+                match self.beliefs(s).answers(f, &frame.subst).into_iter().next() {
+                    Some(a) => frame.subst = a,
+                    None => {
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(self, s, int, "test goal", "it has no answer".into(), notes);
+                    }
+                }
+            }
+            BodyStep::AddBel(t) | BodyStep::DelBel(t) | BodyStep::DelAddBel(t) => {
+                let lit = frame.subst.apply(t);
+                let mut removed = Vec::new();
+                let mut added = Vec::new();
+                if matches!(step.kind, BodyStep::DelBel(_) | BodyStep::DelAddBel(_)) {
+                    // `-b` removes the first belief that unifies; `-+b` the first belief of
+                    // the same predicate, whatever its arguments.
+                    let pattern = match step.kind {
+                        BodyStep::DelAddBel(_) => {
+                            let vars = (0..lit.arity())
+                                .map(|i| Term::var(&format!("_DelAdd{i}")))
+                                .collect();
+                            Term::structure(lit.functor().unwrap_or(""), vars)
+                        }
+                        _ => lit.clone(),
+                    };
+                    let hits = self.beliefs(s).literal_answers(&pattern, &frame.subst);
+                    if let Some((a, answer)) = hits.into_iter().next() {
+                        s.beliefs.remove(a);
+                        removed.push(a);
+                        if matches!(step.kind, BodyStep::DelBel(_)) {
+                            frame.subst = answer;
+                        }
+                    }
+                }
+                if matches!(step.kind, BodyStep::AddBel(_) | BodyStep::DelAddBel(_)) {
+                    match self.ground_atom(&lit) {
+                        Some(a) => {
+                            if !s.beliefs.contains(a) {
+                                s.beliefs.insert(a);
+                                added.push(a);
+                            }
+                            removed.retain(|r| *r != a);
+                            added.retain(|x| !removed.contains(x));
+                        }
+                        None => {
+                            let int = std::mem::replace(int, empty_intention(origin));
+                            let text = format!("+{lit}");
+                            return fail(
+                                self,
+                                s,
+                                int,
+                                &text,
+                                "the belief is not a ground atom of the model".into(),
+                                notes,
+                            );
+                        }
+                    }
+                }
+                let before = s.beliefs.clone();
+                self.perceive(s, &before, &added, &removed);
+                let sign = match step.kind {
+                    BodyStep::AddBel(_) => "+",
+                    BodyStep::DelBel(_) => "-",
+                    _ => "-+",
+                };
+                notes.push(Note::Belief {
+                    text: format!("{sign}{lit}"),
+                    plan,
+                    added,
+                    removed,
+                    origin,
+                });
+            }
+            BodyStep::Constraint(op, a, b) => {
+                let (x, y) = (eval(a, &frame.subst), eval(b, &frame.subst));
+                let text = format!("{x} {} {y}", op.symbol());
+                match relation(*op, &x, &y, &frame.subst) {
+                    Some(u) => frame.subst = u,
+                    None => {
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(
+                            self,
+                            s,
+                            int,
+                            &text,
+                            "the constraint does not hold".into(),
+                            notes,
+                        );
+                    }
+                }
+            }
+            BodyStep::If { branches, .. } => {
+                let kids = &blocks.children[&(block, pos)];
+                let b = self.beliefs(s);
+                let mut chosen = kids.last().copied();
+                for (k, (cond, _)) in branches.iter().enumerate() {
+                    if let Some(a) = b.answers(cond, &frame.subst).into_iter().next() {
+                        frame.subst = a;
+                        chosen = Some(kids[k]);
+                        break;
+                    }
+                }
+                if let Some(child) = chosen {
+                    frame.cursors.push(Cursor {
+                        block: child,
+                        pos: 0,
+                        kind: CursorKind::Seq,
+                    });
+                }
+            }
+            BodyStep::While(cond, _) => {
+                let child = blocks.children[&(block, pos)][0];
+                if let Some(a) = self
+                    .beliefs(s)
+                    .answers(cond, &frame.subst)
+                    .into_iter()
+                    .next()
+                {
+                    frame.subst = a;
+                    frame.cursors.push(Cursor {
+                        block: child,
+                        pos: 0,
+                        kind: CursorKind::While {
+                            outer: block,
+                            at: pos,
+                        },
+                    });
+                }
+            }
+            BodyStep::For(cond, _) => {
+                let child = blocks.children[&(block, pos)][0];
+                let mut answers = self.beliefs(s).answers(cond, &frame.subst);
+                if !answers.is_empty() {
+                    let base = std::mem::replace(&mut frame.subst, answers.remove(0));
+                    frame.cursors.push(Cursor {
+                        block: child,
+                        pos: 0,
+                        kind: CursorKind::For {
+                            rest: answers,
+                            base,
+                        },
+                    });
+                }
+            }
+        }
+        self.normalize(frame, s);
+        Flow::Continue
+    }
+
+    /// The ground action a term names, or why there is none.
+    fn ground_action(&self, t: &Term) -> Result<&crate::model::ground::GroundAction, String> {
+        let name = t.functor().ok_or("it is not an action")?;
+        let args = self.objects(t).ok_or("its arguments are not all objects")?;
+        self.project.actions.get(name, &args).ok_or_else(|| {
+            format!("`{name}` with these arguments is not an action of the PDDL domain")
+        })
+    }
+
+    fn objects(&self, t: &Term) -> Option<Vec<ObjectId>> {
+        t.args()
+            .iter()
+            .map(|a| match a {
+                Term::Atom(n) => self.project.universe.object(n),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The atom a ground literal names (annotations ignored).
+    fn ground_atom(&self, t: &Term) -> Option<AtomId> {
+        if t.is_negated() {
+            return None;
+        }
+        let p = self.project.atoms.pred(t.functor()?)?;
+        self.project.atoms.id(p, &self.objects(t)?)
+    }
+}
+
+/// What became of the intention after a step.
+enum Flow {
+    /// It goes on (and goes to the back of the queue).
+    Continue,
+    /// It waits in an event for a subgoal's plan.
+    Suspended,
+    /// It was dropped or handed to a failure event.
+    Gone,
+}
+
+fn empty_intention(origin: Origin) -> Intention {
+    Intention {
+        frames: Vec::new(),
+        origin,
+    }
+}
+
+fn diff(before: &AtomSet, after: &AtomSet) -> (Vec<AtomId>, Vec<AtomId>) {
+    let added = after.iter().filter(|a| !before.contains(*a)).collect();
+    let removed = before.iter().filter(|a| !after.contains(*a)).collect();
+    (added, removed)
+}
+
+/// Every ground instance of the manifest's request goals, in manifest order then object
+/// order; a variable ranges over its goal parameter's type.
+fn ground_requests(p: &Project) -> Result<Vec<Term>, Vec<Diagnostic>> {
+    let mut out = Vec::new();
+    let mut errors = Vec::new();
+    for f in &p.manifest.requests.goals {
+        let mut conv = crate::model::Converter::new();
+        let term = match &f.expr.kind {
+            crate::syntax::ast::ExprKind::Literal(l) => match conv.literal(l) {
+                Ok(t) => t,
+                Err(e) => {
+                    errors.push(Diagnostic::error("input", e.message).with_label(e.span, "here"));
+                    continue;
+                }
+            },
+            _ => {
+                errors.push(
+                    Diagnostic::error("input", "a request must be a goal literal")
+                        .with_label(f.span, "here"),
+                );
+                continue;
+            }
+        };
+        let name = term.functor().unwrap_or("");
+        let params: Vec<_> = match p.vocabulary.goal(name, term.arity()) {
+            Some((_, g)) => g.params.clone(),
+            None => vec![crate::model::TypeId::OBJECT; term.arity()],
+        };
+        let vars: Vec<(usize, crate::model::TypeId)> = term
+            .args()
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| a.is_var())
+            .map(|(i, _)| {
+                (
+                    i,
+                    params
+                        .get(i)
+                        .copied()
+                        .unwrap_or(crate::model::TypeId::OBJECT),
+                )
+            })
+            .collect();
+        let types: Vec<_> = vars.iter().map(|(_, t)| *t).collect();
+        for objs in crate::model::ground::product(&p.universe, &types) {
+            let mut args = term.args().to_vec();
+            for ((i, _), o) in vars.iter().zip(objs) {
+                args[*i] = Term::atom(p.universe.object_name(o));
+            }
+            let g = Term::structure(name, args);
+            if !out.contains(&g) {
+                out.push(g);
+            }
+        }
+    }
+    if out.len() > MAX_REQUESTS {
+        errors.push(
+            Diagnostic::error(
+                "input",
+                format!(
+                    "the requests have {} ground instances; at most {MAX_REQUESTS} are supported",
+                    out.len()
+                ),
+            )
+            .in_file(p.manifest.path.display().to_string()),
+        );
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
+}

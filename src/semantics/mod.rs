@@ -1,0 +1,13 @@
+//! Model to transition system: Jason's reasoning cycle over the finite model.
+//!
+//! [`Semantics`] is the transition function: [`Semantics::initial_states`] and
+//! [`Semantics::successors`], each successor with the [`Note`]s that say what happened (the
+//! material of counterexample traces and of the dynamic checks). [`query`] answers plan
+//! contexts and test goals against the beliefs.
+
+pub mod cycle;
+pub mod query;
+pub mod state;
+
+pub use cycle::{Note, Semantics, Transition};
+pub use state::{Event, EventTrigger, Frame, Intention, Origin, State};

@@ -1,0 +1,160 @@
+//! The agent's state in the transition system: beliefs, the event queue, the intentions,
+//! and which requests the user has made.
+
+use crate::model::atoms::AtomSet;
+use crate::model::term::Term;
+use crate::model::Substitution;
+use crate::syntax::ast::{TriggerKind, TriggerOp};
+use crate::syntax::Span;
+use std::fmt;
+
+/// A triggering event's content: `+!g`, `-!g`, `+b`, `-b`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct EventTrigger {
+    /// `+` or `-`.
+    pub op: TriggerOp,
+    /// Belief, achievement or test goal.
+    pub kind: TriggerKind,
+    /// The ground (or partly bound) literal.
+    pub literal: Term,
+}
+
+impl fmt::Display for EventTrigger {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let op = match self.op {
+            TriggerOp::Add => "+",
+            TriggerOp::Del => "-",
+            TriggerOp::GoalState => "^",
+        };
+        let kind = match self.kind {
+            TriggerKind::Belief => "",
+            TriggerKind::Achieve => "!",
+            TriggerKind::Test => "?",
+        };
+        write!(f, "{op}{kind}{}", self.literal)
+    }
+}
+
+/// An event in the queue. An internal event (a subgoal, a failure) carries the intention
+/// that waits for it, suspended until a plan is chosen for the event.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Event {
+    /// What happened.
+    pub trigger: EventTrigger,
+    /// The suspended intention, for internal events.
+    pub intention: Option<Intention>,
+    /// Where an external event came from (for internal ones, their intention's origin).
+    pub origin: Origin,
+    /// For a subgoal, the plan and `!g` step that posted it (failures are reported there).
+    pub posted_at: Option<(u32, Span)>,
+}
+
+/// Where an intention came from; names intentions in traces and ties them to requests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Origin {
+    /// The user's request with this index.
+    Request(u8),
+    /// The agent's initial goal with this index.
+    InitialGoal(u8),
+    /// `!!g` or a belief event handled by a plan.
+    Spawned,
+}
+
+/// A position in a body: the block being executed and the next step in it.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Cursor {
+    /// The block (0 = the plan's body; then the bodies of `if`/`while`/`for`).
+    pub block: u16,
+    /// The next step in it.
+    pub pos: u16,
+    /// How the block ends.
+    pub kind: CursorKind,
+}
+
+/// What happens at the end of a block.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum CursorKind {
+    /// The block ends; the enclosing one goes on.
+    Seq,
+    /// A `while` body: the condition (the step at `at` in the enclosing block) is tested
+    /// again.
+    While {
+        /// The block holding the `while` step.
+        outer: u16,
+        /// The `while` step's position there.
+        at: u16,
+    },
+    /// A `for` body: the next answer, with the bindings from before the loop.
+    For {
+        /// The answers not used yet, next first.
+        rest: Vec<Substitution>,
+        /// The bindings before the loop, restored after it.
+        base: Substitution,
+    },
+}
+
+/// One plan instance on an intention stack: Jason's intended means.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Frame {
+    /// The plan's index in the library.
+    pub plan: u32,
+    /// The bindings of the plan's variables.
+    pub subst: Substitution,
+    /// Nested positions in the body, innermost last; empty when the body is done.
+    pub cursors: Vec<Cursor>,
+    /// The instantiated trigger the plan was chosen for.
+    pub trigger: EventTrigger,
+}
+
+/// A stack of frames: the top frame runs, the ones below wait for its goal.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Intention {
+    /// Bottom first.
+    pub frames: Vec<Frame>,
+    /// Where it came from.
+    pub origin: Origin,
+}
+
+/// The whole agent state.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct State {
+    /// Beliefs: the environment's atoms as perceived (exactly) and the mental notes.
+    pub beliefs: AtomSet,
+    /// Pending events, first in first out.
+    pub events: Vec<Event>,
+    /// Running intentions, in round-robin order: the first runs next.
+    pub intentions: Vec<Intention>,
+    /// Bit `i`: request `i` has been made in this run.
+    pub requested: u64,
+}
+
+impl State {
+    /// Whether the agent has nothing to do: no event, no intention (suspended ones wait
+    /// inside events).
+    pub fn is_idle(&self) -> bool {
+        self.events.is_empty() && self.intentions.is_empty()
+    }
+
+    /// Every intention, running or suspended in an event.
+    pub fn all_intentions(&self) -> impl Iterator<Item = &Intention> {
+        self.intentions
+            .iter()
+            .chain(self.events.iter().filter_map(|e| e.intention.as_ref()))
+    }
+
+    /// The requests still being served: the origin of some intention or event.
+    pub fn pending_requests(&self) -> u64 {
+        let mut bits = 0u64;
+        let origins = self
+            .intentions
+            .iter()
+            .map(|i| i.origin)
+            .chain(self.events.iter().map(|e| e.origin));
+        for o in origins {
+            if let Origin::Request(r) = o {
+                bits |= 1 << r;
+            }
+        }
+        bits
+    }
+}
