@@ -38,7 +38,7 @@ pub struct Graph {
     /// For each state: its depth.
     pub depth: Vec<u32>,
     /// For each expanded state: the targets of its transitions, in order (`None` when the
-    /// state was not expanded because a bound was hit).
+    /// state was not expanded, or not fully, because a bound was hit).
     pub edges: Vec<Option<Vec<u32>>>,
     /// How many states are initial (the first ones).
     pub initial: usize,
@@ -111,6 +111,7 @@ pub fn explore(
         }
         let succ = sem.successors(&g.states[next]);
         let mut targets = Vec::with_capacity(succ.len());
+        let mut cut = false;
         for (k, t) in succ.iter().enumerate() {
             on_transition(next as u32, k as u32, t);
             g.transitions += 1;
@@ -120,6 +121,7 @@ pub fn explore(
                 None => {
                     if g.states.len() as u64 >= limits.max_states {
                         g.bound = Some(Bound::States);
+                        cut = true;
                         continue;
                     }
                     let i = g.states.len() as u32;
@@ -133,7 +135,9 @@ pub fn explore(
             };
             targets.push(target);
         }
-        g.edges[next] = Some(targets);
+        // A state some of whose successors were cut off counts as not expanded: it must
+        // not look like a state with no successors (a deadlock) or a finished run.
+        g.edges[next] = (!cut).then_some(targets);
         next += 1;
     }
     g.seconds = start.elapsed().as_secs_f64();

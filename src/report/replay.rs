@@ -143,6 +143,9 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
     // the violation still happens.
     let budget = recorded.len() + loop_len + 64;
     for _ in 0..budget {
+        if check.settles(&state) {
+            return no("the property now holds on this run");
+        }
         if check.state_violated(&state) {
             return Replayed {
                 id: f.id.clone(),
@@ -152,6 +155,16 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
         }
         let succ = sem.successors(&state);
         if succ.is_empty() {
+            if matches!(check, Check::Eventually(_)) {
+                return Replayed {
+                    id: f.id.clone(),
+                    reached: true,
+                    detail: format!(
+                        "the run ends after {} steps without the property",
+                        builder.steps().len()
+                    ),
+                };
+            }
             break;
         }
         let at = builder.steps().len();
@@ -207,6 +220,8 @@ fn kind_name(k: crate::report::StepKindTag) -> &'static str {
 /// What counts as reaching a finding's violation.
 enum Check {
     State(crate::model::cond::Cond, bool),
+    /// `eventually p`: violated by a run that ends or loops while `p` never held.
+    Eventually(crate::model::cond::Cond),
     Note {
         kind: &'static str,
         place: Option<(String, usize)>,
@@ -248,7 +263,9 @@ impl Check {
                     formula::compile(&p.formula.expr, &project.atoms, &project.universe),
                 ) {
                     (crate::syntax::manifest::PropertyKind::Always, Ok(c)) => Check::State(c, true),
-                    (crate::syntax::manifest::PropertyKind::Eventually, Ok(_)) => Check::Liveness,
+                    (crate::syntax::manifest::PropertyKind::Eventually, Ok(c)) => {
+                        Check::Eventually(c)
+                    }
                     _ => Check::Unknown,
                 }
             }
@@ -257,7 +274,12 @@ impl Check {
     }
 
     fn is_liveness(&self) -> bool {
-        matches!(self, Check::Liveness)
+        matches!(self, Check::Liveness | Check::Eventually(_))
+    }
+
+    /// For `eventually p`: whether `p` holds in `s` (which settles the run as not violating).
+    fn settles(&self, s: &State) -> bool {
+        matches!(self, Check::Eventually(c) if c.eval(&s.beliefs))
     }
 
     fn state_violated(&self, s: &State) -> bool {

@@ -514,14 +514,17 @@ impl<'p> Semantics<'p> {
         reason: &str,
         notes: &mut Vec<Note>,
     ) {
+        // Jason's `Intention.findEventForFailure`: from the top, the first frame whose
+        // trigger has a relevant `-` plan decides; only an achievement-goal addition gets a
+        // failure event (a failing failure plan drops the intention, it is not retried).
         while let Some(top) = int.frames.last() {
-            if top.trigger.op == TriggerOp::Add && top.trigger.kind == TriggerKind::Achieve {
-                let fail = EventTrigger {
-                    op: TriggerOp::Del,
-                    kind: TriggerKind::Achieve,
-                    literal: top.trigger.literal.clone(),
-                };
-                if !self.relevant_plans(&fail).is_empty() {
+            let fail = EventTrigger {
+                op: TriggerOp::Del,
+                kind: top.trigger.kind,
+                literal: top.trigger.literal.clone(),
+            };
+            if !self.relevant_plans(&fail).is_empty() {
+                if top.trigger.op == TriggerOp::Add && top.trigger.kind == TriggerKind::Achieve {
                     let origin = int.origin;
                     s.events.push(Event {
                         trigger: fail,
@@ -531,6 +534,7 @@ impl<'p> Semantics<'p> {
                     });
                     return;
                 }
+                break;
             }
             if int.frames.len() == 1 {
                 break;

@@ -1,0 +1,317 @@
+//! `bdi-check verify` and `replay` as users run them: seeded dynamic defects are found with
+//! counterexamples that replay, the kitchen passes, the paper's gap is found, and the
+//! exploration counts equal counts derived by hand.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bdi_check(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("bdi-check runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("bdi-check-verify-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs `verify --format json` on a project; returns the exit code, the report, and where
+/// the report was written.
+fn verify_json(project: &str, tag: &str) -> (i32, serde_json::Value, PathBuf) {
+    let file = temp_dir(tag).join("report.json");
+    let o = bdi_check(&[
+        "verify",
+        project,
+        "--format",
+        "json",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&file)
+        .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    (
+        o.status.code().unwrap(),
+        serde_json::from_str(&text).unwrap(),
+        file,
+    )
+}
+
+fn failing<'a>(report: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json::Value> {
+    report["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["check"] == check && f["status"] == "fail")
+        .collect()
+}
+
+fn texts(f: &serde_json::Value) -> Vec<String> {
+    f["counterexample"]["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            format!(
+                "{} {}",
+                s["kind"].as_str().unwrap(),
+                s["text"].as_str().unwrap()
+            )
+        })
+        .collect()
+}
+
+fn replay_code(report: &Path, finding: Option<&str>) -> i32 {
+    let mut args = vec!["replay", report.to_str().unwrap()];
+    if let Some(id) = finding {
+        args.extend(["--finding", id]);
+    }
+    let o = bdi_check(&args);
+    assert!(
+        o.stderr.is_empty() || o.status.code() == Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o.status.code().unwrap()
+}
+
+#[test]
+fn the_kitchen_passes_with_a_complete_search() {
+    let (code, r, _) = verify_json("specs/kitchen", "kitchen");
+    assert_eq!(code, 0, "{r:#}");
+    assert_eq!(r["verdict"], "pass");
+    assert_eq!(r["stats"]["complete"], true);
+    assert_eq!(r["stats"]["initial_states"], 100);
+    assert!(r["stats"]["states"].as_u64().unwrap() > 1000);
+    // Every check ran and held; the reachable property comes with its witness run.
+    for f in r["findings"].as_array().unwrap() {
+        assert_eq!(f["status"], "pass", "{f:#}");
+    }
+    let witness = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["id"] == "property:robot_puts_both_cups_away")
+        .unwrap();
+    assert!(texts(witness)
+        .iter()
+        .any(|t| t == "action navigateTo(cupboard)"));
+}
+
+#[test]
+fn the_papers_gap_is_a_goal_failure_that_replays() {
+    let (code, r, file) = verify_json("specs/paper", "paper");
+    assert_eq!(code, 1);
+    let f = failing(&r, "goal-failure");
+    assert_eq!(f.len(), 1, "{r:#}");
+    let f = f[0];
+    assert_eq!(f["location"]["file"], "specs/paper/paper.asl");
+    assert_eq!(f["location"]["line"], 12);
+    let c = &f["counterexample"];
+    let initial: Vec<&str> = c["initial"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_str().unwrap())
+        .collect();
+    assert!(initial.contains(&"dishwasherDoor(open)"), "{initial:?}");
+    assert_eq!(c["requests"], serde_json::json!(["storeCup(cup1)"]));
+    let steps = texts(f);
+    assert_eq!(steps[0], "request !storeCup(cup1)");
+    assert!(steps.iter().any(|s| s == "event +!openDishwasherIfNeed"));
+    assert!(steps
+        .last()
+        .unwrap()
+        .contains("+!openDishwasherIfNeed fails: no applicable plan"));
+    assert_eq!(replay_code(&file, None), 1);
+    assert_eq!(replay_code(&file, Some(f["id"].as_str().unwrap())), 1);
+}
+
+#[test]
+fn fixing_the_paper_makes_replay_pass() {
+    let dir = temp_dir("paper-fixed");
+    for name in ["paper.asl", "kitchen.pddl", "bdi-check.toml"] {
+        std::fs::copy(Path::new("specs/paper").join(name), dir.join(name)).unwrap();
+    }
+    let project = dir.to_str().unwrap().to_string();
+    let (code, _, file) = verify_json(&project, "paper-fixed-report");
+    assert_eq!(code, 1);
+    assert_eq!(replay_code(&file, None), 1);
+    // The fix: a plan for the open door.
+    let mut asl = std::fs::read_to_string(dir.join("paper.asl")).unwrap();
+    asl.push_str("\n+!openDishwasherIfNeed : dishwasherDoor(open).\n");
+    std::fs::write(dir.join("paper.asl"), asl).unwrap();
+    assert_eq!(replay_code(&file, None), 0);
+    let (code, r, _) = verify_json(&project, "paper-fixed-after");
+    assert_eq!(code, 0, "{r:#}");
+}
+
+/// (project, check that must fail, file:line it must point at (or "" for the manifest))
+const SEEDED: &[(&str, &str, &str)] = &[
+    (
+        "tests/verify/invariant",
+        "invariant",
+        "tests/verify/invariant/bdi-check.toml:9",
+    ),
+    (
+        "tests/verify/action_failure",
+        "action-failure",
+        "tests/verify/action_failure/agent.asl:2",
+    ),
+    (
+        "tests/verify/goal_failure",
+        "goal-failure",
+        "tests/verify/goal_failure/agent.asl:2",
+    ),
+    (
+        "tests/verify/failing_failure_plan",
+        "goal-failure",
+        "tests/verify/failing_failure_plan/agent.asl:4",
+    ),
+    ("tests/verify/livelock", "livelock", ""),
+    ("tests/verify/livelock", "request-not-completed", ""),
+    (
+        "tests/verify/eventually",
+        "property",
+        "tests/verify/eventually/bdi-check.toml:11",
+    ),
+];
+
+#[test]
+fn each_seeded_defect_is_found_with_a_counterexample_that_replays() {
+    for (i, (project, check, place)) in SEEDED.iter().enumerate() {
+        let (code, r, file) = verify_json(project, &format!("seeded-{i}"));
+        assert_eq!(code, 1, "{project}: {r:#}");
+        let found = failing(&r, check);
+        assert_eq!(found.len(), 1, "{project}: {check} in {r:#}");
+        let f = found[0];
+        if !place.is_empty() {
+            let at = format!(
+                "{}:{}",
+                f["location"]["file"].as_str().unwrap(),
+                f["location"]["line"]
+            );
+            assert_eq!(&at, place, "{project}: {f:#}");
+        }
+        assert!(
+            !f["counterexample"]["steps"].as_array().unwrap().is_empty(),
+            "{f:#}"
+        );
+        assert_eq!(
+            replay_code(&file, Some(f["id"].as_str().unwrap())),
+            1,
+            "{project}: {check} does not replay"
+        );
+    }
+}
+
+#[test]
+fn liveness_counterexamples_are_lassos() {
+    let (_, r, _) = verify_json("tests/verify/livelock", "lasso");
+    let f = failing(&r, "livelock")[0];
+    let c = &f["counterexample"];
+    let start = c["loop_start"].as_u64().expect("a loop start") as usize;
+    let steps = texts(f);
+    assert!(start < steps.len());
+    // The loop walks to the dishwasher and back, forever.
+    let looped = &steps[start..];
+    assert!(
+        looped.iter().any(|s| s == "action navigateTo(dishwasher)"),
+        "{looped:?}"
+    );
+    assert!(
+        looped.iter().any(|s| s == "action navigateTo(table)"),
+        "{looped:?}"
+    );
+}
+
+#[test]
+fn a_handled_failure_is_not_a_goal_failure() {
+    let (code, r, _) = verify_json("tests/verify/handled_failure", "handled");
+    assert_eq!(code, 0, "{r:#}");
+    assert!(failing(&r, "goal-failure").is_empty());
+}
+
+#[test]
+fn exploration_counts_equal_a_count_by_hand() {
+    // Two initial states (door open or closed). From each: idle -> (request) -> event
+    // queued -> (cycle: plan chosen, navigateTo(dishwasher)) -> (cycle: navigateTo(table),
+    // intention done) -> idle with the request made: 4 states and 3 transitions each.
+    let (code, r, _) = verify_json("tests/verify/tiny", "tiny");
+    assert_eq!(code, 0, "{r:#}");
+    let s = &r["stats"];
+    assert_eq!(s["initial_states"], 2);
+    assert_eq!(s["states"], 8);
+    assert_eq!(s["transitions"], 6);
+    assert_eq!(s["depth"], 3);
+}
+
+#[test]
+fn bounds_give_incomplete_never_pass() {
+    let o = bdi_check(&["verify", "specs/kitchen", "--max-states", "500", "-q"]);
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("verdict: incomplete"));
+    let o = bdi_check(&[
+        "verify",
+        "specs/kitchen",
+        "--max-depth",
+        "3",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(o.status.code(), Some(3));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(r["verdict"], "incomplete");
+    assert_eq!(r["stats"]["complete"], false);
+    // A violation found within the bound is still a failure.
+    let o = bdi_check(&["verify", "specs/paper", "--max-states", "12", "-q"]);
+    assert_eq!(o.status.code(), Some(1));
+}
+
+#[test]
+fn scenarios_are_written_one_per_counterexample() {
+    let dir = temp_dir("scenarios");
+    let o = bdi_check(&[
+        "verify",
+        "specs/paper",
+        "-q",
+        "--scenarios",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(files.len(), 1, "{files:?}");
+    let mut map = bdi_check::syntax::SourceMap::new();
+    let sc =
+        bdi_check::syntax::manifest::load_scenario(&files[0], &mut map).expect("a valid scenario");
+    assert_eq!(sc.requests.len(), 1);
+    assert!(sc.initial.iter().any(|f| f.text == "dishwasherDoor(open)"));
+}
+
+#[test]
+fn bad_input_exits_2() {
+    assert_eq!(
+        bdi_check(&["verify", "no/such/project"]).status.code(),
+        Some(2)
+    );
+    let o = bdi_check(&["verify", "tests/project/unknown_type", "--format", "json"]);
+    assert_eq!(o.status.code(), Some(2));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(r["verdict"], "error");
+    assert_eq!(r["findings"][0]["check"], "input");
+    let bad = temp_dir("bad-report").join("r.json");
+    std::fs::write(&bad, "{ not json").unwrap();
+    assert_eq!(replay_code(&bad, None), 2);
+}

@@ -1,0 +1,1 @@
++!go <- navigateTo(dishwasher); navigateTo(table).
