@@ -92,6 +92,24 @@ enum Command {
         #[command(flatten)]
         out: Output,
     },
+    /// Draw the goal-plan tree (`--plans`) or the state graph (`--states`) as DOT.
+    #[command(group(clap::ArgGroup::new("what").required(true).args(["plans", "states"])))]
+    Graph {
+        /// The project folder or its bdi-check.toml.
+        project: PathBuf,
+        /// The goal-plan tree: goals, the plans for them with their contexts, subgoals.
+        #[arg(long)]
+        plans: bool,
+        /// The state graph (or the part the counterexamples go through, when it is large).
+        #[arg(long)]
+        states: bool,
+        /// Stop after this many distinct states (overrides `[bounds] max_states`).
+        #[arg(long)]
+        max_states: Option<u64>,
+        /// Write the DOT text to this file instead of stdout.
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+    },
     /// Replay the counterexamples of a JSON report against the project as it is now.
     Replay {
         /// A report written by `verify --format json`.
@@ -154,6 +172,41 @@ fn main() -> ExitCode {
                 Format::Human => report::verify::render_human(&run, out.detail(), out.color()),
             };
             finish(&text, out.output, run.report.verdict.exit_code())
+        }
+        Command::Graph {
+            project,
+            plans,
+            states: _,
+            max_states,
+            output,
+        } => {
+            let p = match bdi_check::model::project::load_project(&project) {
+                Ok(p) => p,
+                Err(e) => {
+                    for d in &e.diagnostics {
+                        eprintln!("{}", d.render(&e.map, std::io::stderr().is_terminal()));
+                    }
+                    return ExitCode::from(2);
+                }
+            };
+            if plans {
+                return finish(&report::graph::plans_dot(&p), output, 0);
+            }
+            let limits = report::verify::limits(&p, max_states, None, None);
+            match report::graph::states_dot(&p, limits) {
+                Ok((dot, note)) => {
+                    if let Some(n) = note {
+                        eprintln!("note: {n}");
+                    }
+                    finish(&dot, output, 0)
+                }
+                Err(errs) => {
+                    for d in &errs {
+                        eprintln!("{}", d.render(&p.map, false));
+                    }
+                    ExitCode::from(2)
+                }
+            }
         }
         Command::Replay {
             report: path,

@@ -315,3 +315,32 @@ fn bad_input_exits_2() {
     std::fs::write(&bad, "{ not json").unwrap();
     assert_eq!(replay_code(&bad, None), 2);
 }
+
+#[test]
+fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
+    let o = bdi_check(&["graph", "specs/paper", "--plans"]);
+    assert_eq!(o.status.code(), Some(0));
+    let dot = String::from_utf8_lossy(&o.stdout);
+    assert!(dot.starts_with("digraph plans {"), "{dot}");
+    assert!(
+        dot.contains("label = \"+!openDishwasherIfNeed/0\""),
+        "{dot}"
+    );
+    assert!(
+        dot.contains(": not dishwasherDoor(open) & holding(none)"),
+        "{dot}"
+    );
+    assert_eq!(dot.matches(" -> ").count(), 3, "{dot}");
+    // The paper's state graph is small enough to draw whole: 13 states, 11 transitions.
+    let o = bdi_check(&["graph", "specs/paper", "--states"]);
+    let dot = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(dot.matches("[ label = \"s").count(), 13, "{dot}");
+    assert_eq!(dot.matches(" -> ").count(), 11, "{dot}");
+    assert!(dot.contains("navigateTo(dishwasher)"));
+    // The kitchen's is not, and the tool says so.
+    let o = bdi_check(&["graph", "specs/kitchen", "--states"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("too many to draw"));
+    // One of --plans and --states is required.
+    assert_eq!(bdi_check(&["graph", "specs/paper"]).status.code(), Some(2));
+}

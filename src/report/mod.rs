@@ -5,6 +5,7 @@
 //! verdict and its exit code can never disagree.
 
 pub mod domain;
+pub mod graph;
 pub mod outline;
 pub mod replay;
 pub mod verify;
