@@ -6,6 +6,7 @@
 //!
 //! * [`syntax`]: text to AST (AgentSpeak, with located diagnostics);
 //! * [`model`]: the formal model: terms, substitutions, unification;
+//! * [`smt`]: the static checks of `lint`, decided with z3;
 //! * [`report`]: what the commands print (human text and JSON).
 
 #![warn(missing_docs)]
@@ -13,5 +14,6 @@
 pub mod check;
 pub mod model;
 pub mod report;
+pub mod smt;
 pub mod semantics;
 pub mod syntax;

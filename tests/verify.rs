@@ -344,3 +344,30 @@ fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
     // One of --plans and --states is required.
     assert_eq!(bdi_check(&["graph", "specs/paper"]).status.code(), Some(2));
 }
+
+#[test]
+fn concurrent_requests_interleave_and_interfere_in_the_kitchen() {
+    let dir = temp_dir("kitchen-any");
+    for name in ["kitchen.asl", "kitchen.pddl", "bdi-check.toml"] {
+        std::fs::copy(Path::new("specs/kitchen").join(name), dir.join(name)).unwrap();
+    }
+    let manifest = std::fs::read_to_string(dir.join("bdi-check.toml")).unwrap();
+    std::fs::write(
+        dir.join("bdi-check.toml"),
+        manifest.replace("arrival = \"idle\"", "arrival = \"any\""),
+    )
+    .unwrap();
+    let (code, r, file) = verify_json(dir.to_str().unwrap(), "kitchen-any-report");
+    assert_eq!(code, 1);
+    let failures = failing(&r, "action-failure");
+    assert!(!failures.is_empty());
+    // Each counterexample needs two requests in flight at once (with one at a time, the
+    // kitchen passes: see `the_kitchen_passes_with_a_complete_search`).
+    for f in &failures {
+        let steps = texts(f);
+        let requests = steps.iter().filter(|s| s.starts_with("request ")).count();
+        assert_eq!(requests, 2, "{steps:#?}");
+        assert!(steps.last().unwrap().contains(" fails: "), "{steps:#?}");
+    }
+    assert_eq!(replay_code(&file, None), 1);
+}
