@@ -2,18 +2,72 @@
 //!
 //! Verifies BDI plan libraries written in Jason AgentSpeak before they run on a robot.
 //!
+//! ## Model checking a plan library, in one example
+//!
+//! A *model checker* does not run the robot once: it runs it in every way it can run. Here
+//! the robot is a Jason agent whose plans react to requests, and its world is a PDDL model
+//! of the kitchen. The paper this tool comes from (Wang, Calandra, Klös, "Effective
+//! Explanations for BDI Robots") stores a used cup with two plans:
+//!
+//! ```text
+//! +!storeCup(C) : used(C)
+//!    <- !openDishwasherIfNeed; navigateTo(table); pickUp(C); navigateTo(dishwasher); putDown(C).
+//! +!openDishwasherIfNeed : not dishwasherDoor(open) & holding(none)
+//!    <- navigateTo(dishwasher); openDoor(dishwasher).
+//! ```
+//!
+//! Tests would try the story the paper tells (the door is closed) and pass. The model
+//! checker takes every *initial state* the manifest allows (here the door open or closed),
+//! every *request* the user may make, and follows Jason's reasoning cycle step by step:
+//! each state is the robot's beliefs, its event queue and its intentions; each transition
+//! is one reasoning cycle. Exploring breadth-first, it visits every reachable state once
+//! and keeps, for each, the step that first reached it, so the run to any violation it finds
+//! is a shortest one:
+//!
+//! ```
+//! use bdi_check::check::{explore::Limits, verify};
+//! use bdi_check::model::project::load_project;
+//! use bdi_check::report::Status;
+//!
+//! let project = load_project(std::path::Path::new("specs/paper")).expect("the project loads");
+//! let limits = Limits { max_states: 10_000, max_depth: 100, timeout: None };
+//! let result = verify(&project, limits, |_, _, _| {}).expect("the project can be checked");
+//!
+//! // Every reachable state was visited...
+//! assert!(result.stats.complete);
+//! assert_eq!(result.stats.states, 13);
+//!
+//! // ...and when the door is already open, no plan for +!openDishwasherIfNeed applies.
+//! let failure = result
+//!     .findings
+//!     .iter()
+//!     .find(|f| f.check == "goal-failure" && f.status == Status::Fail)
+//!     .expect("the paper's gap is found");
+//! let run = failure.counterexample.as_ref().unwrap();
+//! assert!(run.initial.contains(&"dishwasherDoor(open)".to_string()));
+//! assert_eq!(run.requests, ["storeCup(cup1)"]);
+//! ```
+//!
+//! The same exploration proves the completed kitchen of `specs/kitchen` correct for all 100
+//! initial states and every pair of requests: `cargo run --release -- verify specs/kitchen`.
+//!
+//! ## Stages
+//!
 //! Data flows one way, one module per stage:
 //!
-//! * [`syntax`]: text to AST (AgentSpeak, with located diagnostics);
-//! * [`model`]: the formal model: terms, substitutions, unification;
+//! * [`syntax`]: text to AST: the AgentSpeak and PDDL parsers, the manifest, located
+//!   diagnostics;
+//! * [`model`]: the formal model `M = <S, B, G, Pi>`: terms and unification, types and
+//!   objects, type checking, ground atoms and states, ground actions, plans;
 //! * [`smt`]: the static checks of `lint`, decided with z3;
-//! * [`report`]: what the commands print (human text and JSON).
+//! * [`semantics`]: Jason's reasoning cycle as a transition function;
+//! * [`check`]: exhaustive exploration and the dynamic checks;
+//! * [`report`]: what the commands print (human text, JSON, DOT) and replay.
 
 #![warn(missing_docs)]
 
 pub mod check;
 pub mod model;
 pub mod report;
-pub mod smt;
 pub mod semantics;
 pub mod syntax;
