@@ -31,7 +31,7 @@
 //!
 //! let project = load_project(std::path::Path::new("specs/paper")).expect("the project loads");
 //! let limits = Limits { max_states: 10_000, max_depth: 100, timeout: None };
-//! let result = verify(&project, limits, |_, _, _| {}).expect("the project can be checked");
+//! let result = verify(&project, limits, |_, _, _| {}, &[]).expect("the project can be checked");
 //!
 //! // Every reachable state was visited...
 //! assert!(result.stats.complete);
@@ -61,13 +61,17 @@
 //!   objects, type checking, ground atoms and states, ground actions, plans;
 //! * [`smt`]: the static checks of `lint`, decided with z3;
 //! * [`semantics`]: Jason's reasoning cycle as a transition function;
+//! * [`explain`]: the paper's two explanation algorithms (when to explain, what to say),
+//!   as pure functions a robot can call at run time;
 //! * [`check`]: exhaustive exploration and the dynamic checks;
 //! * [`report`]: what the commands print (human text, JSON, DOT) and replay.
 
 #![warn(missing_docs)]
 
 pub mod check;
+pub mod explain;
 pub mod model;
 pub mod report;
 pub mod semantics;
+pub mod smt;
 pub mod syntax;

@@ -73,6 +73,16 @@ enum Command {
         #[command(flatten)]
         out: Output,
     },
+    /// Static checks of the plan library with z3, no state exploration.
+    Lint {
+        /// The project folder or its bdi-check.toml.
+        project: PathBuf,
+        /// `--deny warnings`: failing warnings fail the run.
+        #[arg(long, value_name = "LEVEL", value_parser = ["warnings"])]
+        deny: Option<String>,
+        #[command(flatten)]
+        out: Output,
+    },
     /// Explore every reachable state of a project and check its properties.
     Verify {
         /// The project folder or its bdi-check.toml.
@@ -140,6 +150,13 @@ fn main() -> ExitCode {
                     .map(|l| format!("{l}\n"))
                     .unwrap_or_default();
             }
+            eprint!("{err}");
+            finish(&text, out.output, run.report.verdict.exit_code())
+        }
+        Command::Lint { project, deny, out } => {
+            let opts = bdi_check::smt::LintOptions::default();
+            let run = report::lint::run(&project, &opts, deny.is_some());
+            let (text, err) = report::lint::render(&run, out.format(), out.detail(), out.color());
             eprint!("{err}");
             finish(&text, out.output, run.report.verdict.exit_code())
         }

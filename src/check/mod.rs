@@ -40,11 +40,15 @@ struct Prop {
     span: Span,
 }
 
-/// Explores the project's state space and runs every dynamic check.
+/// Explores the project's state space and runs every dynamic check. The static findings
+/// in `lint` are settled against the explored states as SPEC §3 says: a warning that some
+/// run reaches becomes an error with that run; one no run reaches becomes a note (when the
+/// search was complete); every other finding is kept as it is.
 pub fn verify(
     project: &Project,
     limits: Limits,
     progress: impl FnMut(usize, u32, f64),
+    lint: &[Finding],
 ) -> Result<Verification, Vec<Diagnostic>> {
     let sem = Semantics::new(project)?;
     let mut errors = Vec::new();
@@ -73,6 +77,7 @@ pub fn verify(
     // First (hence shallowest-source) transition of each failure, keyed by place.
     let mut action_failures: BTreeMap<(u32, u32), (u32, u32, Note)> = BTreeMap::new();
     let mut goal_failures: BTreeMap<String, (u32, u32, Note)> = BTreeMap::new();
+    let mut no_plan: BTreeMap<(String, usize), (u32, u32)> = BTreeMap::new();
     let graph = explore(
         &sem,
         limits,
@@ -93,6 +98,13 @@ pub fn verify(
                         };
                         goal_failures.entry(key).or_insert((src, k, n.clone()));
                     }
+                    Note::NoApplicablePlan(t) => {
+                        let key = (
+                            t.literal.functor().unwrap_or("").to_string(),
+                            t.literal.arity(),
+                        );
+                        no_plan.entry(key).or_insert((src, k));
+                    }
                     _ => {}
                 }
             }
@@ -104,7 +116,10 @@ pub fn verify(
         sem: &sem,
         graph: &graph,
     };
-    let mut findings = Vec::new();
+    let mut findings: Vec<Finding> = lint
+        .iter()
+        .map(|f| c.settle(f, &action_failures, &no_plan))
+        .collect();
     c.safety(&mut findings, &props);
     c.failures(&mut findings, action_failures, goal_failures);
     c.liveness(&mut findings, &props);
@@ -128,6 +143,9 @@ pub fn verify(
         bound: graph.bound,
     })
 }
+
+/// A run reaching a state: the path to it, and the transition taken there, if any.
+type Reach = (Vec<u32>, Option<(u32, u32)>);
 
 struct Checker<'a> {
     project: &'a Project,
@@ -158,6 +176,7 @@ impl Checker<'_> {
             location: Some(location),
             counterexample: None,
             span: Some(span),
+            related: Vec::new(),
         }
     }
 
@@ -306,6 +325,72 @@ impl Checker<'_> {
                 "no reachable state is stuck".into(),
             )),
         }
+    }
+
+    /// Settles one static finding against the explored graph.
+    fn settle(
+        &self,
+        f: &Finding,
+        action_failures: &BTreeMap<(u32, u32), (u32, u32, Note)>,
+        no_plan: &BTreeMap<(String, usize), (u32, u32)>,
+    ) -> Finding {
+        let settles = matches!(
+            f.check.as_str(),
+            "coverage-gap" | "plan-overlap" | "precondition"
+        );
+        if !settles || f.status != Status::Fail || f.severity != Severity::Warning {
+            return f.clone();
+        }
+        let Some(span) = f.span else { return f.clone() };
+        let plan_at = |sp: Span| self.project.plans.plans.iter().position(|p| p.span == sp);
+        let reached: Option<Reach> = match f.check.as_str() {
+            "precondition" => action_failures
+                .get(&(span.file.0, span.start))
+                .map(|(src, k, _)| (self.graph.path_to(*src), Some((*src, *k)))),
+            "coverage-gap" => plan_at(span).and_then(|i| {
+                let t = &self.project.plans.plans[i].trigger.literal;
+                no_plan
+                    .get(&(t.functor().unwrap_or("").to_string(), t.arity()))
+                    .map(|(src, k)| (self.graph.path_to(*src), Some((*src, *k))))
+            }),
+            _ => {
+                // plan-overlap: the later plan at the finding, the earlier one beside it.
+                let later = plan_at(span);
+                let earlier = f.secondary_plan_span().and_then(plan_at);
+                match (earlier, later) {
+                    (Some(a), Some(b)) => self
+                        .overlap(a as u32, b as u32)
+                        .map(|i| (self.graph.path_to(i), None)),
+                    _ => None,
+                }
+            }
+        };
+        let mut g = f.clone();
+        match reached {
+            Some((path, extra)) => {
+                g.severity = Severity::Error;
+                g.message = format!("{} — and a run reaches it", f.message);
+                g.counterexample = Some(self.counterexample(&path, extra, &[]));
+            }
+            None if self.graph.complete() => {
+                g.severity = Severity::Note;
+                g.message = format!("{} — but no run reaches it", f.message);
+            }
+            None => {}
+        }
+        g
+    }
+
+    /// The first explored state whose next event has both plans applicable.
+    fn overlap(&self, a: u32, b: u32) -> Option<u32> {
+        (0..self.graph.states.len() as u32).find(|&i| {
+            let s = &self.graph.states[i as usize];
+            let Some(ev) = s.events.first() else {
+                return false;
+            };
+            let applicable = self.sem.applicable(s, &ev.trigger, false);
+            applicable.iter().any(|(p, _)| *p == a) && applicable.iter().any(|(p, _)| *p == b)
+        })
     }
 
     /// A run is over when the agent is idle and no further request can arrive.

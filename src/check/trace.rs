@@ -206,7 +206,7 @@ impl<'a> Builder<'a> {
                     };
                     self.step(StepKindTag::Event, text, Some(i), place)
                 }
-                Note::Finished(_) => continue,
+                Note::Finished(_) | Note::NoApplicablePlan(_) => continue,
             };
             self.steps.push(step);
         }

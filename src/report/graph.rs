@@ -120,7 +120,7 @@ pub fn states_dot(
     let (drawn, note): (BTreeSet<u32>, Option<String>) = if n <= MAX_DRAWN_STATES {
         ((0..n as u32).collect(), None)
     } else {
-        let v = verify(p, limits, |_, _, _| {})?;
+        let v = verify(p, limits, |_, _, _| {}, &[])?;
         let mut keep = BTreeSet::new();
         for f in v.findings.iter().filter(|f| f.status == Status::Fail) {
             if let Some(c) = &f.counterexample {

@@ -6,6 +6,7 @@
 
 pub mod domain;
 pub mod graph;
+pub mod lint;
 pub mod outline;
 pub mod replay;
 pub mod verify;
@@ -91,6 +92,16 @@ pub struct Finding {
     /// The span behind `location`, for source excerpts in human output.
     #[serde(skip)]
     pub span: Option<crate::syntax::Span>,
+    /// Other places the finding names (e.g. the earlier of two overlapping plans).
+    #[serde(skip)]
+    pub related: Vec<crate::syntax::Span>,
+}
+
+impl Finding {
+    /// The first related place, if any.
+    pub fn secondary_plan_span(&self) -> Option<crate::syntax::Span> {
+        self.related.first().copied()
+    }
 }
 
 /// A counterexample of SPEC §3: where it starts, what the user asked, and what happened.
@@ -220,6 +231,7 @@ impl Finding {
             location,
             counterexample: None,
             span: d.span,
+            related: d.secondary.iter().map(|l| l.span).collect(),
         }
     }
 }
@@ -263,6 +275,7 @@ mod tests {
             location: None,
             counterexample: None,
             span: None,
+            related: Vec::new(),
         }
     }
 

@@ -48,7 +48,12 @@ pub fn run(
         Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
     let lim = limits(&project, max_states, max_depth, timeout);
-    match verify(&project, lim, progress) {
+    // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
+    let lint: Vec<Finding> = crate::smt::lint(&project, &crate::smt::LintOptions::default())
+        .into_iter()
+        .map(|l| l.finding)
+        .collect();
+    match verify(&project, lim, progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
         Ok(v) => {
             let mut report = Report::new(name, v.findings);
@@ -265,7 +270,12 @@ pub fn summary(r: &Report) -> String {
 pub fn write_scenarios(r: &Report, dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut written = Vec::new();
-    for f in r.findings.iter().filter(|f| f.status == Status::Fail) {
+    // Unreached static warnings (notes) describe no real run: they get no scenario.
+    for f in r
+        .findings
+        .iter()
+        .filter(|f| f.status == Status::Fail && f.severity != Severity::Note)
+    {
         let Some(c) = &f.counterexample else { continue };
         let file: String =
             f.id.chars()

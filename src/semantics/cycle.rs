@@ -118,6 +118,8 @@ pub enum Note {
     },
     /// An intention ended successfully.
     Finished(Origin),
+    /// A goal event had no applicable plan (whether or not a failure plan then handles it).
+    NoApplicablePlan(EventTrigger),
 }
 
 /// One successor.
@@ -374,23 +376,12 @@ impl<'p> Semantics<'p> {
     /// Handles one event: every option the plan selection allows, as its own state.
     fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
         let mut notes = vec![Note::Event(ev.trigger.clone())];
-        let b = self.beliefs(&s);
-        let mut applicable: Vec<(u32, Substitution)> = Vec::new();
-        for &pi in self.relevant_plans(&ev.trigger) {
-            let plan = &self.project.plans.plans[pi as usize];
-            let mut u = Substitution::new();
-            if !unify(&plan.trigger.literal, &ev.trigger.literal, &mut u) {
-                continue;
-            }
-            if let Some(answer) = b.answers(&plan.context, &u).into_iter().next() {
-                applicable.push((pi, answer));
-                if !self.select_any {
-                    break;
-                }
-            }
-        }
+        let applicable = self.applicable(&s, &ev.trigger, !self.select_any);
         if applicable.is_empty() {
             let mut s = s;
+            if ev.trigger.kind == TriggerKind::Achieve {
+                notes.push(Note::NoApplicablePlan(ev.trigger.clone()));
+            }
             if ev.trigger.op == TriggerOp::Add && ev.trigger.kind == TriggerKind::Achieve {
                 let reason = if self.relevant_plans(&ev.trigger).is_empty() {
                     "no relevant plan"
@@ -465,6 +456,32 @@ impl<'p> Semantics<'p> {
                 (s, notes)
             })
             .collect()
+    }
+
+    /// The applicable plans for an event in `s`, in source order, each with the first
+    /// answer of its context; only the first one when `first_only`.
+    pub fn applicable(
+        &self,
+        s: &State,
+        trigger: &EventTrigger,
+        first_only: bool,
+    ) -> Vec<(u32, Substitution)> {
+        let b = self.beliefs(s);
+        let mut out = Vec::new();
+        for &pi in self.relevant_plans(trigger) {
+            let plan = &self.project.plans.plans[pi as usize];
+            let mut u = Substitution::new();
+            if !unify(&plan.trigger.literal, &trigger.literal, &mut u) {
+                continue;
+            }
+            if let Some(answer) = b.answers(&plan.context, &u).into_iter().next() {
+                out.push((pi, answer));
+                if first_only {
+                    break;
+                }
+            }
+        }
+        out
     }
 
     /// No plan for `+!g`: Jason's `generateGoalDeletionFromEvent`.

@@ -79,17 +79,26 @@ pub enum Mode {
 #[derive(Debug)]
 pub struct Frame {
     tag: u32,
+    made: u32,
     syms: BTreeMap<Var, Int>,
 }
 
 impl Frame {
     /// The symbolic constant of `v` in this frame.
     pub fn sym(&mut self, v: &Var) -> Int {
-        let tag = self.tag;
-        self.syms
-            .entry(v.clone())
-            .or_insert_with(|| Int::new_const(format!("{v}#{tag}")))
-            .clone()
+        if let Some(x) = self.syms.get(v) {
+            return x.clone();
+        }
+        self.made += 1;
+        let x = Int::new_const(format!("{v}#{}.{}", self.tag, self.made));
+        self.syms.insert(v.clone(), x.clone());
+        x
+    }
+
+    /// Forgets the constants of variables not bound in `env`: a later binding of the same
+    /// variable (after an `if` whose branch bound it) gets a new constant.
+    pub fn keep_only(&mut self, env: &Env) {
+        self.syms.retain(|v, _| env.contains_key(v));
     }
 }
 
@@ -120,7 +129,10 @@ pub struct Encoder<'p> {
     rules: HashMap<(String, usize), Enc<Vec<Clause>>>,
     frames: Cell<u32>,
     fresh: Cell<u32>,
+    /// Expanded combinations in the formula being encoded (nested expansions multiply).
+    expanded: Cell<usize>,
     reads: RefCell<Option<BTreeSet<AtomId>>>,
+    call_reads: RefCell<Option<BTreeSet<String>>>,
     calls: RefCell<BTreeMap<String, Bool>>,
     active_rules: RefCell<Vec<(String, usize)>>,
 }
@@ -224,7 +236,9 @@ impl<'p> Encoder<'p> {
             rules: rules_of(project),
             frames: Cell::new(0),
             fresh: Cell::new(0),
+            expanded: Cell::new(0),
             reads: RefCell::new(None),
+            call_reads: RefCell::new(None),
             calls: RefCell::new(BTreeMap::new()),
             active_rules: RefCell::new(Vec::new()),
         }
@@ -236,6 +250,7 @@ impl<'p> Encoder<'p> {
         self.frames.set(tag);
         Frame {
             tag,
+            made: 0,
             syms: BTreeMap::new(),
         }
     }
@@ -257,6 +272,18 @@ impl<'p> Encoder<'p> {
     /// Starts recording which atoms the encodings read.
     pub fn record_reads(&self) {
         *self.reads.borrow_mut() = Some(BTreeSet::new());
+        *self.call_reads.borrow_mut() = Some(BTreeSet::new());
+    }
+
+    /// The `.desire`/`.intend` Booleans read since [`Encoder::record_reads`], with their
+    /// text (`.desire(b)`), in order.
+    pub fn take_call_reads(&self) -> Vec<(String, Bool)> {
+        let names = self.call_reads.borrow_mut().take().unwrap_or_default();
+        let calls = self.calls.borrow();
+        names
+            .into_iter()
+            .filter_map(|n| calls.get(&n).map(|b| (n, b.clone())))
+            .collect()
     }
 
     /// Stops recording and returns the atoms read since [`Encoder::record_reads`].
@@ -402,6 +429,7 @@ impl<'p> Encoder<'p> {
         frame: &mut Frame,
         st: &State,
     ) -> Enc<Bool> {
+        self.expanded.set(0);
         self.chain(&[f], env, frame, st, Mode::Assert)
     }
 
@@ -409,6 +437,7 @@ impl<'p> Encoder<'p> {
     pub fn closed_formula(&self, f: &Formula, env: &Env, st: &State) -> Enc<Bool> {
         let mut frame = self.frame();
         let mut env = env.clone();
+        self.expanded.set(0);
         self.chain(&[f], &mut env, &mut frame, st, Mode::Closed)
     }
 
@@ -423,6 +452,7 @@ impl<'p> Encoder<'p> {
     ) -> Enc<Vec<(String, Bool)>> {
         let elems = conjuncts(f);
         let mut out = Vec::new();
+        self.expanded.set(0);
         for (i, e) in elems.iter().enumerate() {
             let rest = &elems[i + 1..];
             if let Formula::Or(..) = e {
@@ -439,7 +469,7 @@ impl<'p> Encoder<'p> {
             }
             out.push((
                 super::text::formula(e),
-                self.element(e, rest, env, frame, st, Mode::Assert)?,
+                self.element(e, env, frame, st, Mode::Assert)?,
             ));
         }
         Ok(out)
@@ -463,7 +493,11 @@ impl<'p> Encoder<'p> {
         }
         let later = vars_of(rest);
         if let Formula::Or(a, b) = first {
-            if self.binds(first, env).iter().any(|(v, _)| later.contains(v)) {
+            if self
+                .binds(first, env)
+                .iter()
+                .any(|(v, _)| later.contains(v))
+            {
                 // Distribute: each branch with its own bindings, followed by the rest.
                 let mut ea = env.clone();
                 let mut va: Vec<&Formula> = vec![a];
@@ -483,7 +517,7 @@ impl<'p> Encoder<'p> {
         }
         match mode {
             Mode::Assert => {
-                let b = self.element(first, rest, env, frame, st, mode)?;
+                let b = self.element(first, env, frame, st, mode)?;
                 let r = self.chain(rest, env, frame, st, mode)?;
                 Ok(and(vec![b, r]))
             }
@@ -501,7 +535,9 @@ impl<'p> Encoder<'p> {
                     .map(|(_, t)| self.project.universe.objects_of(*t))
                     .collect();
                 let total: usize = domains.iter().map(|d| d.len()).product();
-                if total > MAX_INSTANCES {
+                let so_far = self.expanded.get().saturating_add(total);
+                self.expanded.set(so_far);
+                if so_far > MAX_INSTANCES {
                     return Err(Unsupported(format!(
                         "`{}` binds variables over more than {MAX_INSTANCES} combinations of objects",
                         super::text::formula(first)
@@ -513,7 +549,7 @@ impl<'p> Encoder<'p> {
                     for ((v, _), o) in needed.iter().zip(tuple) {
                         e2.insert(v.clone(), Val::Obj(o));
                     }
-                    let b = self.element(first, rest, &mut e2, frame, st, mode)?;
+                    let b = self.element(first, &mut e2, frame, st, mode)?;
                     let r = self.chain(rest, &mut e2, frame, st, mode)?;
                     parts.push(and(vec![b, r]));
                 }
@@ -588,7 +624,8 @@ impl<'p> Encoder<'p> {
                 bound.extend(bb);
             }
             Formula::Rel(RelOp::Unify, x, y) => {
-                let unbound = |t: &Term, bound: &BTreeSet<Var>| t.vars().iter().any(|v| !bound.contains(v));
+                let unbound =
+                    |t: &Term, bound: &BTreeSet<Var>| t.vars().iter().any(|v| !bound.contains(v));
                 match (x, y) {
                     (Term::Var(v), other) if !bound.contains(v) && !unbound(other, bound) => {
                         push(v, Binder::Value, bound)
@@ -627,11 +664,10 @@ impl<'p> Encoder<'p> {
         vec![TypeId::OBJECT; n]
     }
 
-    /// One conjunct; `rest` is what follows it in its conjunction.
+    /// One conjunct (bindings it makes go into `env`).
     fn element(
         &self,
         f: &Formula,
-        rest: &[&Formula],
         env: &mut Env,
         frame: &mut Frame,
         st: &State,
@@ -646,7 +682,6 @@ impl<'p> Encoder<'p> {
             }
             Formula::And(..) => self.chain(&[f], env, frame, st, mode),
             Formula::Or(a, b) => {
-                let _ = rest;
                 let mut ea = env.clone();
                 let x = self.chain(&[a], &mut ea, frame, st, mode)?;
                 let mut eb = env.clone();
@@ -766,6 +801,9 @@ impl<'p> Encoder<'p> {
                     return Ok(self.fresh_bool(f));
                 }
                 let text = format!("{f}({key})");
+                if let Some(r) = self.call_reads.borrow_mut().as_mut() {
+                    r.insert(text.clone());
+                }
                 Ok(self
                     .calls
                     .borrow_mut()
@@ -775,9 +813,7 @@ impl<'p> Encoder<'p> {
             }
             (".member", [x, l]) => {
                 let Some(Val::Other(list)) = self.term_val(l, env)? else {
-                    return Err(Unsupported(format!(
-                        "`{t}` needs a ground list for lint"
-                    )));
+                    return Err(Unsupported(format!("`{t}` needs a ground list for lint")));
                 };
                 let Some((elems, None)) = list.list_elements() else {
                     return Err(Unsupported(format!("`{t}` needs a list")));
@@ -997,7 +1033,12 @@ impl<'p> Encoder<'p> {
     }
 }
 
-fn group(groups: &mut Vec<(Var, Option<Int>, TypeId)>, v: &Var, x: Option<&Int>, ty: TypeId) -> usize {
+fn group(
+    groups: &mut Vec<(Var, Option<Int>, TypeId)>,
+    v: &Var,
+    x: Option<&Int>,
+    ty: TypeId,
+) -> usize {
     match groups.iter().position(|(w, _, _)| w == v) {
         Some(i) => i,
         None => {
@@ -1127,12 +1168,22 @@ fn expr_formula(c: &mut Converter, e: &Expr) -> Enc<Formula> {
                 .collect::<Enc<Vec<_>>>()?;
             Formula::Call(Term::structure(&l.functor, args))
         }
-        ExprKind::Literal(l) => Formula::Literal(c.literal(l).map_err(|e| convert_unsupported(&e))?),
+        ExprKind::Literal(l) => {
+            Formula::Literal(c.literal(l).map_err(|e| convert_unsupported(&e))?)
+        }
         ExprKind::Not(a) => Formula::Not(Box::new(expr_formula(c, a)?)),
-        ExprKind::And(a, b) => Formula::And(Box::new(expr_formula(c, a)?), Box::new(expr_formula(c, b)?)),
-        ExprKind::Or(a, b) => Formula::Or(Box::new(expr_formula(c, a)?), Box::new(expr_formula(c, b)?)),
+        ExprKind::And(a, b) => {
+            Formula::And(Box::new(expr_formula(c, a)?), Box::new(expr_formula(c, b)?))
+        }
+        ExprKind::Or(a, b) => {
+            Formula::Or(Box::new(expr_formula(c, a)?), Box::new(expr_formula(c, b)?))
+        }
         ExprKind::Rel(op, a, b) => Formula::Rel(*op, expr_value(c, a)?, expr_value(c, b)?),
-        _ => return Err(Unsupported("a rule body that is not a logical formula".into())),
+        _ => {
+            return Err(Unsupported(
+                "a rule body that is not a logical formula".into(),
+            ))
+        }
     })
 }
 
@@ -1150,7 +1201,10 @@ fn expr_value(c: &mut Converter, e: &Expr) -> Enc<Term> {
                     ArithOp::Mod => "mod",
                     ArithOp::Pow => "**",
                 };
-                Ok(Term::structure(name, vec![expr_value(c, a)?, expr_value(c, b)?]))
+                Ok(Term::structure(
+                    name,
+                    vec![expr_value(c, a)?, expr_value(c, b)?],
+                ))
             }
         },
         ExprKind::Unary(UnaryOp::Neg, inner) => match c.term(e) {
@@ -1167,4 +1221,57 @@ pub fn rule_clauses(project: &Project) -> HashMap<(String, usize), Result<Vec<Cl
         .into_iter()
         .map(|(k, v)| (k, v.map_err(|u| u.0)))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use z3::{SatResult, Solver};
+
+    /// Every way `pb` can be asked, against counting on every assignment of three atoms.
+    #[test]
+    fn cardinality_constraints_count_exactly() {
+        let bs: Vec<Bool> = (0..3).map(|i| Bool::new_const(format!("b{i}"))).collect();
+        let cmps = [
+            CountCmp::Eq,
+            CountCmp::Lt,
+            CountCmp::Le,
+            CountCmp::Gt,
+            CountCmp::Ge,
+            CountCmp::Ne,
+        ];
+        let s = Solver::new();
+        for cmp in cmps {
+            for n in -1..=4i64 {
+                let c = pb(&bs, cmp, n);
+                for bits in 0u32..8 {
+                    let k = bits.count_ones() as i64;
+                    let expected = match cmp {
+                        CountCmp::Eq => k == n,
+                        CountCmp::Lt => k < n,
+                        CountCmp::Le => k <= n,
+                        CountCmp::Gt => k > n,
+                        CountCmp::Ge => k >= n,
+                        CountCmp::Ne => k != n,
+                    };
+                    let values: Vec<Bool> = bs
+                        .iter()
+                        .enumerate()
+                        .map(|(i, b)| {
+                            if bits >> i & 1 == 1 {
+                                b.clone()
+                            } else {
+                                b.not()
+                            }
+                        })
+                        .collect();
+                    s.push();
+                    s.assert(&c);
+                    let sat = s.check_assumptions(&values) == SatResult::Sat;
+                    s.pop(1);
+                    assert_eq!(sat, expected, "{cmp:?} {n} with {bits:03b}");
+                }
+            }
+        }
+    }
 }

@@ -154,8 +154,7 @@ pub fn matching_actions<'p>(
     project.actions.all().iter().filter(move |g| {
         &*g.name == name
             && g.args.len() == t.arity()
-            && t
-                .args()
+            && t.args()
                 .iter()
                 .zip(&g.args)
                 .all(|(a, o)| arg_matches(project, a, *o))
@@ -173,8 +172,7 @@ pub fn matching_atoms(project: &Project, t: &Term) -> Vec<AtomId> {
         .filter(|a| {
             let (_, args) = atoms.decode(*a);
             args.len() == t.arity()
-                && t
-                    .args()
+                && t.args()
                     .iter()
                     .zip(args.iter())
                     .all(|(x, o)| arg_matches(project, x, *o))

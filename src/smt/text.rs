@@ -3,13 +3,26 @@
 use crate::model::atoms::{AtomId, AtomTable};
 use crate::model::cond::{Cond, CountCmp};
 use crate::model::plans::Formula;
+use crate::model::term::Term;
 use crate::model::universe::Universe;
+
+/// A term as the user wrote it: anonymous variables print as `_`.
+pub fn term(t: &Term) -> String {
+    t.map_vars(&mut |v| {
+        if v.is_anonymous() {
+            Term::var("_")
+        } else {
+            Term::Var(v.clone())
+        }
+    })
+    .to_string()
+}
 
 /// A plan formula as Jason writes it: `used(C) & not cupAt(C,table)`.
 pub fn formula(f: &Formula) -> String {
     match f {
         Formula::True => "true".into(),
-        Formula::Literal(t) | Formula::Call(t) => t.to_string(),
+        Formula::Literal(t) | Formula::Call(t) => term(t),
         Formula::Not(g) => match **g {
             Formula::True => "false".into(),
             Formula::Literal(_) | Formula::Call(_) => format!("not {}", formula(g)),
@@ -23,7 +36,7 @@ pub fn formula(f: &Formula) -> String {
             format!("{} & {}", side(a), side(b))
         }
         Formula::Or(a, b) => format!("{} | {}", formula(a), formula(b)),
-        Formula::Rel(op, a, b) => format!("{a} {} {b}", op.symbol()),
+        Formula::Rel(op, a, b) => format!("{} {} {}", term(a), op.symbol(), term(b)),
     }
 }
 
@@ -101,5 +114,55 @@ pub fn conjunction(lits: &[String]) -> String {
         "true".into()
     } else {
         lits.join(" & ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn why_names_the_deciding_atoms() {
+        let (a, b, c) = (AtomId(0), AtomId(1), AtomId(2));
+        let holds = |x: AtomId| x == b;
+        // A false conjunction: its first false part only.
+        let and = Cond::And(vec![Cond::Atom(b), Cond::Atom(a), Cond::Atom(c)]);
+        assert_eq!(why(&and, &holds), vec![(a, false)]);
+        // A true disjunction: its first true part; a false one: every part.
+        let or = Cond::Or(vec![Cond::Atom(a), Cond::Atom(b)]);
+        assert_eq!(why(&or, &holds), vec![(b, true)]);
+        let none = Cond::Or(vec![Cond::Atom(a), Cond::Not(Box::new(Cond::Atom(b)))]);
+        assert_eq!(why(&none, &holds), vec![(a, false), (b, true)]);
+        // A count: the true candidates, or every candidate when none is true.
+        let count = Cond::Count {
+            atoms: vec![a, b, c],
+            cmp: CountCmp::Eq,
+            n: 2,
+        };
+        assert_eq!(why(&count, &holds), vec![(b, true)]);
+        let nothing = |_: AtomId| false;
+        assert_eq!(
+            why(&count, &nothing),
+            vec![(a, false), (b, false), (c, false)]
+        );
+    }
+
+    #[test]
+    fn formulas_print_as_jason_writes_them() {
+        use crate::model::term::Var;
+        let lit = |s: &str, args: Vec<Term>| Formula::Literal(Term::structure(s, args));
+        let anon = Term::Var(Var::anonymous(3));
+        let f = Formula::And(
+            Box::new(Formula::Or(
+                Box::new(lit("used", vec![Term::var("C")])),
+                Box::new(Formula::True),
+            )),
+            Box::new(Formula::Not(Box::new(lit(
+                "cupAt",
+                vec![Term::var("C"), anon],
+            )))),
+        );
+        assert_eq!(formula(&f), "(used(C) | true) & not cupAt(C,_)");
+        assert_eq!(formula(&Formula::Not(Box::new(Formula::True))), "false");
     }
 }

@@ -1,0 +1,189 @@
+//! `bdi-check lint`: the static checks' report, for people (rustc-style diagnostics with
+//! the plan's source and the state that shows the problem) and for machines (SPEC §3 JSON).
+
+use super::verify::Detail;
+use super::{Finding, Format, Report, Status, Verdict};
+use crate::model::project::load_project;
+use crate::smt::{lint, LintFinding, LintOptions};
+use crate::syntax::{Diagnostic, Severity, SourceMap};
+use std::path::Path;
+
+/// The outcome of `lint` on one project.
+pub struct LintRun {
+    /// The report (verdict and every finding, passed ones too).
+    pub report: Report,
+    /// The files read, for excerpts.
+    pub map: SourceMap,
+    /// Input errors, when the project did not load.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The findings with their labels, in report order.
+    pub findings: Vec<LintFinding>,
+}
+
+/// Loads and lints a project. With `deny_warnings`, a failing warning is an error (and
+/// fails the verdict), as with rustc's `-D warnings`.
+pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
+    let name = path.display().to_string();
+    let project = match load_project(path) {
+        Ok(p) => p,
+        Err(e) => {
+            let findings: Vec<Finding> = e
+                .diagnostics
+                .iter()
+                .map(|d| Finding::from_input_diagnostic(d, &e.map))
+                .collect();
+            let mut report = Report::new(name, findings);
+            report.verdict = Verdict::Error;
+            return LintRun {
+                report,
+                map: e.map,
+                diagnostics: e.diagnostics,
+                findings: Vec::new(),
+            };
+        }
+    };
+    let mut findings = lint(&project, opts);
+    if deny_warnings {
+        for f in &mut findings {
+            if f.finding.severity == Severity::Warning && f.finding.status == Status::Fail {
+                f.finding.severity = Severity::Error;
+            }
+        }
+    }
+    let report = Report::new(name, findings.iter().map(|f| f.finding.clone()).collect());
+    LintRun {
+        report,
+        map: project.map,
+        diagnostics: Vec::new(),
+        findings,
+    }
+}
+
+/// The run in the requested format: `(stdout, stderr)`. Input errors go to stderr in human
+/// format and are `input` findings in JSON.
+pub fn render(run: &LintRun, format: Format, detail: Detail, color: bool) -> (String, String) {
+    match format {
+        Format::Json => (
+            serde_json::to_string_pretty(&run.report)
+                .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+                + "\n",
+            String::new(),
+        ),
+        Format::Human => {
+            let mut err = String::new();
+            for d in &run.diagnostics {
+                err.push_str(&d.render(&run.map, color));
+                err.push('\n');
+            }
+            (render_human(run, detail, color), err)
+        }
+    }
+}
+
+/// Failing and undecided findings as diagnostics with the source excerpt and the state,
+/// passed ones as one line each with `-v`, then the summary line.
+pub fn render_human(run: &LintRun, detail: Detail, color: bool) -> String {
+    let mut out = String::new();
+    if detail != Detail::Quiet {
+        for f in &run.findings {
+            match f.finding.status {
+                Status::Pass if detail == Detail::Verbose => {
+                    let p = &f.finding;
+                    match &p.location {
+                        Some(l) => {
+                            out.push_str(&format!("{l}: passed[{}]: {}\n", p.check, p.message))
+                        }
+                        None => out.push_str(&format!("passed[{}]: {}\n", p.check, p.message)),
+                    }
+                }
+                Status::Pass => {}
+                _ => {
+                    out.push_str(&render_finding(f, &run.map, color));
+                    out.push('\n');
+                }
+            }
+        }
+    }
+    out.push_str(&summary(&run.report));
+    out
+}
+
+/// One finding as rustc prints a diagnostic, with its counterexample state under it.
+pub fn render_finding(f: &LintFinding, map: &SourceMap, color: bool) -> String {
+    let p = &f.finding;
+    let prefix = if p.status == Status::Unknown {
+        "undecided: "
+    } else {
+        ""
+    };
+    let d = Diagnostic {
+        severity: p.severity,
+        code: p.check.clone(),
+        message: format!("{prefix}{}", p.message),
+        span: p.span,
+        label: (!f.label.is_empty()).then(|| f.label.clone()),
+        secondary: f
+            .secondary
+            .iter()
+            .map(|(span, text)| crate::syntax::diagnostic::Label {
+                span: *span,
+                text: text.clone(),
+            })
+            .collect(),
+        help: None,
+        file: p.location.as_ref().map(|l| l.file.clone()),
+    };
+    let mut out = d.render(map, color);
+    if let Some(c) = &p.counterexample {
+        out.push_str(&format!("  state: {}\n", c.initial.join(", ")));
+        if !c.requests.is_empty() {
+            out.push_str(&format!("  request: {}\n", c.requests.join(", ")));
+        }
+    }
+    out
+}
+
+/// The closing line: counts by severity, checks passed, and the verdict.
+pub fn summary(r: &Report) -> String {
+    let count = |s: Severity| {
+        r.findings
+            .iter()
+            .filter(|f| f.status == Status::Fail && f.severity == s)
+            .count()
+    };
+    let plural =
+        |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    let undecided = r
+        .findings
+        .iter()
+        .filter(|f| f.status == Status::Unknown)
+        .count();
+    let passed = r
+        .findings
+        .iter()
+        .filter(|f| f.status == Status::Pass)
+        .count();
+    if r.verdict == Verdict::Error {
+        let n = r.findings.iter().filter(|f| f.check == "input").count();
+        return format!(
+            "lint {}: {}: the input is malformed\n",
+            r.project,
+            plural(n, "error", "errors")
+        );
+    }
+    let verdict = match r.verdict {
+        Verdict::Pass => "pass",
+        Verdict::Fail => "fail",
+        Verdict::Incomplete => "incomplete",
+        Verdict::Error => "error",
+    };
+    format!(
+        "lint {}: {}, {}, {}, {} undecided; {} passed: {verdict}\n",
+        r.project,
+        plural(count(Severity::Error), "error", "errors"),
+        plural(count(Severity::Warning), "warning", "warnings"),
+        plural(count(Severity::Note), "note", "notes"),
+        undecided,
+        plural(passed, "check", "checks"),
+    )
+}

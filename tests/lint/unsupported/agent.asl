@@ -1,0 +1,2 @@
++!tidy : .length([a, b], N) & N > 1
+   <- navigateTo(dishwasher).
