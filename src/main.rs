@@ -102,6 +102,20 @@ enum Command {
         #[command(flatten)]
         out: Output,
     },
+    /// Run one scenario and print its trace with the explanations each user gets; without a
+    /// scenario, list every distinct explanation the runs give, per user.
+    Explain {
+        /// The project folder or its bdi-check.toml.
+        project: PathBuf,
+        /// A scenario file (`initial = [...]`, `requests = [...]`).
+        #[arg(long)]
+        scenario: Option<PathBuf>,
+        /// Only this user's explanations.
+        #[arg(long)]
+        user: Option<String>,
+        #[command(flatten)]
+        out: Output,
+    },
     /// Draw the goal-plan tree (`--plans`) or the state graph (`--states`) as DOT.
     #[command(group(clap::ArgGroup::new("what").required(true).args(["plans", "states"])))]
     Graph {
@@ -190,6 +204,68 @@ fn main() -> ExitCode {
             };
             finish(&text, out.output, run.report.verdict.exit_code())
         }
+        Command::Explain {
+            project,
+            scenario,
+            user,
+            out,
+        } => match scenario {
+            Some(sc) => {
+                let run = report::explain::run(&project, &sc, user.as_deref());
+                if !run.diagnostics.is_empty() {
+                    if out.format() == Format::Json {
+                        let findings: Vec<_> = run
+                            .diagnostics
+                            .iter()
+                            .map(|d| report::Finding::from_input_diagnostic(d, &run.map))
+                            .collect();
+                        let r = report::Report::new(project.display().to_string(), findings);
+                        return finish(
+                            &(serde_json::to_string_pretty(&r).unwrap_or_default() + "\n"),
+                            out.output,
+                            2,
+                        );
+                    }
+                    eprint!(
+                        "{}",
+                        report::explain::render_human(&run, std::io::stderr().is_terminal())
+                    );
+                    return ExitCode::from(2);
+                }
+                let text = match out.format() {
+                    Format::Json => report::explain::render_json(&run),
+                    Format::Human => report::explain::render_human(&run, out.color()),
+                };
+                finish(&text, out.output, 0)
+            }
+            None => match report::explain::catalogue(&project, user.as_deref()) {
+                Ok(report::explain::Catalogue { entries, note, .. }) => {
+                    let text = match out.format() {
+                        Format::Json => {
+                            let v = serde_json::json!({
+                                "tool": report::Tool::default(),
+                                "project": project.display().to_string(),
+                                "verdict": "pass",
+                                "findings": [],
+                                "explanations": entries,
+                                "note": note,
+                            });
+                            serde_json::to_string_pretty(&v).unwrap_or_default() + "\n"
+                        }
+                        Format::Human => {
+                            report::explain::render_catalogue(&entries, note.as_deref())
+                        }
+                    };
+                    finish(&text, out.output, 0)
+                }
+                Err((map, errs)) => {
+                    for d in &errs {
+                        eprintln!("{}", d.render(&map, std::io::stderr().is_terminal()));
+                    }
+                    ExitCode::from(2)
+                }
+            },
+        },
         Command::Graph {
             project,
             plans,

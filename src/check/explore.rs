@@ -95,7 +95,7 @@ pub fn explore(
     g.initial = g.states.len();
     let mut next = 0usize;
     while next < g.states.len() {
-        if next % 4096 == 0 {
+        if next.is_multiple_of(4096) {
             let elapsed = start.elapsed().as_secs_f64();
             progress(g.states.len(), g.depth[next], elapsed);
             if limits.timeout.is_some_and(|t| elapsed > t) {

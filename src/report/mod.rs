@@ -5,6 +5,7 @@
 //! verdict and its exit code can never disagree.
 
 pub mod domain;
+pub mod explain;
 pub mod graph;
 pub mod lint;
 pub mod outline;

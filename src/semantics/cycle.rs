@@ -55,6 +55,10 @@ pub enum Note {
     Action {
         /// `navigateTo(table)`.
         text: String,
+        /// The ground action.
+        term: Term,
+        /// The intention stack when it ran, bottom first (for explanations).
+        stack: Vec<FrameView>,
         /// The plan it belongs to.
         plan: u32,
         /// The step.
@@ -120,6 +124,18 @@ pub enum Note {
     Finished(Origin),
     /// A goal event had no applicable plan (whether or not a failure plan then handles it).
     NoApplicablePlan(EventTrigger),
+}
+
+/// A frame of the running intention as an action saw it: the plan, its bindings, and (for
+/// the top frame) the position of the step being executed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameView {
+    /// The plan's index.
+    pub plan: u32,
+    /// Its bindings.
+    pub subst: Substitution,
+    /// The block and position of the current step (meaningful for the top frame).
+    pub at: (u16, u16),
 }
 
 /// One successor.
@@ -270,31 +286,47 @@ impl<'p> Semantics<'p> {
             .initial
             .states
             .iter()
-            .map(|beliefs| {
-                let mut s = State {
-                    beliefs: beliefs.clone(),
-                    events: Vec::new(),
-                    intentions: Vec::new(),
-                    requested: 0,
-                };
-                let empty = AtomSet::empty(self.project.atoms.len());
-                let added: Vec<AtomId> = beliefs.iter().collect();
-                self.perceive(&mut s, &empty, &added, &[]);
-                for (k, (goal, _)) in self.project.plans.initial_goals.iter().enumerate() {
-                    s.events.push(Event {
-                        trigger: EventTrigger {
-                            op: TriggerOp::Add,
-                            kind: TriggerKind::Achieve,
-                            literal: goal.clone(),
-                        },
-                        intention: None,
-                        origin: Origin::InitialGoal(k as u8),
-                        posted_at: None,
-                    });
-                }
-                s
-            })
+            .map(|b| self.initial_state(b))
             .collect()
+    }
+
+    /// The state a run starts in when the environment is `beliefs`.
+    pub fn initial_state(&self, beliefs: &AtomSet) -> State {
+        let mut s = State {
+            beliefs: beliefs.clone(),
+            events: Vec::new(),
+            intentions: Vec::new(),
+            requested: 0,
+        };
+        let empty = AtomSet::empty(self.project.atoms.len());
+        let added: Vec<AtomId> = beliefs.iter().collect();
+        self.perceive(&mut s, &empty, &added, &[]);
+        for (k, (goal, _)) in self.project.plans.initial_goals.iter().enumerate() {
+            s.events.push(Event {
+                trigger: EventTrigger {
+                    op: TriggerOp::Add,
+                    kind: TriggerKind::Achieve,
+                    literal: goal.clone(),
+                },
+                intention: None,
+                origin: Origin::InitialGoal(k as u8),
+                posted_at: None,
+            });
+        }
+        s
+    }
+
+    /// The block of steps `block` of plan `plan` (0 is the body).
+    pub fn block(&self, plan: u32, block: u16) -> &[Step] {
+        self.blocks[plan as usize].blocks[block as usize]
+    }
+
+    /// The index of a ground request, if the manifest allows it.
+    pub fn request_index(&self, goal: &Term) -> Option<u8> {
+        self.requests
+            .iter()
+            .position(|r| r == goal)
+            .map(|i| i as u8)
     }
 
     /// Queues `+p`/`-p` for changed atoms that some plan is relevant for.
@@ -716,6 +748,15 @@ impl<'p> Semantics<'p> {
                 _ => None,
             }
         });
+        let views: Vec<FrameView> = int
+            .frames
+            .iter()
+            .map(|f| FrameView {
+                plan: f.plan,
+                subst: f.subst.clone(),
+                at: f.cursors.last().map_or((0, 0), |c| (c.block, c.pos)),
+            })
+            .collect();
         let frame = int.frames.last_mut().expect("an intention has a frame");
         let plan = frame.plan;
         let blocks = &self.blocks[plan as usize];
@@ -776,6 +817,8 @@ impl<'p> Semantics<'p> {
                         self.perceive(s, &before, &added, &removed);
                         notes.push(Note::Action {
                             text,
+                            term,
+                            stack: views,
                             plan,
                             span: step.span,
                             added,

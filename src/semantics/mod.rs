@@ -9,5 +9,5 @@ pub mod cycle;
 pub mod query;
 pub mod state;
 
-pub use cycle::{Note, Semantics, Transition};
+pub use cycle::{FrameView, Note, Semantics, Transition};
 pub use state::{Event, EventTrigger, Frame, Intention, Origin, State};

@@ -2,7 +2,7 @@
 //!
 //! # The encoding: grounded atoms, symbolic plan variables
 //!
-//! A state is **one z3 Boolean per ground atom** of the [`AtomTable`](crate::model::atoms):
+//! A state is **one z3 Boolean per ground atom** of the [`AtomTable`](crate::model::atoms::AtomTable):
 //! exactly the model the explorer runs on, so `lint` and `verify` cannot disagree about what
 //! a state is. Invariants, preconditions and conditional effects are already ground
 //! ([`Cond`](crate::model::cond::Cond)) and map onto these Booleans one to one, `.count` as a
@@ -22,15 +22,14 @@
 //! growth with the number of objects: the grounded formulas grow linearly in the atoms a
 //! check touches. Measured with `cargo bench --bench lint` on the kitchen (86 checks, 2
 //! cores): 0.10 s with 2 cups (19 atoms), 0.11 s with 10 (59 atoms), 0.28 s with 50 (259
-//! atoms), and 1.8 s with 200 (1009 atoms); most of the time goes to building formulas, not
-//! to solving. Every check gets a deterministic z3 resource budget (`rlimit`), and an answer
+//! atoms), and 1.8 s with 200 (1009 atoms). Every check gets a deterministic z3 resource budget (`rlimit`), and an answer
 //! z3 cannot give within it is a finding with status `unknown`, never a pass.
 //!
 //! # Modules
 //!
 //! * [`encode`]: states, conditions, plan contexts, triggers and rules in z3;
 //! * [`summary`]: what each goal may change, for subgoal steps;
-//! * [`lint`]: the checks and their findings (the table of checks and severities is there);
+//! * [`lint`](mod@lint): the checks and their findings (the table of checks and severities is there);
 //! * [`solve`]: one solver with its budget, models and minimal unsat cores;
 //! * [`text`]: formulas and literals as Jason text.
 

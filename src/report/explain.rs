@@ -1,0 +1,622 @@
+//! `bdi-check explain PROJECT --scenario FILE [--user NAME]`: one run of the robot, told step
+//! by step, with the explanation each user gets in place.
+//!
+//! The run is the scenario's initial state and requests (SPEC §2), executed with the
+//! project's semantics: a request arrives as soon as the manifest's `arrival` allows, and
+//! the reasoning cycle runs otherwise. At each executed environment action, Algorithm 1
+//! decides, per user, whether the action surprises them ([`crate::explain::demand`]); when it
+//! does, Algorithm 2 builds the explanation from the running intention's stack
+//! ([`crate::explain::content`]) and it is rendered as one sentence.
+
+use crate::check::explore::fingerprint;
+use crate::check::trace::Builder;
+use crate::explain::{
+    content, sentence, ContextLiteral, Effects, ExpectedSuccessors, FrameSnapshot, Observation,
+    Pair, Phrases, PlanStep, Semantic, Syntactic,
+};
+use crate::model::atoms::{AtomId, AtomSet};
+use crate::model::plans::BodyStep;
+use crate::model::project::{load_project, Project};
+use crate::model::term::Term;
+use crate::model::{unify, Converter, Substitution};
+use crate::report::{Report, StepKindTag, TraceStep};
+use crate::semantics::{FrameView, Note, Semantics, State};
+use crate::syntax::ast::{ExprKind, StepKind};
+use crate::syntax::manifest::{load_scenario, Modifies};
+use crate::syntax::{Diagnostic, SourceMap};
+use serde::Serialize;
+use std::collections::HashSet;
+use std::path::Path;
+
+/// A scenario's run, as `explain` reports it (SPEC §3 `trace`).
+#[derive(Clone, Debug, Serialize)]
+pub struct Trace {
+    /// Every atom true at the start.
+    pub initial: Vec<String>,
+    /// The requests, in order.
+    pub requests: Vec<String>,
+    /// The run, explanations in place.
+    pub steps: Vec<TraceStep>,
+    /// `done`, `action-failure`, `goal-failure`, `livelock` or `bound`.
+    pub outcome: &'static str,
+}
+
+/// One explanation given (SPEC §3 `explanations`).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Given {
+    /// The user it is for.
+    pub user: String,
+    /// The surprising action.
+    pub action: String,
+    /// What the user saw just before (`!g` for a request), if anything.
+    pub after: Option<String>,
+    /// The hierarchical context `Γ`.
+    pub context: Vec<String>,
+    /// The actions up to the one that changes the context.
+    pub actions: Vec<String>,
+    /// The sentence.
+    pub text: String,
+}
+
+/// The outcome of `explain --scenario`.
+pub struct ExplainRun {
+    /// The report (findings empty; `explanations` filled).
+    pub report: Report,
+    /// The run.
+    pub trace: Option<Trace>,
+    /// The explanations, in order.
+    pub given: Vec<Given>,
+    /// Files read, for diagnostics.
+    pub map: SourceMap,
+    /// Input errors.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// A user's state along the run.
+struct UserState {
+    name: String,
+    n: ExpectedSuccessors,
+    prev: Option<Observation>,
+}
+
+/// Runs a scenario of a project and explains it for every user (or only `only`).
+pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
+    let name = project.display().to_string();
+    let fail = |map: SourceMap, diagnostics: Vec<Diagnostic>| ExplainRun {
+        report: Report::new(name.clone(), Vec::new()),
+        trace: None,
+        given: Vec::new(),
+        map,
+        diagnostics,
+    };
+    let mut p = match load_project(project) {
+        Ok(p) => p,
+        Err(e) => return fail(e.map, e.diagnostics),
+    };
+    let sc = match load_scenario(scenario, &mut p.map) {
+        Ok(s) => s,
+        Err(d) => return fail(p.map, d),
+    };
+    let sem = match Semantics::new(&p) {
+        Ok(s) => s,
+        Err(d) => return fail(p.map.clone(), d),
+    };
+    let mut errors = Vec::new();
+    let mut beliefs = AtomSet::empty(p.atoms.len());
+    for f in &sc.initial {
+        match ground(&p, &f.expr) {
+            Some(a) => beliefs.insert(a),
+            None => errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!("`{}` is not a ground atom of this project", f.text),
+                )
+                .with_label(f.span, "unknown atom"),
+            ),
+        }
+    }
+    let mut requests = Vec::new();
+    for f in &sc.requests {
+        let term = match &f.expr.kind {
+            ExprKind::Literal(l) => Converter::new().literal(l).ok(),
+            _ => None,
+        };
+        match term.as_ref().and_then(|t| sem.request_index(t)) {
+            Some(i) => requests.push(i),
+            None => errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!("`{}` is not a request the manifest allows", f.text),
+                )
+                .with_label(f.span, "not in `[requests] goals`"),
+            ),
+        }
+    }
+    let users = match users(&p, only) {
+        Ok(u) => u,
+        Err(d) => {
+            errors.extend(d);
+            Vec::new()
+        }
+    };
+    if !errors.is_empty() {
+        return fail(p.map.clone(), errors);
+    }
+    let (trace, given) = execute(&p, &sem, &beliefs, &requests, users);
+    let mut report = Report::new(name.clone(), Vec::new());
+    report.explanations = given
+        .iter()
+        .map(|g| serde_json::to_value(g).unwrap_or_default())
+        .collect();
+    ExplainRun {
+        report,
+        trace: Some(trace),
+        given,
+        map: p.map.clone(),
+        diagnostics: Vec::new(),
+    }
+}
+
+fn ground(p: &Project, e: &crate::syntax::ast::Expr) -> Option<AtomId> {
+    let ExprKind::Literal(l) = &e.kind else {
+        return None;
+    };
+    let pred = p.atoms.pred(&l.functor)?;
+    let args = l
+        .args
+        .iter()
+        .map(|a| match &a.kind {
+            ExprKind::Literal(o) if o.args.is_empty() => p.universe.object(&o.functor),
+            _ => None,
+        })
+        .collect::<Option<Vec<_>>>()?;
+    p.atoms.id(pred, &args)
+}
+
+fn users(p: &Project, only: Option<&str>) -> Result<Vec<UserState>, Vec<Diagnostic>> {
+    let Some(ex) = &p.manifest.explanation else {
+        return Err(vec![Diagnostic::error(
+            "input",
+            "the manifest has no `[explanation]` section",
+        )
+        .in_file(p.manifest.path.display().to_string())
+        .with_help(
+            "add `[explanation.users.NAME]` with the user's `expected` pairs",
+        )]);
+    };
+    let mut out = Vec::new();
+    let mut errors = Vec::new();
+    for u in &ex.users {
+        if only.is_some_and(|o| o != u.name.value) {
+            continue;
+        }
+        let mut pairs = Vec::new();
+        for pair in &u.expected {
+            match Pair::from_steps(&pair.before.step, &pair.after.step) {
+                Ok(p) => pairs.push(p),
+                Err(e) => errors.push(Diagnostic::error("input", e).with_label(pair.span, "here")),
+            }
+        }
+        out.push(UserState {
+            name: u.name.value.clone(),
+            n: ExpectedSuccessors::new(pairs),
+            prev: None,
+        });
+    }
+    if let Some(o) = only {
+        if out.is_empty() {
+            errors.push(
+                Diagnostic::error("input", format!("the manifest has no user `{o}`"))
+                    .in_file(p.manifest.path.display().to_string()),
+            );
+        }
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(errors)
+    }
+}
+
+/// The phrases of `[explanation.phrases]`.
+fn phrases(p: &Project) -> Phrases {
+    let mut ph = Phrases::new(Vec::new());
+    for entry in p.manifest.explanation.iter().flat_map(|e| &e.phrases) {
+        let mut c = Converter::new();
+        match &entry.pattern.step.kind {
+            StepKind::Achieve(e) => {
+                if let Ok(t) = c.term(e) {
+                    ph.push_goal(t, &entry.template.value);
+                }
+            }
+            StepKind::Action(e) => {
+                if let Ok(t) = c.term(e) {
+                    ph.push(t, &entry.template.value);
+                }
+            }
+            _ => {}
+        }
+    }
+    ph
+}
+
+/// `Eff+` and `Eff-` of a ground action: every atom any of its effects may add or delete.
+fn effects(p: &Project, action: &Term) -> Effects {
+    let objects: Option<Vec<_>> = action
+        .args()
+        .iter()
+        .map(|a| match a {
+            Term::Atom(n) => p.universe.object(n),
+            _ => None,
+        })
+        .collect();
+    let ga = action
+        .functor()
+        .zip(objects)
+        .and_then(|(name, objs)| p.actions.get(name, &objs));
+    let Some(ga) = ga else { return Effects::none() };
+    let term = |a: &AtomId| p.atoms.term(*a, &p.universe);
+    Effects::new(
+        ga.effects
+            .iter()
+            .flat_map(|e| e.add.iter().map(term))
+            .collect(),
+        ga.effects
+            .iter()
+            .flat_map(|e| e.del.iter().map(term))
+            .collect(),
+    )
+}
+
+/// The stack an action ran in, as Algorithm 2 reads it.
+fn snapshot(p: &Project, sem: &Semantics, stack: &[FrameView]) -> Vec<FrameSnapshot> {
+    let top = stack.len().saturating_sub(1);
+    stack
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let plan = &p.plans.plans[f.plan as usize];
+            let body = if i == top {
+                let (block, pos) = f.at;
+                sem.block(f.plan, block)
+                    .iter()
+                    .skip(pos as usize)
+                    .filter_map(|s| match &s.kind {
+                        BodyStep::Action(t) => Some(PlanStep::Action(t.clone())),
+                        BodyStep::Achieve { goal, .. } => Some(PlanStep::Subgoal(goal.clone())),
+                        _ => None,
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            FrameSnapshot {
+                context: ContextLiteral::of_formula(&plan.context),
+                bindings: f.subst.clone(),
+                body,
+            }
+        })
+        .collect()
+}
+
+/// Whether an atom (possibly with variables) is believed in `s`.
+fn holds(p: &Project, s: &AtomSet, atom: &Term) -> bool {
+    let Some(pred) = atom.functor().and_then(|f| p.atoms.pred(f)) else {
+        return false;
+    };
+    p.atoms.atoms_of(pred).any(|a| {
+        s.contains(a) && {
+            let mut u = Substitution::new();
+            unify(
+                &atom.without_annots(),
+                &p.atoms.term(a, &p.universe),
+                &mut u,
+            )
+        }
+    })
+}
+
+fn apply(p: &Project, s: &AtomSet, action: &Term) -> AtomSet {
+    let objects: Option<Vec<_>> = action
+        .args()
+        .iter()
+        .map(|a| match a {
+            Term::Atom(n) => p.universe.object(n),
+            _ => None,
+        })
+        .collect();
+    match action
+        .functor()
+        .zip(objects)
+        .and_then(|(n, o)| p.actions.get(n, &o))
+    {
+        Some(ga) => ga.apply(s),
+        None => s.clone(),
+    }
+}
+
+fn execute(
+    p: &Project,
+    sem: &Semantics,
+    beliefs: &AtomSet,
+    requests: &[u8],
+    mut users: Vec<UserState>,
+) -> (Trace, Vec<Given>) {
+    let phrases = phrases(p);
+    let semantic = p
+        .manifest
+        .explanation
+        .as_ref()
+        .is_some_and(|e| e.modifies == Modifies::Semantic);
+    let mut state: State = sem.initial_state(beliefs);
+    let mut builder = Builder::new(p, sem);
+    let mut steps: Vec<TraceStep> = Vec::new();
+    let mut given = Vec::new();
+    let mut next_request = 0usize;
+    let mut seen = HashSet::from([fingerprint(&state)]);
+    let mut outcome = "bound";
+    for _ in 0..p.manifest.bounds.max_depth {
+        let succ = sem.successors(&state);
+        let request = requests.get(next_request).and_then(|r| {
+            succ.iter().position(
+                |t| matches!(t.notes.first(), Some(Note::Request { index }) if index == r),
+            )
+        });
+        let pick = request.or_else(|| {
+            succ.iter()
+                .position(|t| !matches!(t.notes.first(), Some(Note::Request { .. })))
+        });
+        let Some(k) = pick else {
+            outcome = "done";
+            break;
+        };
+        if request.is_some() {
+            next_request += 1;
+        }
+        let t = &succ[k];
+        for note in &t.notes {
+            match note {
+                Note::Request { index } => {
+                    let obs = Observation::Request(sem.requests[*index as usize].clone());
+                    for u in &mut users {
+                        u.n.observe(u.prev.as_ref(), &obs);
+                        u.prev = Some(obs.clone());
+                    }
+                }
+                Note::Action { term, stack, .. } => {
+                    let obs = Observation::Action(term.clone());
+                    for u in &mut users {
+                        let after = u.prev.as_ref().map(|o| o.to_string());
+                        if u.n.observe(u.prev.as_ref(), &obs) {
+                            let frames = snapshot(p, sem, stack);
+                            let c = if semantic {
+                                let m = Semantic::new(
+                                    &state.beliefs,
+                                    |s: &AtomSet, a: &Term| holds(p, s, a),
+                                    |s: &AtomSet, a: &Term| apply(p, s, a),
+                                );
+                                content(&frames, &m)
+                            } else {
+                                content(&frames, &Syntactic::new(|a: &Term| effects(p, a)))
+                            };
+                            if let Some(c) = c {
+                                let text = sentence(term, &c, &phrases);
+                                steps.push(TraceStep {
+                                    kind: StepKindTag::Explanation,
+                                    text: format!("to {}: {text}", u.name),
+                                    intention: None,
+                                    plan: None,
+                                    added: Vec::new(),
+                                    removed: Vec::new(),
+                                    explanation: Some(text.clone()),
+                                });
+                                given.push(Given {
+                                    user: u.name.clone(),
+                                    action: term.to_string(),
+                                    after,
+                                    context: c.context.iter().map(|l| l.to_string()).collect(),
+                                    actions: c.actions.iter().map(|a| a.to_string()).collect(),
+                                    text,
+                                });
+                            }
+                        }
+                        u.prev = Some(obs.clone());
+                    }
+                }
+                Note::ActionFailed { .. } => outcome = "action-failure",
+                Note::GoalFailed { .. } => outcome = "goal-failure",
+                _ => {}
+            }
+            let before = builder.steps().len();
+            builder.push(vec![note.clone()]);
+            steps.extend(builder.steps()[before..].iter().cloned());
+        }
+        state = t.next.clone();
+        if outcome != "bound" {
+            break;
+        }
+        if !seen.insert(fingerprint(&state)) {
+            outcome = "livelock";
+            break;
+        }
+    }
+    let trace = Trace {
+        initial: beliefs
+            .iter()
+            .map(|a| p.atoms.display(a, &p.universe))
+            .collect(),
+        requests: requests
+            .iter()
+            .map(|r| sem.requests[*r as usize].to_string())
+            .collect(),
+        steps,
+        outcome,
+    };
+    (trace, given)
+}
+
+/// The run as a numbered story with the explanations in place.
+pub fn render_human(run: &ExplainRun, color: bool) -> String {
+    let mut out = String::new();
+    for d in &run.diagnostics {
+        out.push_str(&d.render(&run.map, color));
+        out.push('\n');
+    }
+    let Some(t) = &run.trace else { return out };
+    let c = crate::report::Counterexample {
+        initial: t.initial.clone(),
+        requests: t.requests.clone(),
+        steps: t.steps.clone(),
+        loop_start: None,
+    };
+    out.push_str(&crate::report::verify::render_counterexample(&c).replacen(
+        "counterexample",
+        "run",
+        1,
+    ));
+    out.push_str(&format!(
+        "outcome: {}; {} explanation{} given\n",
+        t.outcome,
+        run.given.len(),
+        if run.given.len() == 1 { "" } else { "s" }
+    ));
+    out
+}
+
+/// The JSON report: SPEC §3's shape with `trace` and `explanations`.
+pub fn render_json(run: &ExplainRun) -> String {
+    let mut v = serde_json::to_value(&run.report).unwrap_or_default();
+    if let (Some(obj), Some(t)) = (v.as_object_mut(), &run.trace) {
+        obj.insert("trace".into(), serde_json::to_value(t).unwrap_or_default());
+        obj.insert(
+            "explanations".into(),
+            serde_json::to_value(&run.given).unwrap_or_default(),
+        );
+    }
+    serde_json::to_string_pretty(&v).unwrap_or_default() + "\n"
+}
+
+/// The explanations every scenario gives, and a note when runs were left out.
+pub struct Catalogue {
+    /// Distinct explanations, per user, each with a scenario.
+    pub entries: Vec<Entry>,
+    /// What the catalogue does not cover, if anything.
+    pub note: Option<String>,
+    /// Files read.
+    pub map: SourceMap,
+}
+
+/// Why a project could not be explained: the files read and the errors.
+pub type LoadFailure = (SourceMap, Vec<Diagnostic>);
+
+/// One entry of the catalogue: an explanation and a scenario that produces it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Entry {
+    /// The explanation.
+    #[serde(flatten)]
+    pub given: Given,
+    /// A scenario (initial atoms and requests) whose run gives it.
+    pub scenario: Scenario,
+}
+
+/// A scenario, as `--scenario` files hold it.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Scenario {
+    /// Every atom true at the start.
+    pub initial: Vec<String>,
+    /// The requests, in order.
+    pub requests: Vec<String>,
+}
+
+/// The catalogue: every distinct explanation that the runs of the project give, per user,
+/// each with the first scenario (in initial-state order, then shorter request sequences
+/// first) that produces it.
+///
+/// Runs are enumerated as scenarios: every initial state with every sequence of distinct
+/// requests up to `[requests] max`, each request arriving as soon as `arrival` allows and
+/// the reasoning cycle choosing as `plan_selection` does first. With `arrival = "idle"` and
+/// `plan_selection = "first"` (the kitchen's settings) these are all the runs there are;
+/// otherwise the runs where requests arrive at other moments, or another applicable plan is
+/// chosen, are not covered, and the catalogue says so in `note`.
+pub fn catalogue(project: &Path, only: Option<&str>) -> Result<Catalogue, LoadFailure> {
+    let p = load_project(project).map_err(|e| (e.map, e.diagnostics))?;
+    let sem = Semantics::new(&p).map_err(|d| (p.map.clone(), d))?;
+    users(&p, only).map_err(|d| (p.map.clone(), d))?;
+    let n = sem.requests.len();
+    let max = (p.manifest.requests.max as usize).min(n);
+    // Every sequence of distinct request indices of length 1..=max, shortest first.
+    let mut sequences: Vec<Vec<u8>> = vec![Vec::new()];
+    let mut frontier: Vec<Vec<u8>> = vec![Vec::new()];
+    for _ in 0..max {
+        let mut next = Vec::new();
+        for seq in &frontier {
+            for r in 0..n as u8 {
+                if !seq.contains(&r) {
+                    let mut s = seq.clone();
+                    s.push(r);
+                    next.push(s);
+                }
+            }
+        }
+        sequences.extend(next.iter().cloned());
+        frontier = next;
+    }
+    let mut entries: Vec<Entry> = Vec::new();
+    for beliefs in &p.initial.states {
+        for seq in &sequences {
+            let users = users(&p, only).map_err(|d| (p.map.clone(), d))?;
+            let (trace, given) = execute(&p, &sem, beliefs, seq, users);
+            for g in given {
+                if !entries.iter().any(|e| e.given == g) {
+                    entries.push(Entry {
+                        given: g,
+                        scenario: Scenario {
+                            initial: trace.initial.clone(),
+                            requests: trace.requests.clone(),
+                        },
+                    });
+                }
+            }
+        }
+    }
+    entries.sort_by(|a, b| a.given.user.cmp(&b.given.user));
+    let m = &p.manifest;
+    let note = (m.requests.arrival == crate::syntax::manifest::Arrival::Any
+        || m.bounds.plan_selection == crate::syntax::manifest::PlanSelection::Any)
+        .then(|| {
+            "requests arrive as soon as allowed and the first applicable plan is chosen: runs with other timings or choices are not in this catalogue".to_string()
+        });
+    Ok(Catalogue {
+        entries,
+        note,
+        map: p.map.clone(),
+    })
+}
+
+/// The catalogue for people: per user, each sentence with the action and a scenario.
+pub fn render_catalogue(entries: &[Entry], note: Option<&str>) -> String {
+    let mut out = String::new();
+    let mut user = "";
+    for e in entries {
+        if e.given.user != user {
+            user = &e.given.user;
+            let count = entries.iter().filter(|x| x.given.user == user).count();
+            out.push_str(&format!(
+                "{user}: {count} distinct explanation{}\n",
+                if count == 1 { "" } else { "s" }
+            ));
+        }
+        out.push_str(&format!(
+            "  {} (after {})\n    \"{}\"\n    scenario: initial = [{}], requests = [{}]\n",
+            e.given.action,
+            e.given.after.as_deref().unwrap_or("the start"),
+            e.given.text,
+            e.scenario.initial.join(", "),
+            e.scenario.requests.join(", ")
+        ));
+    }
+    if let Some(n) = note {
+        out.push_str(&format!("note: {n}\n"));
+    }
+    out
+}
