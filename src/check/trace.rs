@@ -127,6 +127,24 @@ impl<'a> Builder<'a> {
         }
     }
 
+    /// A step of a plan that changed beliefs.
+    fn change(
+        &mut self,
+        kind: StepKindTag,
+        text: String,
+        plan: u32,
+        origin: Origin,
+        added: &[AtomId],
+        removed: &[AtomId],
+    ) -> TraceStep {
+        let i = self.intention(origin);
+        let place = self.plan_place(plan);
+        let mut s = self.step(kind, text, Some(i), Some(place));
+        s.added = self.atoms(added);
+        s.removed = self.atoms(removed);
+        s
+    }
+
     /// Appends the steps of one transition.
     pub fn push(&mut self, notes: Vec<Note>) {
         for n in notes {
@@ -151,28 +169,14 @@ impl<'a> Builder<'a> {
                     removed,
                     origin,
                     ..
-                } => {
-                    let i = self.intention(origin);
-                    let place = self.plan_place(plan);
-                    let mut s = self.step(StepKindTag::Action, text, Some(i), Some(place));
-                    s.added = self.atoms(&added);
-                    s.removed = self.atoms(&removed);
-                    s
-                }
+                } => self.change(StepKindTag::Action, text, plan, origin, &added, &removed),
                 Note::Belief {
                     text,
                     plan,
                     added,
                     removed,
                     origin,
-                } => {
-                    let i = self.intention(origin);
-                    let place = self.plan_place(plan);
-                    let mut s = self.step(StepKindTag::Belief, text, Some(i), Some(place));
-                    s.added = self.atoms(&added);
-                    s.removed = self.atoms(&removed);
-                    s
-                }
+                } => self.change(StepKindTag::Belief, text, plan, origin, &added, &removed),
                 Note::Internal { text, plan, origin } => {
                     let i = self.intention(origin);
                     let place = self.plan_place(plan);

@@ -11,7 +11,7 @@
 use super::from_ast::{ConvertError, Converter};
 use super::term::Term;
 use crate::syntax::ast::{
-    self, ArithOp, Expr, ExprKind, Item, RelOp, StepKind, TriggerKind, TriggerOp, UnaryOp,
+    self, Expr, ExprKind, Item, RelOp, StepKind, TriggerKind, TriggerOp, UnaryOp,
 };
 use crate::syntax::{Diagnostic, LoadedAgent, Span};
 
@@ -115,16 +115,7 @@ pub struct Trigger {
 
 impl std::fmt::Display for Trigger {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let op = match self.op {
-            TriggerOp::Add => "+",
-            TriggerOp::Del => "-",
-            TriggerOp::GoalState => "^",
-        };
-        let kind = match self.kind {
-            TriggerKind::Belief => "",
-            TriggerKind::Achieve => "!",
-            TriggerKind::Test => "?",
-        };
+        let (op, kind) = (self.op.symbol(), self.kind.symbol());
         write!(f, "{op}{kind}{}", self.literal)
     }
 }
@@ -264,15 +255,7 @@ fn value(c: &mut Converter, e: &Expr) -> Result<Term, Diagnostic> {
         ExprKind::Arith(op, a, b) => match c.term(e) {
             Ok(t) => Ok(t),
             Err(_) => {
-                let name = match op {
-                    ArithOp::Add => "+",
-                    ArithOp::Sub => "-",
-                    ArithOp::Mul => "*",
-                    ArithOp::Div => "/",
-                    ArithOp::IntDiv => "div",
-                    ArithOp::Mod => "mod",
-                    ArithOp::Pow => "**",
-                };
+                let name = op.symbol();
                 Ok(Term::structure(name, vec![value(c, a)?, value(c, b)?]))
             }
         },
@@ -284,7 +267,9 @@ fn value(c: &mut Converter, e: &Expr) -> Result<Term, Diagnostic> {
     }
 }
 
-fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
+/// A logical expression (a context, a test goal, a rule body) as a [`Formula`], with the
+/// converter's variables (so several formulas of one clause share them).
+pub fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
     Ok(match &e.kind {
         ExprKind::Literal(l) if l.functor == "true" && l.args.is_empty() => Formula::True,
         ExprKind::Literal(l) if l.functor == "false" && l.args.is_empty() => {

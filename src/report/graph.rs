@@ -63,16 +63,7 @@ pub fn plans_dot(p: &Project) -> String {
     };
     for plan in &p.plans.plans {
         let t = &plan.trigger;
-        let op = match t.op {
-            crate::syntax::ast::TriggerOp::Add => "+",
-            crate::syntax::ast::TriggerOp::Del => "-",
-            crate::syntax::ast::TriggerOp::GoalState => "^",
-        };
-        let kind = match t.kind {
-            crate::syntax::ast::TriggerKind::Achieve => "!",
-            crate::syntax::ast::TriggerKind::Test => "?",
-            crate::syntax::ast::TriggerKind::Belief => "",
-        };
+        let (op, kind) = (t.op.symbol(), t.kind.symbol());
         let event = format!(
             "{op}{kind}{}/{}",
             t.literal.functor().unwrap_or(""),

@@ -21,16 +21,7 @@ pub struct EventTrigger {
 
 impl fmt::Display for EventTrigger {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let op = match self.op {
-            TriggerOp::Add => "+",
-            TriggerOp::Del => "-",
-            TriggerOp::GoalState => "^",
-        };
-        let kind = match self.kind {
-            TriggerKind::Belief => "",
-            TriggerKind::Achieve => "!",
-            TriggerKind::Test => "?",
-        };
+        let (op, kind) = (self.op.symbol(), self.kind.symbol());
         write!(f, "{op}{kind}{}", self.literal)
     }
 }

@@ -30,7 +30,7 @@ use crate::model::plans::Formula;
 use crate::model::project::Project;
 use crate::model::term::{Term, Var};
 use crate::model::universe::{ObjectId, TypeId};
-use crate::syntax::ast::{ArithOp, Expr, ExprKind, Item, RelOp, UnaryOp};
+use crate::syntax::ast::{Expr, Item, RelOp};
 use std::cell::{Cell, RefCell};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use z3::ast::{Bool, Int};
@@ -1153,66 +1153,9 @@ fn convert_unsupported(e: &ConvertError) -> Unsupported {
     Unsupported(format!("a rule: {}", e.message))
 }
 
-/// A rule body as a formula, as the plan library converts contexts.
+/// A rule body as a formula, converted exactly as the plan library converts contexts.
 fn expr_formula(c: &mut Converter, e: &Expr) -> Enc<Formula> {
-    Ok(match &e.kind {
-        ExprKind::Literal(l) if l.functor == "true" && l.args.is_empty() => Formula::True,
-        ExprKind::Literal(l) if l.functor == "false" && l.args.is_empty() => {
-            Formula::Not(Box::new(Formula::True))
-        }
-        ExprKind::Literal(l) if l.is_internal_action() => {
-            let args = l
-                .args
-                .iter()
-                .map(|a| expr_value(c, a))
-                .collect::<Enc<Vec<_>>>()?;
-            Formula::Call(Term::structure(&l.functor, args))
-        }
-        ExprKind::Literal(l) => {
-            Formula::Literal(c.literal(l).map_err(|e| convert_unsupported(&e))?)
-        }
-        ExprKind::Not(a) => Formula::Not(Box::new(expr_formula(c, a)?)),
-        ExprKind::And(a, b) => {
-            Formula::And(Box::new(expr_formula(c, a)?), Box::new(expr_formula(c, b)?))
-        }
-        ExprKind::Or(a, b) => {
-            Formula::Or(Box::new(expr_formula(c, a)?), Box::new(expr_formula(c, b)?))
-        }
-        ExprKind::Rel(op, a, b) => Formula::Rel(*op, expr_value(c, a)?, expr_value(c, b)?),
-        _ => {
-            return Err(Unsupported(
-                "a rule body that is not a logical formula".into(),
-            ))
-        }
-    })
-}
-
-fn expr_value(c: &mut Converter, e: &Expr) -> Enc<Term> {
-    match &e.kind {
-        ExprKind::Arith(op, a, b) => match c.term(e) {
-            Ok(t) => Ok(t),
-            Err(_) => {
-                let name = match op {
-                    ArithOp::Add => "+",
-                    ArithOp::Sub => "-",
-                    ArithOp::Mul => "*",
-                    ArithOp::Div => "/",
-                    ArithOp::IntDiv => "div",
-                    ArithOp::Mod => "mod",
-                    ArithOp::Pow => "**",
-                };
-                Ok(Term::structure(
-                    name,
-                    vec![expr_value(c, a)?, expr_value(c, b)?],
-                ))
-            }
-        },
-        ExprKind::Unary(UnaryOp::Neg, inner) => match c.term(e) {
-            Ok(t) => Ok(t),
-            Err(_) => Ok(Term::structure("-", vec![expr_value(c, inner)?])),
-        },
-        _ => c.term(e).map_err(|e| convert_unsupported(&e)),
-    }
+    crate::model::plans::formula(c, e).map_err(|d| Unsupported(format!("a rule: {}", d.message)))
 }
 
 /// The agent's rules as clauses, for evaluators outside the encoding (tests, reports).

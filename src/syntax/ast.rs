@@ -140,6 +140,17 @@ pub enum TriggerOp {
     GoalState,
 }
 
+impl TriggerOp {
+    /// The operator as written: `+`, `-`, `^`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            TriggerOp::Add => "+",
+            TriggerOp::Del => "-",
+            TriggerOp::GoalState => "^",
+        }
+    }
+}
+
 /// What a trigger is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum TriggerKind {
@@ -149,6 +160,17 @@ pub enum TriggerKind {
     Achieve,
     /// A test goal: `+?g`.
     Test,
+}
+
+impl TriggerKind {
+    /// The marker as written after the operator: `!`, `?`, or nothing for a belief.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            TriggerKind::Belief => "",
+            TriggerKind::Achieve => "!",
+            TriggerKind::Test => "?",
+        }
+    }
 }
 
 /// A triggering event such as `+!storeCup(C)`.

@@ -870,7 +870,7 @@ impl<'a> Cx<'a> {
     }
 
     /// Parses the TOML document. Syntax errors are all reported, and the schema is not checked
-    /// then: the recovered tree holds placeholders that would only add noise. The parser's
+    /// then: the recovered tree holds stand-in values that would only add noise. The parser's
     /// recovery cascades, so only the first error of a line is kept, and a table header
     /// reported as a duplicate hides the duplicate keys of its body (they clash only because
     /// the body was merged into the first table).
