@@ -21,6 +21,10 @@ enum FormatArg {
     Human,
     /// The JSON report.
     Json,
+    /// SARIF 2.1.0, for code scanning (lint and verify).
+    Sarif,
+    /// JUnit XML, for CI test reports (lint and verify).
+    Junit,
 }
 
 /// Options every command shares.
@@ -41,11 +45,34 @@ struct Output {
 }
 
 impl Output {
+    /// The human or JSON format; the CI formats are taken by [`Output::ci_format`] first
+    /// (lint, verify) or refused by [`Output::refuse_ci_format`] (other commands).
     fn format(&self) -> Format {
         match self.format {
             FormatArg::Human => Format::Human,
-            FormatArg::Json => Format::Json,
+            FormatArg::Json | FormatArg::Sarif | FormatArg::Junit => Format::Json,
         }
+    }
+
+    fn ci_format(&self) -> Option<report::CiFormat> {
+        match self.format {
+            FormatArg::Sarif => Some(report::CiFormat::Sarif),
+            FormatArg::Junit => Some(report::CiFormat::Junit),
+            FormatArg::Human | FormatArg::Json => None,
+        }
+    }
+
+    /// A usage error (exit 2, as clap's) when a command that has no findings to report is
+    /// asked for SARIF or JUnit.
+    fn refuse_ci_format(&self, command: &str) -> Option<ExitCode> {
+        let name = match self.ci_format()? {
+            report::CiFormat::Sarif => "sarif",
+            report::CiFormat::Junit => "junit",
+        };
+        eprintln!(
+            "error: `--format {name}` is for `lint` and `verify`; `{command}` writes `human` or `json`"
+        );
+        Some(ExitCode::from(2))
     }
 
     fn detail(&self) -> Detail {
@@ -155,6 +182,9 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Parse { files, out } => {
+            if let Some(code) = out.refuse_ci_format("parse") {
+                return code;
+            }
             let run = report::outline::parse_files(&files);
             let (mut text, err) = report::outline::render(&run, out.format(), out.color());
             if out.quiet && out.format() == Format::Human {
@@ -170,7 +200,10 @@ fn main() -> ExitCode {
         Command::Lint { project, deny, out } => {
             let opts = bdi_check::smt::LintOptions::default();
             let run = report::lint::run(&project, &opts, deny.is_some());
-            let (text, err) = report::lint::render(&run, out.format(), out.detail(), out.color());
+            let (text, err) = match out.ci_format() {
+                Some(ci) => (ci.render(&run.report, "lint"), String::new()),
+                None => report::lint::render(&run, out.format(), out.detail(), out.color()),
+            };
             eprint!("{err}");
             finish(&text, out.output, run.report.verdict.exit_code())
         }
@@ -196,11 +229,14 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             }
-            let text = match out.format() {
-                Format::Json => {
+            let text = match (out.ci_format(), out.format()) {
+                (Some(ci), _) => ci.render(&run.report, "verify"),
+                (None, Format::Json) => {
                     serde_json::to_string_pretty(&run.report).unwrap_or_default() + "\n"
                 }
-                Format::Human => report::verify::render_human(&run, out.detail(), out.color()),
+                (None, Format::Human) => {
+                    report::verify::render_human(&run, out.detail(), out.color())
+                }
             };
             finish(&text, out.output, run.report.verdict.exit_code())
         }
@@ -210,6 +246,9 @@ fn main() -> ExitCode {
             user,
             out,
         } => match scenario {
+            _ if out.ci_format().is_some() => {
+                out.refuse_ci_format("explain").unwrap_or(ExitCode::from(2))
+            }
             Some(sc) => {
                 let run = report::explain::run(&project, &sc, user.as_deref());
                 if !run.diagnostics.is_empty() {

@@ -148,7 +148,7 @@ const SEEDED: &[(&str, &str, &str)] = &[
         "kitchen.pddl:32",
     ),
     ("undefined_action", "undefined-action", "kitchen.asl:82"),
-    ("unused_action", "unused-action", "kitchen.pddl:70"),
+    ("unused_action", "unused-action", "kitchen.pddl:72"),
     ("no_plan_for_goal", "no-plan-for-goal", "kitchen.asl:9"),
 ];
 

@@ -427,3 +427,45 @@ fn concurrent_requests_interleave_and_interfere_in_the_kitchen() {
     }
     assert_eq!(replay_code(&file, None), 1);
 }
+
+#[test]
+fn body_statements_and_internal_actions_behave_as_in_jason() {
+    let (_, r, _) = verify_json("tests/verify/control", "control");
+    let findings = r["findings"].as_array().unwrap();
+    // Each property encodes one behaviour (see tests/verify/control/agent.asl): for over
+    // every answer, if/elif/else, while, ?g, -+b, .succeed_goal, .fail_goal with -!g,
+    // .findall/.length/.member, .intend (seeing the intention of the event being handled),
+    // .drop_desire, and !!g.
+    let props: Vec<_> = findings
+        .iter()
+        .filter(|f| f["check"] == "property")
+        .collect();
+    assert_eq!(props.len(), 15);
+    for p in props {
+        assert_eq!(p["status"], "pass", "{p:#}");
+    }
+    for check in ["goal-failure", "action-failure", "livelock", "deadlock"] {
+        assert!(
+            findings
+                .iter()
+                .any(|f| f["check"] == check && f["status"] == "pass"),
+            "{check}"
+        );
+    }
+    // The exploration decides everything; only a static check lint cannot encode is
+    // undecided, so the verdict is incomplete, never pass.
+    for f in findings.iter().filter(|f| f["status"] == "unknown") {
+        let static_check = [
+            "dead-plan",
+            "shadowed-plan",
+            "coverage-gap",
+            "plan-overlap",
+            "precondition",
+        ];
+        assert!(
+            static_check.contains(&f["check"].as_str().unwrap()),
+            "{f:#}"
+        );
+    }
+    assert_eq!(r["verdict"], "incomplete");
+}

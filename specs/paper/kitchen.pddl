@@ -21,9 +21,11 @@
     (dishwasherDoor ?s - doorstate)      ; open or closed
     (dirty ?l - location))               ; a surface that needs wiping
 
-  ;; Moving to where the robot already is changes nothing.
+  ;; The robot moves from where it is (it always is somewhere); moving to where it already
+  ;; is changes nothing.
   (:action navigateTo
     :parameters (?to - location)
+    :precondition (exists (?from - location) (robotAt ?from))
     :effect (and (robotAt ?to)
                  (forall (?l - location)
                    (when (not (= ?l ?to)) (not (robotAt ?l))))))

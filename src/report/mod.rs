@@ -7,9 +7,11 @@
 pub mod domain;
 pub mod explain;
 pub mod graph;
+pub mod junit;
 pub mod lint;
 pub mod outline;
 pub mod replay;
+pub mod sarif;
 pub mod verify;
 
 use crate::syntax::{Diagnostic, Location, Severity, SourceMap};
@@ -245,6 +247,29 @@ pub enum Format {
     Human,
     /// The JSON report of SPEC §3.
     Json,
+}
+
+/// The CI formats of `--format` (SPEC §2), for `lint` and `verify`: written from the
+/// [`Report`] alone, so they need no source map and hold no timings.
+///
+/// Kept apart from [`Format`] because every renderer matches `Format` exhaustively and only
+/// these two commands have a report whose findings map onto SARIF results or JUnit tests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CiFormat {
+    /// SARIF 2.1.0 ([`sarif`]).
+    Sarif,
+    /// JUnit XML ([`junit`]).
+    Junit,
+}
+
+impl CiFormat {
+    /// The report of `command` (`lint`, `verify`) in this format.
+    pub fn render(self, report: &Report, command: &str) -> String {
+        match self {
+            CiFormat::Sarif => sarif::render(report, command),
+            CiFormat::Junit => junit::render(report, command),
+        }
+    }
 }
 
 /// The verdict of a set of findings: `error` if an input finding is an error, else `fail` if

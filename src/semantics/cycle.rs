@@ -265,6 +265,7 @@ impl<'p> Semantics<'p> {
             universe: &self.project.universe,
             environment: &self.environment,
             state,
+            selected: None,
         }
     }
 
@@ -408,7 +409,7 @@ impl<'p> Semantics<'p> {
     /// Handles one event: every option the plan selection allows, as its own state.
     fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
         let mut notes = vec![Note::Event(ev.trigger.clone())];
-        let applicable = self.applicable(&s, &ev.trigger, !self.select_any);
+        let applicable = self.applicable_for(&s, &ev, !self.select_any);
         if applicable.is_empty() {
             let mut s = s;
             if ev.trigger.kind == TriggerKind::Achieve {
@@ -498,7 +499,22 @@ impl<'p> Semantics<'p> {
         trigger: &EventTrigger,
         first_only: bool,
     ) -> Vec<(u32, Substitution)> {
-        let b = self.beliefs(s);
+        self.applicable_in(self.beliefs(s), trigger, first_only)
+    }
+
+    /// As [`Semantics::applicable`], for the event just taken out of the queue of `s`.
+    fn applicable_for(&self, s: &State, ev: &Event, first_only: bool) -> Vec<(u32, Substitution)> {
+        let mut b = self.beliefs(s);
+        b.selected = Some(ev);
+        self.applicable_in(b, &ev.trigger, first_only)
+    }
+
+    fn applicable_in(
+        &self,
+        b: Beliefs,
+        trigger: &EventTrigger,
+        first_only: bool,
+    ) -> Vec<(u32, Substitution)> {
         let mut out = Vec::new();
         for &pi in self.relevant_plans(trigger) {
             let plan = &self.project.plans.plans[pi as usize];
@@ -833,6 +849,20 @@ impl<'p> Semantics<'p> {
                 let text = term.to_string();
                 match term.functor().unwrap_or("") {
                     ".print" | ".println" => {}
+                    f @ (".succeed_goal" | ".fail_goal") => {
+                        let g = term.args().first().cloned().unwrap_or_else(Term::nil);
+                        notes.push(Note::Internal { text, plan, origin });
+                        let mut current = std::mem::replace(int, empty_intention(origin));
+                        self.normalize_top(&mut current, s);
+                        s.intentions.insert(0, current);
+                        // The running intention is handled with the others; if it goes on, it
+                        // goes to the back of the queue like any intention that ran a step.
+                        if self.goal_directive(s, &g, f == ".fail_goal", (plan, step.span), notes) {
+                            let i = s.intentions.remove(0);
+                            s.intentions.push(i);
+                        }
+                        return Flow::Gone;
+                    }
                     ".drop_desire" | ".drop_intention" => {
                         let g = term.args().first().cloned().unwrap_or_else(Term::nil);
                         let matches = |i: &Intention| {
@@ -1049,6 +1079,76 @@ impl<'p> Semantics<'p> {
         }
         self.normalize(frame, s);
         Flow::Continue
+    }
+
+    fn normalize_top(&self, int: &mut Intention, s: &State) {
+        if let Some(top) = int.frames.last_mut() {
+            self.normalize(top, s);
+        }
+    }
+
+    /// `.succeed_goal(g)` / `.fail_goal(g)`, as Jason's: every intention pursuing a goal
+    /// that unifies with `g` drops the plans from that goal's up (succeed: the plan that
+    /// posted it goes on; fail: the goal fails there, with Jason's failure handling), and a
+    /// pending `+!g` event is dropped (succeed: the intention waiting for it goes on) or
+    /// fails. Returns whether the first running intention is still running (it is then the
+    /// first of `s.intentions`).
+    fn goal_directive(
+        &self,
+        s: &mut State,
+        g: &Term,
+        fail: bool,
+        at: (u32, Span),
+        notes: &mut Vec<Note>,
+    ) -> bool {
+        let is_goal = |t: &EventTrigger| {
+            t.op == TriggerOp::Add
+                && t.kind == TriggerKind::Achieve
+                && crate::model::unifier(g, &t.literal).is_some()
+        };
+        let running = std::mem::take(&mut s.intentions);
+        let mut first_kept = false;
+        for (k, mut int) in running.into_iter().enumerate() {
+            let Some(j) = int.frames.iter().rposition(|f| is_goal(&f.trigger)) else {
+                first_kept |= k == 0;
+                s.intentions.push(int);
+                continue;
+            };
+            if fail {
+                int.frames.truncate(j + 1);
+                let failed = int.frames[j].trigger.clone();
+                self.fail_intention(s, int, &failed, Some(at), "failed by .fail_goal", notes);
+            } else {
+                int.frames.truncate(j);
+                if int.frames.is_empty() {
+                    notes.push(Note::Finished(int.origin));
+                } else {
+                    self.normalize_top(&mut int, s);
+                    if self.clear_finished(s, &mut int, notes) {
+                        first_kept |= k == 0 && s.intentions.is_empty();
+                        s.intentions.push(int);
+                    }
+                }
+            }
+        }
+        let events = std::mem::take(&mut s.events);
+        for ev in events {
+            if !is_goal(&ev.trigger) {
+                s.events.push(ev);
+                continue;
+            }
+            if fail {
+                self.goal_failed_from_event(s, ev, "failed by .fail_goal", notes);
+            } else if let Some(mut int) = ev.intention {
+                self.normalize_top(&mut int, s);
+                if self.clear_finished(s, &mut int, notes) {
+                    s.intentions.push(int);
+                }
+            } else {
+                notes.push(Note::Finished(ev.origin));
+            }
+        }
+        first_kept
     }
 
     /// The ground action a term names, or why there is none.

@@ -25,6 +25,9 @@ pub struct Beliefs<'a> {
     pub environment: &'a [bool],
     /// The state (beliefs, and intentions for `.desire`/`.intend`).
     pub state: &'a State,
+    /// The event being deliberated on, already out of the queue: Jason's `.intend` and
+    /// `.desire` see its intention (and its goal) too.
+    pub selected: Option<&'a super::state::Event>,
 }
 
 /// Arithmetic operators kept as structures by the plan compiler.
@@ -199,11 +202,12 @@ impl Beliefs<'_> {
                 .map(|f| f.trigger.literal.clone())
                 .collect()
         };
-        for i in self.state.all_intentions() {
+        let selected = self.selected.and_then(|e| e.intention.as_ref());
+        for i in self.state.all_intentions().chain(selected) {
             frames(i).iter().for_each(&mut consider);
         }
         if with_events {
-            for e in &self.state.events {
+            for e in self.state.events.iter().chain(self.selected) {
                 if e.trigger.op == TriggerOp::Add && e.trigger.kind == TriggerKind::Achieve {
                     consider(&e.trigger.literal);
                 }
