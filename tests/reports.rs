@@ -415,7 +415,9 @@ fn paths_with_markup_characters_are_escaped_in_junit_and_encoded_in_sarif() {
 
 #[test]
 fn exit_codes_are_the_same_in_every_format() {
-    let cases: [(&[&str], i32); 5] = [
+    let cases: [(&[&str], i32); 7] = [
+        (&["lint", "specs/kitchen"], 0),
+        (&["lint", "specs/kitchen", "--deny", "warnings"], 1),
         (&["verify", "specs/kitchen"], 0),
         (&["verify", "specs/paper"], 1),
         (&["verify", "specs/kitchen", "--max-states", "100"], 3),
@@ -435,6 +437,14 @@ fn exit_codes_are_the_same_in_every_format() {
             );
         }
     }
+    // `--deny warnings` makes lint's warnings errors, in SARIF too.
+    let (_, text) = run("lint", "specs/kitchen", "sarif", &["--deny", "warnings"]);
+    let results = check_sarif(&text)["results"].clone();
+    assert!(results
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|r| r["level"] == "error"));
     // The bound stops the search: SARIF says so with undecided (open) results.
     let (_, text) = run("verify", "specs/kitchen", "sarif", &["--max-states", "100"]);
     let run = check_sarif(&text);

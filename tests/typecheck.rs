@@ -254,7 +254,7 @@ fn wrong_arity_points_at_the_pddl_declaration() {
         decl(&ds[0]),
         (19, "(cupAt ?c - cup ?l - location)".to_string())
     );
-    assert_eq!(decl(&ds[1]), (25, "(:action navigateTo".to_string()));
+    assert_eq!(decl(&ds[1]), (26, "(:action navigateTo".to_string()));
 }
 
 #[test]

@@ -184,21 +184,29 @@ fn manifest_of(project: &str) -> String {
 }
 
 /// A path as a SARIF URI reference: relative paths stay relative (consumers resolve them
-/// against the checkout), with `/` separators and everything outside RFC 3986's unreserved
+/// against the checkout), with `/` separators and every byte outside RFC 3986's unreserved
 /// characters percent-encoded; absolute paths become `file://` URIs.
 pub fn uri(path: &str) -> String {
-    let path = path.replace('\\', "/");
+    // Only Windows separates with `\`; elsewhere it is a character of a file name.
+    let path = if cfg!(windows) {
+        path.replace('\\', "/")
+    } else {
+        path.to_string()
+    };
     let mut out = String::new();
+    // A Windows drive path, `C:/...`, whose colon stays as it is.
+    let drive = cfg!(windows)
+        && path.as_bytes().first().is_some_and(u8::is_ascii_alphabetic)
+        && path.as_bytes().get(1) == Some(&b':');
     if path.starts_with('/') {
         out.push_str("file://");
-    } else if path.as_bytes().get(1) == Some(&b':') {
-        // A Windows drive path, `C:/...`.
+    } else if drive {
         out.push_str("file:///");
     }
     for (i, b) in path.bytes().enumerate() {
         let keep = b.is_ascii_alphanumeric()
             || matches!(b, b'-' | b'.' | b'_' | b'~' | b'/')
-            || (b == b':' && i == 1 && out.ends_with("///"));
+            || (b == b':' && i == 1 && drive);
         if keep {
             out.push(b as char);
         } else {
@@ -259,7 +267,14 @@ mod tests {
         assert_eq!(uri("specs/paper/paper.asl"), "specs/paper/paper.asl");
         assert_eq!(uri("my specs/a#b.asl"), "my%20specs/a%23b.asl");
         assert_eq!(uri("/abs/x.asl"), "file:///abs/x.asl");
-        assert_eq!(uri("dir\\x.asl"), "dir/x.asl");
+        if cfg!(windows) {
+            assert_eq!(uri("dir\\x.asl"), "dir/x.asl");
+            assert_eq!(uri("C:\\specs\\a.asl"), "file:///C:/specs/a.asl");
+        } else {
+            assert_eq!(uri("dir\\x.asl"), "dir%5Cx.asl");
+            assert_eq!(uri("C:x.asl"), "C%3Ax.asl");
+        }
+        assert_eq!(uri("küche.asl"), "k%C3%BCche.asl");
     }
 
     #[test]
