@@ -393,7 +393,8 @@ impl Checker<'_> {
         })
     }
 
-    /// A run is over when the agent is idle and no further request can arrive.
+    /// A state with no successor ends a run when the agent is idle there (requests that
+    /// could still arrive would be successors).
     fn is_done(&self, s: &State) -> bool {
         s.is_idle()
     }

@@ -299,9 +299,8 @@ impl<'p> Semantics<'p> {
             intentions: Vec::new(),
             requested: 0,
         };
-        let empty = AtomSet::empty(self.project.atoms.len());
         let added: Vec<AtomId> = beliefs.iter().collect();
-        self.perceive(&mut s, &empty, &added, &[]);
+        self.perceive(&mut s, &added, &[]);
         for (k, (goal, _)) in self.project.plans.initial_goals.iter().enumerate() {
             s.events.push(Event {
                 trigger: EventTrigger {
@@ -331,7 +330,7 @@ impl<'p> Semantics<'p> {
     }
 
     /// Queues `+p`/`-p` for changed atoms that some plan is relevant for.
-    fn perceive(&self, s: &mut State, _before: &AtomSet, added: &[AtomId], removed: &[AtomId]) {
+    fn perceive(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
         let b = self.beliefs(s);
         let mut new_events = Vec::new();
         for (atoms, op) in [(removed, TriggerOp::Del), (added, TriggerOp::Add)] {
@@ -830,7 +829,7 @@ impl<'p> Semantics<'p> {
                         let before = s.beliefs.clone();
                         s.beliefs = ga.apply(&before);
                         let (added, removed) = diff(&before, &s.beliefs);
-                        self.perceive(s, &before, &added, &removed);
+                        self.perceive(s, &added, &removed);
                         notes.push(Note::Action {
                             text,
                             term,
@@ -990,8 +989,7 @@ impl<'p> Semantics<'p> {
                         }
                     }
                 }
-                let before = s.beliefs.clone();
-                self.perceive(s, &before, &added, &removed);
+                self.perceive(s, &added, &removed);
                 let sign = match step.kind {
                     BodyStep::AddBel(_) => "+",
                     BodyStep::DelBel(_) => "-",
