@@ -10,6 +10,7 @@
 //! run the agent can really take.
 
 pub mod explore;
+pub mod model;
 pub mod trace;
 
 use crate::model::cond::Cond;
@@ -81,8 +82,8 @@ pub fn verify(
     let graph = explore(
         &sem,
         limits,
-        |src, k, t| {
-            for n in &t.notes {
+        |src, k, notes: &Vec<Note>| {
+            for n in notes {
                 match n {
                     Note::ActionFailed { span, .. } => {
                         action_failures.entry((span.file.0, span.start)).or_insert((
