@@ -417,8 +417,11 @@ impl<'p> Linter<'p> {
     }
 
     /// "cannot decide whether ...": the message of an undecided check; the reason follows.
-    fn unknown_text(what: &str) -> String {
-        format!("cannot decide {what}")
+    /// A check z3 could not decide (an unsupported construct, or its answer `unknown`):
+    /// "cannot decide QUESTION" and why, status `unknown`, never a pass.
+    fn undecided(&mut self, check: &str, question: &str, detail: &str, span: Span, label: &str) {
+        let msg = format!("cannot decide {question}{detail}");
+        self.push(check, Status::Unknown, msg, span, label, None, vec![]);
     }
 
     fn run(mut self) -> Vec<LintFinding> {
@@ -547,18 +550,12 @@ impl<'p> Linter<'p> {
         let items = match items {
             Ok(items) => items,
             Err(Unsupported(why)) => {
-                let msg = format!(
-                    "{}: {why}",
-                    Self::unknown_text(&format!("whether {} can be applicable", plan.name()))
-                );
-                self.push(
+                self.undecided(
                     "dead-plan",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether {} can be applicable", plan.name()),
+                    &format!(": {why}"),
                     plan.span,
                     "this plan",
-                    None,
-                    vec![],
                 );
                 return Alive::Unknown;
             }
@@ -634,18 +631,12 @@ impl<'p> Linter<'p> {
                 Alive::Dead
             }
             Outcome::Unknown(r) => {
-                let msg = format!(
-                    "{} (z3: {r})",
-                    Self::unknown_text(&format!("whether {} can be applicable", plan.name()))
-                );
-                self.push(
+                self.undecided(
                     "dead-plan",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether {} can be applicable", plan.name()),
+                    &format!(" (z3: {r})"),
                     plan.span,
                     "this plan",
-                    None,
-                    vec![],
                 );
                 Alive::Unknown
             }
@@ -695,18 +686,12 @@ impl<'p> Linter<'p> {
         let (this, nots) = match built {
             Ok(x) => x,
             Err(Unsupported(why)) => {
-                let msg = format!(
-                    "{}: {why}",
-                    Self::unknown_text(&format!("whether an earlier plan hides {}", plan.name()))
-                );
-                self.push(
+                self.undecided(
                     "shadowed-plan",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether an earlier plan hides {}", plan.name()),
+                    &format!(": {why}"),
                     plan.span,
                     "this plan",
-                    None,
-                    vec![],
                 );
                 return false;
             }
@@ -774,18 +759,12 @@ impl<'p> Linter<'p> {
                 false
             }
             Outcome::Unknown(r) => {
-                let msg = format!(
-                    "{} (z3: {r})",
-                    Self::unknown_text(&format!("whether an earlier plan hides {}", plan.name()))
-                );
-                self.push(
+                self.undecided(
                     "shadowed-plan",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether an earlier plan hides {}", plan.name()),
+                    &format!(" (z3: {r})"),
                     plan.span,
                     "this plan",
-                    None,
-                    vec![],
                 );
                 false
             }
@@ -872,18 +851,12 @@ impl<'p> Linter<'p> {
         let q = match built {
             Ok(q) => q,
             Err(Unsupported(why)) => {
-                let msg = format!(
-                    "{}: {why}",
-                    Self::unknown_text(&format!("whether {} and {} overlap", pi.name(), pj.name()))
-                );
-                self.push(
+                self.undecided(
                     "plan-overlap",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether {} and {} overlap", pi.name(), pj.name()),
+                    &format!(": {why}"),
                     pj.span,
                     "this plan",
-                    None,
-                    vec![],
                 );
                 return;
             }
@@ -928,18 +901,12 @@ impl<'p> Linter<'p> {
                 self.push("plan-overlap", Status::Pass, msg, pj.span, "", None, vec![]);
             }
             Outcome::Unknown(r) => {
-                let msg = format!(
-                    "{} (z3: {r})",
-                    Self::unknown_text(&format!("whether {} and {} overlap", pi.name(), pj.name()))
-                );
-                self.push(
+                self.undecided(
                     "plan-overlap",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether {} and {} overlap", pi.name(), pj.name()),
+                    &format!(" (z3: {r})"),
                     pj.span,
                     "this plan",
-                    None,
-                    vec![],
                 );
             }
         }
@@ -964,21 +931,15 @@ impl<'p> Linter<'p> {
         let q = match built {
             Ok(q) => q,
             Err(Unsupported(why)) => {
-                let msg = format!(
-                    "{}: {why}",
-                    Self::unknown_text(&format!(
+                self.undecided(
+                    "coverage-gap",
+                    &format!(
                         "whether every {} has an applicable plan",
                         g.event_text(None)
-                    ))
-                );
-                self.push(
-                    "coverage-gap",
-                    Status::Unknown,
-                    msg,
+                    ),
+                    &format!(": {why}"),
                     span,
                     "the first plan for this goal",
-                    None,
-                    vec![],
                 );
                 return;
             }
@@ -1025,21 +986,15 @@ impl<'p> Linter<'p> {
                 self.push("coverage-gap", Status::Pass, msg, span, "", None, vec![]);
             }
             Outcome::Unknown(r) => {
-                let msg = format!(
-                    "{} (z3: {r})",
-                    Self::unknown_text(&format!(
+                self.undecided(
+                    "coverage-gap",
+                    &format!(
                         "whether every {} has an applicable plan",
                         g.event_text(None)
-                    ))
-                );
-                self.push(
-                    "coverage-gap",
-                    Status::Unknown,
-                    msg,
+                    ),
+                    &format!(" (z3: {r})"),
                     span,
                     "the first plan for this goal",
-                    None,
-                    vec![],
                 );
             }
         }
@@ -1092,41 +1047,26 @@ impl<'p> Linter<'p> {
                     );
                 }
                 PreResult::Unknown(r) => {
-                    let msg = format!(
-                        "{} (z3: {r})",
-                        Self::unknown_text(&format!(
-                            "whether the precondition of `{}` holds here",
-                            c.action
-                        ))
-                    );
-                    self.push(
+                    self.undecided(
                         "precondition",
-                        Status::Unknown,
-                        msg,
+                        &format!("whether the precondition of `{}` holds here", c.action),
+                        &format!(" (z3: {r})"),
                         c.span,
                         "this action",
-                        None,
-                        vec![],
                     );
                 }
             }
         }
         if let Some((span, Unsupported(why))) = stop {
-            let msg = format!(
-                "{}: {why}",
-                Self::unknown_text(&format!(
+            self.undecided(
+                "precondition",
+                &format!(
                     "whether the preconditions of {} hold from here on",
                     plan.name()
-                ))
-            );
-            self.push(
-                "precondition",
-                Status::Unknown,
-                msg,
+                ),
+                &format!(": {why}"),
                 span,
                 "from here on",
-                None,
-                vec![],
             );
         }
     }
@@ -1223,18 +1163,12 @@ impl<'p> Linter<'p> {
                     self.push("effect-conflict", Status::Pass, msg, span, "", None, vec![]);
                 }
                 Outcome::Unknown(r) => {
-                    let msg = format!(
-                        "{} (z3: {r})",
-                        Self::unknown_text(&format!("whether `{name}` adds and deletes one atom"))
-                    );
-                    self.push(
+                    self.undecided(
                         "effect-conflict",
-                        Status::Unknown,
-                        msg,
+                        &format!("whether `{name}` adds and deletes one atom"),
+                        &format!(" (z3: {r})"),
                         span,
                         "this action",
-                        None,
-                        vec![],
                     );
                 }
             }
@@ -1363,18 +1297,12 @@ impl<'p> Linter<'p> {
                     vec![],
                 );
             } else if let Some(r) = unknown {
-                let msg = format!(
-                    "{} (z3: {r})",
-                    Self::unknown_text(&format!("whether `{name}` preserves the invariants"))
-                );
-                self.push(
+                self.undecided(
                     "action-breaks-invariant",
-                    Status::Unknown,
-                    msg,
+                    &format!("whether `{name}` preserves the invariants"),
+                    &format!(" (z3: {r})"),
                     span,
                     "this action",
-                    None,
-                    vec![],
                 );
             } else {
                 let msg = format!("`{name}` preserves every invariant");
