@@ -1118,46 +1118,49 @@ impl<'a> Checker<'a> {
         self.diags.push(d);
     }
 
+    /// Records a variable or object argument as a typed occurrence (`_` is typed by
+    /// nothing); returns false for any other argument.
+    fn typed_arg(cl: &mut Clause, a: &Expr, sig: Sig, index: usize, role: Role) -> bool {
+        let arg = match &a.kind {
+            ExprKind::Var(v) if !v.negated && v.annots.is_none() => {
+                if v.name == "_" {
+                    return true;
+                }
+                Arg::Var(v.name.clone())
+            }
+            ExprKind::Literal(l) if is_atom(l) => Arg::Const(l.functor.clone()),
+            _ => return false,
+        };
+        cl.occs.push(Occ {
+            arg,
+            span: a.span,
+            sig,
+            index,
+            role,
+        });
+        true
+    }
+
     /// An argument of a PDDL predicate, PDDL action or mental note: a variable or an object.
     fn strict_arg(&mut self, cl: &mut Clause, a: &Expr, sig: Sig, index: usize, role: Role) {
-        match &a.kind {
-            ExprKind::Var(v) if !v.negated && v.annots.is_none() => {
-                if v.name != "_" {
-                    cl.occs.push(Occ {
-                        arg: Arg::Var(v.name.clone()),
-                        span: a.span,
-                        sig,
-                        index,
-                        role,
-                    });
-                }
-            }
-            ExprKind::Literal(l) if is_atom(l) => cl.occs.push(Occ {
-                arg: Arg::Const(l.functor.clone()),
-                span: a.span,
-                sig,
-                index,
-                role,
-            }),
-            _ => {
-                let what = match &a.kind {
-                    ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Unary(..) => "a number",
-                    ExprKind::Str(_) => "a string",
-                    ExprKind::List(_) => "a list",
-                    ExprKind::Arith(..) => "an arithmetic expression",
-                    _ => "a structured term",
-                };
-                let d = Diagnostic::error(
-                    "input",
-                    format!(
-                        "{what} cannot be an argument of `{}`: the model's state is a set of ground atoms over objects, so arguments must be objects or variables",
-                        self.sig_name(sig)
-                    ),
-                )
-                .with_label(a.span, format!("{what}, not an object"))
-                .with_help("numbers, strings, lists and structured terms are not supported as arguments of predicates, actions and mental notes");
-                self.diags.push(d);
-            }
+        if !Self::typed_arg(cl, a, sig, index, role) {
+            let what = match &a.kind {
+                ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Unary(..) => "a number",
+                ExprKind::Str(_) => "a string",
+                ExprKind::List(_) => "a list",
+                ExprKind::Arith(..) => "an arithmetic expression",
+                _ => "a structured term",
+            };
+            let d = Diagnostic::error(
+                "input",
+                format!(
+                    "{what} cannot be an argument of `{}`: the model's state is a set of ground atoms over objects, so arguments must be objects or variables",
+                    self.sig_name(sig)
+                ),
+            )
+            .with_label(a.span, format!("{what}, not an object"))
+            .with_help("numbers, strings, lists and structured terms are not supported as arguments of predicates, actions and mental notes");
+            self.diags.push(d);
         }
     }
 
@@ -1172,26 +1175,8 @@ impl<'a> Checker<'a> {
         role: Role,
         scope: Scope,
     ) {
-        match &a.kind {
-            ExprKind::Var(v) if !v.negated && v.annots.is_none() => {
-                if v.name != "_" {
-                    cl.occs.push(Occ {
-                        arg: Arg::Var(v.name.clone()),
-                        span: a.span,
-                        sig,
-                        index,
-                        role,
-                    });
-                }
-            }
-            ExprKind::Literal(l) if is_atom(l) => cl.occs.push(Occ {
-                arg: Arg::Const(l.functor.clone()),
-                span: a.span,
-                sig,
-                index,
-                role,
-            }),
-            _ => self.term(cl, a, scope),
+        if !Self::typed_arg(cl, a, sig, index, role) {
+            self.term(cl, a, scope);
         }
     }
 
