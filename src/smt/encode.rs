@@ -837,6 +837,24 @@ impl<'p> Encoder<'p> {
         }
     }
 
+    /// Binds the literal's variables that nothing bound yet to fresh symbolic values (a
+    /// positive occurrence binds them), returning the constraints that keep each within
+    /// its type.
+    fn bind_args(&self, t: &Term, env: &mut Env, frame: &mut Frame) -> Vec<Bool> {
+        let types = self.arg_types(t);
+        let mut constraints = Vec::new();
+        for (i, a) in t.args().iter().enumerate() {
+            if let Term::Var(v) = a {
+                if !env.contains_key(v) && !v.is_anonymous() {
+                    let x = frame.sym(v);
+                    constraints.push(self.dom(&x, types[i]));
+                    env.insert(v.clone(), Val::Sym(x));
+                }
+            }
+        }
+        constraints
+    }
+
     fn rule_of(&self, t: &Term) -> Option<&Enc<Vec<Clause>>> {
         let key = (t.functor()?.to_string(), t.arity());
         self.rules.get(&key)
@@ -854,20 +872,11 @@ impl<'p> Encoder<'p> {
             let clauses = clauses.clone()?;
             return self.rule_call(t, &clauses, env, frame, st, mode);
         }
-        let mut extra = Vec::new();
-        if mode == Mode::Assert {
-            // Positively bound variables become symbolic, constrained to their type.
-            let types = self.arg_types(t);
-            for (i, a) in t.args().iter().enumerate() {
-                if let Term::Var(v) = a {
-                    if !env.contains_key(v) && !v.is_anonymous() {
-                        let x = frame.sym(v);
-                        extra.push(self.dom(&x, types[i]));
-                        env.insert(v.clone(), Val::Sym(x));
-                    }
-                }
-            }
-        }
+        let mut extra = if mode == Mode::Assert {
+            self.bind_args(t, env, frame)
+        } else {
+            Vec::new()
+        };
         let inst = self.instances(t, env, st)?;
         extra.push(or(inst));
         Ok(and(extra))
@@ -978,19 +987,11 @@ impl<'p> Encoder<'p> {
                 key.0, key.1
             )));
         }
-        let mut extra = Vec::new();
-        if mode == Mode::Assert {
-            let types = self.arg_types(t);
-            for (i, a) in t.args().iter().enumerate() {
-                if let Term::Var(v) = a {
-                    if !env.contains_key(v) && !v.is_anonymous() {
-                        let x = frame.sym(v);
-                        extra.push(self.dom(&x, types[i]));
-                        env.insert(v.clone(), Val::Sym(x));
-                    }
-                }
-            }
-        }
+        let mut extra = if mode == Mode::Assert {
+            self.bind_args(t, env, frame)
+        } else {
+            Vec::new()
+        };
         self.active_rules.borrow_mut().push(key);
         let result = (|| {
             let mut parts = Vec::new();
