@@ -1,15 +1,10 @@
 //! The command line as a user meets it: exit codes, human and JSON output.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn bdi_check(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("bdi-check runs")
-}
+mod common;
+use common::bdi_check;
 
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()

@@ -1,15 +1,10 @@
 //! `bdi-check explain` as users run it: the paper's scenario gives the paper's explanation,
 //! and the catalogue lists what the robot can say, each with a scenario that produces it.
 
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn bdi_check(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("bdi-check runs")
-}
+mod common;
+use common::bdi_check;
 
 fn json(o: &Output) -> serde_json::Value {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -19,7 +19,10 @@ use bdi_check::syntax::manifest::PlanSelection;
 use bdi_check::syntax::{Severity, Span};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
+use common::bdi_check;
 
 fn project(path: &str) -> Project {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
@@ -31,14 +34,6 @@ fn project(path: &str) -> Project {
 
 fn run_lint(p: &Project) -> Vec<LintFinding> {
     lint(p, &LintOptions::default())
-}
-
-fn bdi_check(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("bdi-check runs")
 }
 
 fn json(o: &Output) -> serde_json::Value {

@@ -3,15 +3,10 @@
 //! exit code of SPEC §2 is the same whatever the format.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn bdi_check(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("bdi-check runs")
-}
+mod common;
+use common::bdi_check;
 
 fn stdout(o: &Output) -> String {
     String::from_utf8(o.stdout.clone()).expect("reports are UTF-8")

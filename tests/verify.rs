@@ -3,15 +3,9 @@
 //! exploration counts equal counts derived by hand.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn bdi_check(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_bdi-check"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("bdi-check runs")
-}
+mod common;
+use common::bdi_check;
 
 fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("bdi-check-verify-{}-{name}", std::process::id()));
