@@ -140,6 +140,24 @@ impl GroundActions {
             .map(|&i| &self.actions[i])
     }
 
+    /// The ground action a Jason term such as `navigateTo(table)` names, if its arguments
+    /// are objects and the action exists.
+    pub fn of_term(
+        &self,
+        t: &crate::model::term::Term,
+        universe: &Universe,
+    ) -> Option<&GroundAction> {
+        let args = t
+            .args()
+            .iter()
+            .map(|a| match a {
+                crate::model::term::Term::Atom(n) => universe.object(n),
+                _ => None,
+            })
+            .collect::<Option<Vec<_>>>()?;
+        self.get(t.functor()?, &args)
+    }
+
     /// Number of ground actions.
     pub fn len(&self) -> usize {
         self.actions.len()

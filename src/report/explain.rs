@@ -242,19 +242,9 @@ fn phrases(p: &Project) -> Phrases {
 
 /// `Eff+` and `Eff-` of a ground action: every atom any of its effects may add or delete.
 fn effects(p: &Project, action: &Term) -> Effects {
-    let objects: Option<Vec<_>> = action
-        .args()
-        .iter()
-        .map(|a| match a {
-            Term::Atom(n) => p.universe.object(n),
-            _ => None,
-        })
-        .collect();
-    let ga = action
-        .functor()
-        .zip(objects)
-        .and_then(|(name, objs)| p.actions.get(name, &objs));
-    let Some(ga) = ga else { return Effects::none() };
+    let Some(ga) = p.actions.of_term(action, &p.universe) else {
+        return Effects::none();
+    };
     let term = |a: &AtomId| p.atoms.term(*a, &p.universe);
     Effects::new(
         ga.effects
@@ -317,19 +307,7 @@ fn holds(p: &Project, s: &AtomSet, atom: &Term) -> bool {
 }
 
 fn apply(p: &Project, s: &AtomSet, action: &Term) -> AtomSet {
-    let objects: Option<Vec<_>> = action
-        .args()
-        .iter()
-        .map(|a| match a {
-            Term::Atom(n) => p.universe.object(n),
-            _ => None,
-        })
-        .collect();
-    match action
-        .functor()
-        .zip(objects)
-        .and_then(|(n, o)| p.actions.get(n, &o))
-    {
+    match p.actions.of_term(action, &p.universe) {
         Some(ga) => ga.apply(s),
         None => s.clone(),
     }
