@@ -463,3 +463,29 @@ fn body_statements_and_internal_actions_behave_as_in_jason() {
     }
     assert_eq!(r["verdict"], "incomplete");
 }
+
+#[test]
+fn a_timeout_is_incomplete_and_undecided_checks_say_how_far_they_hold() {
+    // A zero-second limit is reached at the first check of the clock, after the initial
+    // states: deterministic, whatever the machine's speed.
+    let o = bdi_check(&["verify", "specs/kitchen", "--timeout", "0"]);
+    assert_eq!(o.status.code(), Some(3));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("the time limit (`--timeout`) was reached"),
+        "{out}"
+    );
+    assert!(
+        out.contains("warning[invariant]: undecided: invariant `one_location`"),
+        "{out}"
+    );
+    assert!(out.contains("as far as the search went"), "{out}");
+    assert!(!out.contains("error[invariant]"), "{out}");
+    assert!(
+        out.lines()
+            .last()
+            .unwrap()
+            .starts_with("verdict: incomplete"),
+        "{out}"
+    );
+}

@@ -168,6 +168,12 @@ impl Checker<'_> {
         message: String,
     ) -> Finding {
         let location = self.location(span);
+        // An undecided check states only what the explored part shows.
+        let message = if status == Status::Unknown {
+            format!("{message}, as far as the search went: it was cut short before every state was reached")
+        } else {
+            message
+        };
         Finding {
             id: format!("{check}:{name}"),
             check: check.into(),

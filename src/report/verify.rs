@@ -132,8 +132,10 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
 }
 
 fn render_finding(f: &Finding, map: &SourceMap, color: bool) -> String {
+    // An undecided check is not a failure: it reads as a warning, never as an error.
     let severity = match (f.status, f.severity) {
         (Status::Pass, _) => Severity::Note,
+        (Status::Unknown, Severity::Error) => Severity::Warning,
         (_, s) => s,
     };
     let status = match f.status {
