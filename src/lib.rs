@@ -51,6 +51,33 @@
 //! The same exploration proves the completed kitchen of `specs/kitchen` correct for all 100
 //! initial states and every pair of requests: `cargo run --release -- verify specs/kitchen`.
 //!
+//! ## Explanations, checked on every run
+//!
+//! The robot explains itself to each user when an action surprises them (Algorithm 1), and
+//! says which beliefs and which later action it acted for (Algorithm 2). What a user expects
+//! changes as they watch, so `verify` explores the runs once more with each user's expected
+//! successors in the state, and checks the explanations of every run. The owner of the
+//! paper's example expects the robot to go to the table first; the paper's own version of
+//! Algorithm 1, which marks a plan's actions when the plan is adopted, does not see that the
+//! owner watches the robot open the dishwasher before it goes to the table:
+//!
+//! ```
+//! # use bdi_check::check::{explore::Limits, verify};
+//! # use bdi_check::model::project::load_project;
+//! # use bdi_check::report::Status;
+//! # let project = load_project(std::path::Path::new("specs/paper")).unwrap();
+//! # let limits = Limits { max_states: 10_000, max_depth: 100, timeout: None };
+//! let result = verify(&project, limits, |_, _, _| {}, &[]).unwrap();
+//! let status = |id: &str| result.findings.iter().find(|f| f.id == id).map(|f| f.status);
+//! // The content of every explanation covers the action that changes its context...
+//! assert_eq!(status("content-covers:owner"), Some(Status::Pass));
+//! // ...but marking at adoption misses the surprising walk back to the table.
+//! assert_eq!(
+//!     status("demand-adoption:owner:specs/paper/paper.asl:13"),
+//!     Some(Status::Fail)
+//! );
+//! ```
+//!
 //! ## Stages
 //!
 //! Data flows one way, one module per stage:

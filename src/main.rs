@@ -6,6 +6,11 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+// Exploration allocates and frees small states at a high rate on every thread (see
+// Cargo.toml).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Verifies Jason AgentSpeak plan libraries before they run on a robot.
 #[derive(Parser, Debug)]
 #[command(name = "bdi-check", version, about, long_about = None)]
@@ -126,8 +131,30 @@ enum Command {
         /// Write one replayable scenario file per counterexample into this folder.
         #[arg(long)]
         scenarios: Option<PathBuf>,
+        /// Worker threads for the search (default: every core). Results do not depend on it.
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        threads: Option<u32>,
+        /// Turn symmetry reduction over `[bounds] symmetry` types off.
+        #[arg(long)]
+        no_symmetry: bool,
+        /// Verify from the K-th of N parts of the initial states only (merge the N reports
+        /// with `bdi-check merge`).
+        #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+        shard: Option<(u32, u32)>,
         #[command(flatten)]
         out: Output,
+    },
+    /// Merge the JSON reports of `verify --shard K/N` runs into one report and verdict.
+    Merge {
+        /// The JSON reports, one per shard.
+        #[arg(required = true)]
+        reports: Vec<PathBuf>,
+        /// Output format (`human`: the verdict line; `json`: the merged report).
+        #[arg(long, value_enum, default_value = "json")]
+        format: FormatArg,
+        /// Write the merged report to this file instead of stdout.
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
     },
     /// Run one scenario and print its trace with the explanations each user gets; without a
     /// scenario, list every distinct explanation the runs give, per user.
@@ -213,12 +240,27 @@ fn main() -> ExitCode {
             max_depth,
             timeout,
             scenarios,
+            threads,
+            no_symmetry,
+            shard,
             out,
         } => {
             let bar = Progress::new();
-            let run = report::verify::run(&project, max_states, max_depth, timeout, |n, d, t| {
-                bar.tick(n, d, t)
-            });
+            let defaults = bdi_check::check::VerifyOptions::default();
+            let opts = bdi_check::check::VerifyOptions {
+                threads: threads.map_or(defaults.threads, |t| t as usize),
+                symmetry: !no_symmetry,
+                shard,
+                max_memory: bdi_check::check::explore::default_max_memory(),
+            };
+            let run = report::verify::run_with(
+                &project,
+                max_states,
+                max_depth,
+                timeout,
+                &opts,
+                |n, d, t| bar.tick(n, d, t),
+            );
             bar.finish();
             if let Some(dir) = &scenarios {
                 if let Err(e) = report::verify::write_scenarios(&run.report, dir) {
@@ -340,6 +382,55 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Command::Merge {
+            reports,
+            format,
+            output,
+        } => {
+            let mut values = Vec::new();
+            for path in &reports {
+                let read = std::fs::read_to_string(path)
+                    .map_err(|e| e.to_string())
+                    .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()));
+                match read {
+                    Ok(v) => values.push(v),
+                    Err(e) => {
+                        eprintln!("error: cannot read the report `{}`: {e}", path.display());
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            match report::verify::merge(&values) {
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+                Ok(merged) => {
+                    let verdict = merged["verdict"].as_str().unwrap_or("error").to_string();
+                    let code = match verdict.as_str() {
+                        "pass" => 0,
+                        "fail" => 1,
+                        "incomplete" => 3,
+                        _ => 2,
+                    };
+                    let text = match format {
+                        FormatArg::Json => {
+                            serde_json::to_string_pretty(&merged).unwrap_or_default() + "\n"
+                        }
+                        FormatArg::Human => format!(
+                            "verdict: {verdict} (merged {} reports, {} checks)\n",
+                            reports.len(),
+                            merged["findings"].as_array().map_or(0, |f| f.len())
+                        ),
+                        FormatArg::Sarif | FormatArg::Junit => {
+                            eprintln!("error: `merge` writes `human` or `json`");
+                            return ExitCode::from(2);
+                        }
+                    };
+                    finish(&text, output, code)
+                }
+            }
+        }
         Command::Replay {
             report: path,
             finding,
@@ -365,6 +456,18 @@ fn main() -> ExitCode {
             }
         },
     }
+}
+
+/// Parses `K/N` with `1 <= K <= N`.
+fn parse_shard(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("expected K/N with 1 <= K <= N (e.g. 1/4), found `{s}`");
+    let (k, n) = s.split_once('/').ok_or_else(bad)?;
+    let k: u32 = k.trim().parse().map_err(|_| bad())?;
+    let n: u32 = n.trim().parse().map_err(|_| bad())?;
+    if k == 0 || k > n {
+        return Err(bad());
+    }
+    Ok((k, n))
 }
 
 /// A spinner on stderr with states, depth and states/s, shown once a run passes a second

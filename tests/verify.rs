@@ -2,38 +2,10 @@
 //! counterexamples that replay, the kitchen passes, the paper's gap is found, and the
 //! exploration counts equal counts derived by hand.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 mod common;
-use common::bdi_check;
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bdi-check-verify-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Runs `verify --format json` on a project; returns the exit code, the report, and where
-/// the report was written.
-fn verify_json(project: &str, tag: &str) -> (i32, serde_json::Value, PathBuf) {
-    let file = temp_dir(tag).join("report.json");
-    let o = bdi_check(&[
-        "verify",
-        project,
-        "--format",
-        "json",
-        "-o",
-        file.to_str().unwrap(),
-    ]);
-    let text = std::fs::read_to_string(&file)
-        .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
-    (
-        o.status.code().unwrap(),
-        serde_json::from_str(&text).unwrap(),
-        file,
-    )
-}
+use common::{bdi_check, steps, temp_dir, verify_json};
 
 fn failing<'a>(report: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json::Value> {
     report["findings"]
@@ -41,21 +13,6 @@ fn failing<'a>(report: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json
         .unwrap()
         .iter()
         .filter(|f| f["check"] == check && f["status"] == "fail")
-        .collect()
-}
-
-fn texts(f: &serde_json::Value) -> Vec<String> {
-    f["counterexample"]["steps"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|s| {
-            format!(
-                "{} {}",
-                s["kind"].as_str().unwrap(),
-                s["text"].as_str().unwrap()
-            )
-        })
         .collect()
 }
 
@@ -110,7 +67,7 @@ fn the_kitchen_passes_with_a_complete_search() {
         .iter()
         .find(|f| f["id"] == "property:robot_puts_both_cups_away")
         .unwrap();
-    assert!(texts(witness)
+    assert!(steps(witness)
         .iter()
         .any(|t| t == "action navigateTo(cupboard)"));
 }
@@ -133,7 +90,7 @@ fn the_papers_gap_is_a_goal_failure_that_replays() {
         .collect();
     assert!(initial.contains(&"dishwasherDoor(open)"), "{initial:?}");
     assert_eq!(c["requests"], serde_json::json!(["storeCup(cup1)"]));
-    let steps = texts(f);
+    let steps = steps(f);
     assert_eq!(steps[0], "request !storeCup(cup1)");
     assert!(steps.iter().any(|s| s == "event +!openDishwasherIfNeed"));
     assert!(steps
@@ -151,16 +108,30 @@ fn fixing_the_paper_makes_replay_pass() {
         std::fs::copy(Path::new("specs/paper").join(name), dir.join(name)).unwrap();
     }
     let project = dir.to_str().unwrap().to_string();
-    let (code, _, file) = verify_json(&project, "paper-fixed-report");
+    let (code, r, file) = verify_json(&project, "paper-fixed-report");
     assert_eq!(code, 1);
     assert_eq!(replay_code(&file, None), 1);
+    let gap = failing(&r, "goal-failure")[0]["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert_eq!(replay_code(&file, Some(&gap)), 1);
     // The fix: a plan for the open door.
     let mut asl = std::fs::read_to_string(dir.join("paper.asl")).unwrap();
     asl.push_str("\n+!openDishwasherIfNeed : dishwasherDoor(open).\n");
     std::fs::write(dir.join("paper.asl"), asl).unwrap();
-    assert_eq!(replay_code(&file, None), 0);
+    assert_eq!(replay_code(&file, Some(&gap)), 0);
+    // What is left is the paper's Algorithm 1 at adoption, which the fix does not change.
     let (code, r, _) = verify_json(&project, "paper-fixed-after");
-    assert_eq!(code, 0, "{r:#}");
+    assert_eq!(code, 1, "{r:#}");
+    let left: Vec<&str> = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["status"] == "fail" && f["severity"] == "error")
+        .map(|f| f["check"].as_str().unwrap())
+        .collect();
+    assert_eq!(left, ["demand-adoption"], "{r:#}");
 }
 
 /// (project, check that must fail, file:line it must point at (or "" for the manifest))
@@ -228,7 +199,7 @@ fn liveness_counterexamples_are_lassos() {
     let f = failing(&r, "livelock")[0];
     let c = &f["counterexample"];
     let start = c["loop_start"].as_u64().expect("a loop start") as usize;
-    let steps = texts(f);
+    let steps = steps(f);
     assert!(start < steps.len());
     // The loop walks to the dishwasher and back, forever.
     let looped = &steps[start..];
@@ -254,7 +225,7 @@ fn a_handled_failure_is_not_a_goal_failure_but_its_coverage_gap_is_reached() {
         .collect();
     assert_eq!(gap.len(), 1, "{r:#}");
     assert_eq!(gap[0]["location"]["line"], 4);
-    assert!(texts(gap[0]).iter().any(|s| s == "event +!open"));
+    assert!(steps(gap[0]).iter().any(|s| s == "event +!open"));
     assert_eq!(code, 1);
 }
 
@@ -339,14 +310,20 @@ fn scenarios_are_written_one_per_counterexample() {
         .map(|e| e.unwrap().path())
         .collect();
     files.sort();
-    // The reached coverage gap and the goal failure; unreached warnings get none.
-    assert_eq!(files.len(), 2, "{files:?}");
+    // The reached coverage gap, the goal failure and the owner's demand-adoption run;
+    // unreached warnings get none.
+    assert_eq!(files.len(), 3, "{files:?}");
     for file in &files {
         let mut map = bdi_check::syntax::SourceMap::new();
         let sc =
             bdi_check::syntax::manifest::load_scenario(file, &mut map).expect("a valid scenario");
         assert_eq!(sc.requests.len(), 1);
-        assert!(sc.initial.iter().any(|f| f.text == "dishwasherDoor(open)"));
+        let door = if file.to_string_lossy().contains("demand-adoption") {
+            "dishwasherDoor(closed)"
+        } else {
+            "dishwasherDoor(open)"
+        };
+        assert!(sc.initial.iter().any(|f| f.text == door), "{file:?}");
     }
 }
 
@@ -414,7 +391,7 @@ fn concurrent_requests_interleave_and_interfere_in_the_kitchen() {
     // Each counterexample needs two requests in flight at once (with one at a time, the
     // kitchen passes: see `the_kitchen_passes_with_a_complete_search`).
     for f in &failures {
-        let steps = texts(f);
+        let steps = steps(f);
         let requests = steps.iter().filter(|s| s.starts_with("request ")).count();
         assert_eq!(requests, 2, "{steps:#?}");
         assert!(steps.last().unwrap().contains(" fails: "), "{steps:#?}");

@@ -1,14 +1,24 @@
 //! Breadth-first exploration of every reachable state, with parent links so that the path
 //! to any state is a shortest one.
 //!
-//! States are identified by a 64-bit fingerprint (std's SipHash with fixed keys, so the same
-//! on every run). Two distinct states with one fingerprint would be merged; with `n` states
-//! the probability of that is about `n² / 2⁶⁵`, printed with the statistics.
+//! The search is level-synchronous: the states of one depth (the frontier) are expanded in
+//! chunks, each chunk split between `threads` worker threads, and the successors are then
+//! merged into the [`Store`] one by one in frontier order and successor order. The merge
+//! alone decides the numbering, so the graph, the first transition seen for each check,
+//! and therefore every verdict and counterexample, are the same for any number of threads.
+//!
+//! States are identified by a 64-bit fingerprint ([`Model::fingerprint`]: std's SipHash
+//! with fixed keys, of the state or of its canonical member under symmetry). Two distinct
+//! states with one fingerprint would be merged; with `n` states the probability of that is
+//! about `n² / 2⁶⁵`, printed with the statistics. Only fingerprints, parent links and (when
+//! asked) edges are kept, never whole states beyond the frontier: [`Graph::state`] and
+//! [`Walk`] rebuild them by replaying transitions.
 
 use super::model::Model;
+use super::store::{OutOfMemory, Store};
 use crate::semantics::State;
-use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
+use std::marker::PhantomData;
 use std::time::Instant;
 
 /// A state's fingerprint.
@@ -27,28 +37,8 @@ pub enum Bound {
     Depth,
     /// `--timeout` reached.
     Time,
-}
-
-/// The explored graph of a model (by default, the agent's).
-pub struct Graph<S = State> {
-    /// Every reached state, in BFS order.
-    pub states: Vec<S>,
-    /// For each state: its BFS parent and the index of the transition taken (none for
-    /// initial states).
-    pub parent: Vec<Option<(u32, u32)>>,
-    /// For each state: its depth.
-    pub depth: Vec<u32>,
-    /// For each expanded state: the targets of its transitions, in order (`None` when the
-    /// state was not expanded, or not fully, because a bound was hit).
-    pub edges: Vec<Option<Vec<u32>>>,
-    /// How many states are initial (the first ones).
-    pub initial: usize,
-    /// Transitions taken.
-    pub transitions: usize,
-    /// The bound that stopped the search, if any.
-    pub bound: Option<Bound>,
-    /// Seconds spent.
-    pub seconds: f64,
+    /// The memory bound reached (or memory ran out).
+    Memory,
 }
 
 /// Limits of one search.
@@ -62,95 +52,433 @@ pub struct Limits {
     pub timeout: Option<f64>,
 }
 
-/// Explores a model from every initial state, breadth first. `on_transition` sees every
-/// transition (source index, its position among the source's transitions, its label) as it
-/// is generated, so checks need not regenerate them.
+/// How to search, beyond the limits.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Worker threads (at least 1).
+    pub threads: usize,
+    /// Keep every state's successors (liveness checks need them).
+    pub keep_edges: bool,
+    /// Stop, as incomplete, once the process holds this many bytes (resident).
+    pub max_memory: Option<u64>,
+    /// `(k, n)`: explore from the `k`-th of `n` parts of the initial states only (1-based).
+    pub shard: Option<(u32, u32)>,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            threads: 1,
+            keep_edges: true,
+            max_memory: None,
+            shard: None,
+        }
+    }
+}
+
+/// The successors of the expanded states, as adjacency lists in one array.
+#[derive(Default)]
+struct Edges {
+    /// `start[i]..start[i + 1]` indexes `to` for state `i`.
+    start: Vec<u64>,
+    to: Vec<u32>,
+    /// Bit `i`: state `i` was expanded completely.
+    expanded: Vec<u64>,
+}
+
+/// The explored graph of a model (by default, the agent's).
+pub struct Graph<S = State> {
+    store: Store,
+    /// `levels[d]`: the number of the first state at depth `d` (numbers follow depth).
+    levels: Vec<u32>,
+    edges: Option<Edges>,
+    /// How many states are initial (the first ones).
+    pub initial: usize,
+    /// How many of the model's initial states this search covers: under symmetry one
+    /// stored initial state stands for several.
+    pub initial_covered: usize,
+    /// Transitions taken.
+    pub transitions: usize,
+    /// The bound that stopped the search, if any.
+    pub bound: Option<Bound>,
+    /// Seconds spent.
+    pub seconds: f64,
+    /// Peak resident memory of the process during the search, in bytes (0 if unknown).
+    pub peak_memory: u64,
+    state: PhantomData<fn() -> S>,
+}
+
+/// What expanding one frontier state produced (in a worker thread).
+struct Expanded<T, L, S> {
+    summary: T,
+    /// `None` when the state was not expanded (depth bound).
+    successors: Option<Vec<(L, S, u64)>>,
+}
+
+/// States expanded per chunk: enough to keep every thread busy, few enough that the
+/// successors of one chunk take little memory.
+const CHUNK: usize = 4096;
+
+/// Explores a model from every initial state, breadth first, on one thread, keeping the
+/// edges. `on_transition` sees every transition (source index, its position among the
+/// source's transitions, its label) in a fixed order, so checks need not regenerate them.
 pub fn explore<M: Model>(
     model: &M,
     limits: Limits,
     mut on_transition: impl FnMut(u32, u32, &M::Label),
+    progress: impl FnMut(usize, u32, f64),
+) -> Graph<M::State> {
+    search(
+        model,
+        limits,
+        &Options::default(),
+        |chunk, expand| {
+            chunk
+                .iter()
+                .map(|(_, s)| expand_one(model, s, expand, &|_| ()))
+                .collect()
+        },
+        |_, ()| {},
+        |src, k, label, _| on_transition(src, k, label),
+        progress,
+    )
+}
+
+/// Explores a model with `opts.threads` threads. `summarize` runs on every stored state
+/// (in a worker thread); `on_state` then receives its summary, in state number order;
+/// `on_transition` sees every transition with the fingerprint of its target, in a fixed
+/// order.
+pub fn explore_with<M, T>(
+    model: &M,
+    limits: Limits,
+    opts: &Options,
+    summarize: impl Fn(&M::State) -> T + Sync,
+    on_state: impl FnMut(u32, T),
+    on_transition: impl FnMut(u32, u32, &M::Label, u64),
+    progress: impl FnMut(usize, u32, f64),
+) -> Graph<M::State>
+where
+    M: Model + Sync,
+    M::State: Send + Sync,
+    M::Label: Send,
+    T: Send,
+{
+    let threads = opts.threads.max(1);
+    search(
+        model,
+        limits,
+        opts,
+        |chunk, expand| {
+            if threads == 1 || chunk.len() < 2 * threads {
+                return chunk
+                    .iter()
+                    .map(|(_, s)| expand_one(model, s, expand, &summarize))
+                    .collect();
+            }
+            // Contiguous parts, joined in order: the result does not depend on `threads`.
+            let part = chunk.len().div_ceil(threads);
+            std::thread::scope(|scope| {
+                let handles: Vec<_> = chunk
+                    .chunks(part)
+                    .map(|p| {
+                        let summarize = &summarize;
+                        scope.spawn(move || {
+                            p.iter()
+                                .map(|(_, s)| expand_one(model, s, expand, summarize))
+                                .collect::<Vec<_>>()
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                    .collect()
+            })
+        },
+        on_state,
+        on_transition,
+        progress,
+    )
+}
+
+fn expand_one<M: Model, T>(
+    model: &M,
+    s: &M::State,
+    expand: bool,
+    summarize: &impl Fn(&M::State) -> T,
+) -> Expanded<T, M::Label, M::State> {
+    Expanded {
+        summary: summarize(s),
+        successors: expand.then(|| {
+            model
+                .next_states(s)
+                .into_iter()
+                .map(|(l, t)| {
+                    let fp = model.fingerprint(&t);
+                    (l, t, fp)
+                })
+                .collect()
+        }),
+    }
+}
+
+/// The process's resident memory, in bytes (`VmRSS`), where `/proc` tells it.
+pub fn resident_memory() -> Option<u64> {
+    proc_status_kb("VmRSS:").map(|kb| kb * 1024)
+}
+
+/// The process's peak resident memory so far, in bytes (`VmHWM`).
+pub fn peak_memory() -> Option<u64> {
+    proc_status_kb("VmHWM:").map(|kb| kb * 1024)
+}
+
+fn proc_status_kb(key: &str) -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with(key))?;
+    line[key.len()..]
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse()
+        .ok()
+}
+
+/// The default memory bound: nine tenths of what the process holds now plus what the
+/// machine (or its cgroup) has available.
+pub fn default_max_memory() -> Option<u64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let available: u64 = meminfo
+        .lines()
+        .find(|l| l.starts_with("MemAvailable:"))?
+        .trim_start_matches("MemAvailable:")
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse::<u64>()
+        .ok()?
+        * 1024;
+    let now = resident_memory().unwrap_or(0);
+    let mut limit = (now + available) / 10 * 9;
+    if let Some(cg) = std::fs::read_to_string("/sys/fs/cgroup/memory.max")
+        .ok()
+        .and_then(|s| s.trim().parse::<u64>().ok())
+    {
+        limit = limit.min(cg / 10 * 9);
+    }
+    Some(limit)
+}
+
+/// The level-synchronous search; `expand_chunk` maps frontier states to their summaries
+/// and (when the flag says so) successors, in order.
+#[allow(clippy::too_many_arguments)]
+fn search<M: Model, T>(
+    model: &M,
+    limits: Limits,
+    opts: &Options,
+    mut expand_chunk: impl FnMut(&[(u32, M::State)], bool) -> Vec<Expanded<T, M::Label, M::State>>,
+    mut on_state: impl FnMut(u32, T),
+    mut on_transition: impl FnMut(u32, u32, &M::Label, u64),
     mut progress: impl FnMut(usize, u32, f64),
 ) -> Graph<M::State> {
     let start = Instant::now();
-    let mut index: HashMap<u64, u32> = HashMap::new();
     let mut g = Graph {
-        states: Vec::new(),
-        parent: Vec::new(),
-        depth: Vec::new(),
-        edges: Vec::new(),
+        store: Store::new(),
+        levels: vec![0],
+        edges: opts.keep_edges.then(Edges::default),
         initial: 0,
+        initial_covered: 0,
         transitions: 0,
         bound: None,
         seconds: 0.0,
+        peak_memory: 0,
+        state: PhantomData,
     };
+    let mut frontier: Vec<(u32, M::State)> = Vec::new();
+    // Canonical fingerprint -> whether this shard explores it.
+    let mut seen: std::collections::HashMap<u64, bool> = std::collections::HashMap::new();
     for s in model.init_states() {
-        let fp = fingerprint(&s);
-        if let std::collections::hash_map::Entry::Vacant(e) = index.entry(fp) {
-            e.insert(g.states.len() as u32);
-            g.states.push(s);
-            g.parent.push(None);
-            g.depth.push(0);
-            g.edges.push(None);
-        }
-    }
-    g.initial = g.states.len();
-    let mut next = 0usize;
-    while next < g.states.len() {
-        if next.is_multiple_of(4096) {
-            let elapsed = start.elapsed().as_secs_f64();
-            progress(g.states.len(), g.depth[next], elapsed);
-            if limits.timeout.is_some_and(|t| elapsed > t) {
-                g.bound = Some(Bound::Time);
-                break;
-            }
-        }
-        let d = g.depth[next];
-        if u64::from(d) >= limits.max_depth {
-            g.bound.get_or_insert(Bound::Depth);
-            next += 1;
+        let fp = model.fingerprint(&s);
+        let nth = seen.len() as u32;
+        // Shards split the distinct initial states round-robin.
+        let mine = *seen.entry(fp).or_insert_with(|| {
+            opts.shard
+                .is_none_or(|(k, n)| nth % n.max(1) == k.saturating_sub(1))
+        });
+        if !mine || g.bound.is_some() {
             continue;
         }
-        let succ = model.next_states(&g.states[next]);
-        let mut targets = Vec::with_capacity(succ.len());
-        let mut cut = false;
-        for (k, (label, target_state)) in succ.into_iter().enumerate() {
-            on_transition(next as u32, k as u32, &label);
-            g.transitions += 1;
-            let fp = fingerprint(&target_state);
-            let target = match index.get(&fp) {
-                Some(&i) => i,
-                None => {
-                    if g.states.len() as u64 >= limits.max_states {
-                        g.bound = Some(Bound::States);
-                        cut = true;
-                        continue;
-                    }
-                    let i = g.states.len() as u32;
-                    index.insert(fp, i);
-                    g.states.push(target_state);
-                    g.parent.push(Some((next as u32, k as u32)));
-                    g.depth.push(d + 1);
-                    g.edges.push(None);
-                    i
-                }
-            };
-            targets.push(target);
+        g.initial_covered += 1;
+        if g.store.find(fp).is_some() {
+            continue;
         }
-        // A state some of whose successors were cut off counts as not expanded: it must
-        // not look like a state with no successors (a deadlock) or a finished run.
-        g.edges[next] = (!cut).then_some(targets);
-        next += 1;
+        if g.store.len() as u64 >= limits.max_states {
+            g.bound = Some(Bound::States);
+            continue;
+        }
+        match g.store.insert(fp, None) {
+            Ok((i, true)) => frontier.push((i, s)),
+            Ok(_) => {}
+            Err(OutOfMemory) => g.bound = Some(Bound::Memory),
+        }
+    }
+    g.initial = g.store.len();
+    let mut depth = 0u32;
+    let mut stopped = false;
+    while let Some(&(first, _)) = frontier.first() {
+        if depth > 0 {
+            g.levels.push(first);
+        }
+        let expand = u64::from(depth) < limits.max_depth;
+        if !expand && !stopped {
+            g.bound.get_or_insert(Bound::Depth);
+        }
+        let mut next: Vec<(u32, M::State)> = Vec::new();
+        let mut at = 0;
+        while at < frontier.len() {
+            let elapsed = start.elapsed().as_secs_f64();
+            progress(g.store.len(), depth, elapsed);
+            if !stopped && limits.timeout.is_some_and(|t| elapsed > t) {
+                g.bound = Some(Bound::Time);
+                stopped = true;
+            }
+            if !stopped {
+                if let Some(rss) = resident_memory() {
+                    g.peak_memory = g.peak_memory.max(rss);
+                    if opts.max_memory.is_some_and(|m| rss > m) {
+                        g.bound = Some(Bound::Memory);
+                        stopped = true;
+                    }
+                }
+            }
+            let end = (at + CHUNK).min(frontier.len());
+            let chunk = &frontier[at..end];
+            let results = expand_chunk(chunk, expand && !stopped);
+            for ((src, _), r) in chunk.iter().zip(results) {
+                on_state(*src, r.summary);
+                let edge_start = g.edges.as_ref().map_or(0, |e| e.to.len());
+                let Some(succ) = r.successors else {
+                    g.mark(*src, edge_start, false);
+                    continue;
+                };
+                let mut cut = false;
+                for (k, (label, t, fp)) in succ.into_iter().enumerate() {
+                    on_transition(*src, k as u32, &label, fp);
+                    g.transitions += 1;
+                    let target = match g.store.find(fp) {
+                        Some(i) => i,
+                        None if stopped => {
+                            cut = true;
+                            continue;
+                        }
+                        None if g.store.len() as u64 >= limits.max_states => {
+                            g.bound = Some(Bound::States);
+                            cut = true;
+                            continue;
+                        }
+                        None => match g.store.insert(fp, Some(*src)) {
+                            Ok((i, _)) => {
+                                next.push((i, t));
+                                i
+                            }
+                            Err(OutOfMemory) => {
+                                g.bound = Some(Bound::Memory);
+                                stopped = true;
+                                cut = true;
+                                continue;
+                            }
+                        },
+                    };
+                    if let Some(e) = &mut g.edges {
+                        if e.to.try_reserve(1).is_err() {
+                            g.bound = Some(Bound::Memory);
+                            stopped = true;
+                            cut = true;
+                            continue;
+                        }
+                        e.to.push(target);
+                    }
+                }
+                // A state some of whose successors were cut off counts as not expanded: it
+                // must not look like a state with no successors (a deadlock) or a finished
+                // run.
+                g.mark(*src, edge_start, !cut);
+            }
+            at = end;
+        }
+        frontier = next;
+        depth += 1;
+    }
+    if let Some(e) = &mut g.edges {
+        e.start.push(e.to.len() as u64);
     }
     g.seconds = start.elapsed().as_secs_f64();
+    if let Some(p) = peak_memory() {
+        g.peak_memory = g.peak_memory.max(p);
+    }
     g
 }
 
 impl<S> Graph<S> {
+    /// Records state `i`'s edges (from `edge_start` on) as complete or not. States are
+    /// recorded in number order.
+    fn mark(&mut self, i: u32, edge_start: usize, complete: bool) {
+        let Some(e) = &mut self.edges else { return };
+        debug_assert_eq!(e.start.len(), i as usize);
+        if !complete {
+            e.to.truncate(edge_start);
+        }
+        e.start.push(edge_start as u64);
+        let (w, b) = (i as usize / 64, i % 64);
+        if e.expanded.len() <= w {
+            e.expanded.resize(w + 1, 0);
+        }
+        if complete {
+            e.expanded[w] |= 1 << b;
+        }
+    }
+
+    /// Number of states reached.
+    pub fn len(&self) -> usize {
+        self.store.len()
+    }
+
+    /// Whether no state was reached.
+    pub fn is_empty(&self) -> bool {
+        self.store.is_empty()
+    }
+
+    /// The fingerprint of state `i`.
+    pub fn fingerprint(&self, i: u32) -> u64 {
+        self.store.fingerprint(i)
+    }
+
+    /// The state `i` was first reached from.
+    pub fn parent(&self, i: u32) -> Option<u32> {
+        self.store.parent(i)
+    }
+
+    /// The depth of state `i` (the length of a shortest run to it).
+    pub fn depth(&self, i: u32) -> u32 {
+        (self.levels.partition_point(|&start| start <= i) - 1) as u32
+    }
+
+    /// The successors of state `i`, in transition order (duplicates and all), or `None`
+    /// when it was not expanded completely (or edges were not kept).
+    pub fn successors(&self, i: u32) -> Option<&[u32]> {
+        let e = self.edges.as_ref()?;
+        let (w, b) = (i as usize / 64, i % 64);
+        if e.expanded.get(w).is_none_or(|x| x >> b & 1 == 0) {
+            return None;
+        }
+        let (a, z) = (e.start[i as usize], e.start[i as usize + 1]);
+        Some(&e.to[a as usize..z as usize])
+    }
+
     /// The shortest path from an initial state to `target`: state indices, initial first.
     pub fn path_to(&self, target: u32) -> Vec<u32> {
         let mut path = vec![target];
         let mut at = target;
-        while let Some((p, _)) = self.parent[at as usize] {
+        while let Some(p) = self.store.parent(at) {
             path.push(p);
             at = p;
         }
@@ -160,12 +488,93 @@ impl<S> Graph<S> {
 
     /// The deepest depth reached.
     pub fn max_depth(&self) -> u32 {
-        self.depth.iter().copied().max().unwrap_or(0)
+        self.levels.len().saturating_sub(1) as u32
     }
 
     /// Whether every reachable state was expanded.
     pub fn complete(&self) -> bool {
         self.bound.is_none()
+    }
+
+    /// Bytes held by the visited-state store.
+    pub fn store_bytes(&self) -> usize {
+        self.store.bytes()
+    }
+
+    /// Bytes held by the edges (zero when not kept).
+    pub fn edge_bytes(&self) -> usize {
+        self.edges.as_ref().map_or(0, |e| {
+            e.start.capacity() * 8 + e.to.capacity() * 4 + e.expanded.capacity() * 8
+        })
+    }
+
+    /// State `i`, rebuilt by replaying the run to it (a member of its class under
+    /// symmetry, the one that run reaches).
+    pub fn state<M: Model<State = S>>(&self, model: &M, i: u32) -> Option<S> {
+        let path = self.path_to(i);
+        let mut w = Walk::start(model, self, path[0])?;
+        for &j in &path[1..] {
+            w.step_to(j)?;
+        }
+        Some(w.state)
+    }
+}
+
+/// A concrete run through the graph, rebuilt by replaying: at each step, the first
+/// successor of the current state whose fingerprint is the next state's.
+pub struct Walk<'a, M: Model> {
+    model: &'a M,
+    graph: &'a Graph<M::State>,
+    /// The state the run is in.
+    pub state: M::State,
+}
+
+impl<'a, M: Model> Walk<'a, M> {
+    /// A run starting in the initial state numbered `i`.
+    pub fn start(model: &'a M, graph: &'a Graph<M::State>, i: u32) -> Option<Walk<'a, M>> {
+        let want = graph.fingerprint(i);
+        let state = model
+            .init_states()
+            .into_iter()
+            .find(|s| model.fingerprint(s) == want)?;
+        Some(Walk {
+            model,
+            graph,
+            state,
+        })
+    }
+
+    /// Takes a transition to state `j`, returning its label.
+    pub fn step_to(&mut self, j: u32) -> Option<M::Label> {
+        let want = self.graph.fingerprint(j);
+        let (label, next) = self
+            .model
+            .next_states(&self.state)
+            .into_iter()
+            .find(|(_, t)| self.model.fingerprint(t) == want)?;
+        self.state = next;
+        Some(label)
+    }
+
+    /// Takes the transition whose target has fingerprint `fp` and whose label satisfies
+    /// `want` (the `k`-th transition first, as exploration numbered them), returning its
+    /// label.
+    pub fn step_by(
+        &mut self,
+        k: u32,
+        fp: u64,
+        want: impl Fn(&M::Label) -> bool,
+    ) -> Option<M::Label> {
+        let mut succ = self.model.next_states(&self.state);
+        let fits = |(l, t): &(M::Label, M::State)| self.model.fingerprint(t) == fp && want(l);
+        let pos = if succ.get(k as usize).is_some_and(&fits) {
+            k as usize
+        } else {
+            succ.iter().position(fits)?
+        };
+        let (label, next) = succ.swap_remove(pos);
+        self.state = next;
+        Some(label)
     }
 }
 
@@ -199,20 +608,46 @@ mod tests {
     #[test]
     fn any_model_is_explored_breadth_first_with_shortest_paths() {
         let mut labels = 0;
-        let g = explore(
-            &Counter(10),
-            unbounded(),
-            |_, _, _| labels += 1,
-            |_, _, _| {},
-        );
+        let m = Counter(10);
+        let g = explore(&m, unbounded(), |_, _, _| labels += 1, |_, _, _| {});
         assert!(g.complete());
-        assert_eq!(g.states.len(), 10);
+        assert_eq!(g.len(), 10);
         assert_eq!((g.transitions, labels), (20, 20));
-        for (i, s) in g.states.iter().enumerate() {
-            let path = g.path_to(i as u32);
+        for i in 0..10u32 {
+            let s = g.state(&m, i).expect("replays");
+            let path = g.path_to(i);
             assert_eq!(path.len() - 1, s.div_ceil(2) as usize, "state {s}");
-            assert_eq!(g.depth[i] as usize, path.len() - 1);
+            assert_eq!(g.depth(i) as usize, path.len() - 1);
+            assert_eq!(g.successors(i).map(|e| e.len()), Some(2));
         }
+    }
+
+    #[test]
+    fn threads_do_not_change_the_graph() {
+        let m = Counter(50_000);
+        let run = |threads| {
+            let opts = Options {
+                threads,
+                ..Options::default()
+            };
+            let mut seen = Vec::new();
+            let g = explore_with(
+                &m,
+                unbounded(),
+                &opts,
+                |s| *s,
+                |i, s| seen.push((i, s)),
+                |_, _, _, _| {},
+                |_, _, _| {},
+            );
+            let fps: Vec<u64> = (0..g.len() as u32).map(|i| g.fingerprint(i)).collect();
+            let parents: Vec<Option<u32>> = (0..g.len() as u32).map(|i| g.parent(i)).collect();
+            (fps, parents, seen)
+        };
+        let one = run(1);
+        assert_eq!(one.0.len(), 50_000);
+        assert_eq!(one, run(2));
+        assert_eq!(one, run(3));
     }
 
     #[test]
@@ -222,16 +657,33 @@ mod tests {
             ..unbounded()
         };
         let g = explore(&Counter(10), limits, |_, _, _| {}, |_, _, _| {});
-        assert_eq!(g.states.len(), 4);
+        assert_eq!(g.len(), 4);
         assert_eq!(g.bound, Some(Bound::States));
         // A state whose successors were cut off is not taken as expanded.
-        assert!(g.edges.iter().any(|e| e.is_none()));
+        assert!((0..4).any(|i| g.successors(i).is_none()));
         let limits = Limits {
             max_depth: 1,
             ..unbounded()
         };
         let g = explore(&Counter(10), limits, |_, _, _| {}, |_, _, _| {});
-        assert_eq!(g.states.len(), 3);
+        assert_eq!(g.len(), 3);
         assert_eq!(g.bound, Some(Bound::Depth));
+        let opts = Options {
+            max_memory: Some(1),
+            ..Options::default()
+        };
+        let g = explore_with(
+            &Counter(10),
+            unbounded(),
+            &opts,
+            |_| (),
+            |_, ()| {},
+            |_, _, _, _| {},
+            |_, _, _| {},
+        );
+        if resident_memory().is_some() {
+            assert_eq!(g.bound, Some(Bound::Memory));
+            assert!(!g.complete());
+        }
     }
 }

@@ -3,14 +3,20 @@
 //! `livelock`, `request-not-completed`.
 //!
 //! Safety violations come with the shortest run that reaches them (breadth-first parent
-//! links). Liveness violations come as a lasso: the shortest run to a loop, then the loop,
-//! found on the strongly connected components of the explored graph (petgraph's
-//! `kosaraju_scc`, which is iterative, so deep graphs do not overflow the stack). The
-//! scheduling of intentions is round-robin, which is fair, so every loop of the graph is a
-//! run the agent can really take.
+//! links). State checks run as each state is found (in the exploring threads), since no
+//! state is kept; the search keeps, per state, only what the liveness checks need: its
+//! successors, the requests pending in it and, per `eventually` property, one bit.
+//! Liveness violations come as a lasso: the shortest run to a loop, then the loop, found on
+//! the strongly connected components of the explored graph (an iterative Tarjan over the
+//! compact adjacency arrays, so deep graphs do not overflow the stack). The scheduling of
+//! intentions is round-robin, which is fair, so every loop of the graph is a run the agent
+//! can really take.
 
+pub mod explanation;
 pub mod explore;
 pub mod model;
+pub mod store;
+pub mod symmetry;
 pub mod trace;
 
 use crate::model::cond::Cond;
@@ -19,9 +25,9 @@ use crate::model::project::Project;
 use crate::report::{Counterexample, Finding, Stats, Status};
 use crate::semantics::{Note, Semantics, State};
 use crate::syntax::{Diagnostic, Severity, Span};
-use explore::{explore, Bound, Graph, Limits};
-use petgraph::graphmap::DiGraphMap;
-use std::collections::{BTreeMap, HashSet, VecDeque};
+use explore::{explore_with, Bound, Graph, Limits, Options};
+use model::Agent;
+use std::collections::{BTreeMap, HashMap, VecDeque};
 
 /// What `verify` found.
 pub struct Verification {
@@ -31,6 +37,37 @@ pub struct Verification {
     pub stats: Stats,
     /// The bound that stopped the search, if any.
     pub bound: Option<Bound>,
+    /// Bytes held by the visited-state store and by the edges at the end of the search.
+    pub memory: (usize, usize),
+    /// Peak resident memory of the process, in bytes (0 if unknown).
+    pub peak_memory: u64,
+    /// The symmetric types (and how many objects each has) when symmetry reduction was on.
+    pub symmetric_types: Vec<(String, usize)>,
+}
+
+/// How `verify` searches.
+#[derive(Clone, Copy, Debug)]
+pub struct VerifyOptions {
+    /// Worker threads.
+    pub threads: usize,
+    /// Symmetry reduction over the manifest's `[bounds] symmetry` types.
+    pub symmetry: bool,
+    /// `(k, n)`: verify from the `k`-th of `n` parts of the initial states (1-based).
+    pub shard: Option<(u32, u32)>,
+    /// Stop, as incomplete, once the process holds this many bytes.
+    pub max_memory: Option<u64>,
+}
+
+impl Default for VerifyOptions {
+    /// All cores, symmetry as the manifest says, no shard, no memory bound.
+    fn default() -> VerifyOptions {
+        VerifyOptions {
+            threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            symmetry: true,
+            shard: None,
+            max_memory: None,
+        }
+    }
 }
 
 /// A compiled state property.
@@ -41,13 +78,107 @@ struct Prop {
     span: Span,
 }
 
+/// What the search records about one state, computed where the state is found.
+struct Summary {
+    /// Bit `j`: condition `j` of [`Conditions`] holds.
+    holds: smallvec::SmallVec<[u64; 2]>,
+    pending: u64,
+    idle: bool,
+}
+
+/// The state conditions evaluated on every state, in one numbering: invariants, then
+/// properties, then the plan pairs whose overlap lint asks about.
+struct Conditions<'a> {
+    invariants: Vec<&'a Cond>,
+    props: Vec<&'a Cond>,
+    overlaps: Vec<(u32, u32)>,
+}
+
+impl Conditions<'_> {
+    fn len(&self) -> usize {
+        self.invariants.len() + self.props.len() + self.overlaps.len()
+    }
+
+    fn summarize(&self, sem: &Semantics, s: &State) -> Summary {
+        let mut holds = smallvec::SmallVec::from_elem(0u64, self.len().div_ceil(64).max(1));
+        let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
+        let conds = self.invariants.iter().chain(&self.props);
+        for (j, c) in conds.enumerate() {
+            if c.eval(&s.beliefs) {
+                set(j);
+            }
+        }
+        if !self.overlaps.is_empty() {
+            if let Some(ev) = s.events.first() {
+                let applicable = sem.applicable(s, &ev.trigger, false);
+                let base = self.invariants.len() + self.props.len();
+                for (k, (a, b)) in self.overlaps.iter().enumerate() {
+                    if applicable.iter().any(|(p, _)| p == a)
+                        && applicable.iter().any(|(p, _)| p == b)
+                    {
+                        set(base + k);
+                    }
+                }
+            }
+        }
+        Summary {
+            holds,
+            pending: s.pending_requests(),
+            idle: s.is_idle(),
+        }
+    }
+}
+
+/// Per-state facts kept for the checks after the search.
+#[derive(Default)]
+struct Facts {
+    /// For each condition: the first state where it holds and the first where it does not.
+    first_holds: Vec<Option<u32>>,
+    first_fails: Vec<Option<u32>>,
+    /// Bit per state: idle.
+    idle: Vec<u64>,
+    /// Per state: an index into `masks` (the requests pending there).
+    pending: Vec<u32>,
+    masks: Vec<u64>,
+    mask_ids: HashMap<u64, u32>,
+    /// Per `eventually` property: bit per state, set when the property does not hold.
+    bad: Vec<Vec<u64>>,
+}
+
+fn bit(v: &[u64], i: u32) -> bool {
+    v.get(i as usize / 64)
+        .is_some_and(|w| w >> (i % 64) & 1 == 1)
+}
+
+fn set_bit(v: &mut Vec<u64>, i: u32, value: bool) {
+    let w = i as usize / 64;
+    if v.len() <= w {
+        v.resize(w + 1, 0);
+    }
+    if value {
+        v[w] |= 1 << (i % 64);
+    }
+}
+
+/// Explores the project's state space and runs every dynamic check, with the default
+/// [`VerifyOptions`].
+pub fn verify(
+    project: &Project,
+    limits: Limits,
+    progress: impl FnMut(usize, u32, f64),
+    lint: &[Finding],
+) -> Result<Verification, Vec<Diagnostic>> {
+    verify_with(project, limits, &VerifyOptions::default(), progress, lint)
+}
+
 /// Explores the project's state space and runs every dynamic check. The static findings
 /// in `lint` are settled against the explored states as SPEC §3 says: a warning that some
 /// run reaches becomes an error with that run; one no run reaches becomes a note (when the
 /// search was complete); every other finding is kept as it is.
-pub fn verify(
+pub fn verify_with(
     project: &Project,
     limits: Limits,
+    opts: &VerifyOptions,
     progress: impl FnMut(usize, u32, f64),
     lint: &[Finding],
 ) -> Result<Verification, Vec<Diagnostic>> {
@@ -75,36 +206,90 @@ pub fn verify(
     if !errors.is_empty() {
         return Err(errors);
     }
+    let symmetry = if opts.symmetry {
+        symmetry::Symmetry::new(project, &sem)?
+    } else {
+        None
+    };
+    let symmetric_types = symmetry
+        .as_ref()
+        .map(|s| s.describe(project))
+        .unwrap_or_default();
+    let agent = Agent {
+        sem: &sem,
+        symmetry,
+    };
+    let plan_at = |sp: Span| project.plans.plans.iter().position(|p| p.span == sp);
+    let overlaps: Vec<(u32, u32)> = lint
+        .iter()
+        .filter(|f| settles(f) && f.check == "plan-overlap")
+        .filter_map(|f| {
+            let later = plan_at(f.span?)?;
+            let earlier = plan_at(f.secondary_plan_span()?)?;
+            Some((earlier as u32, later as u32))
+        })
+        .collect();
+    let conditions = Conditions {
+        invariants: project.invariants.iter().map(|(_, c)| c).collect(),
+        props: props.iter().map(|p| &p.cond).collect(),
+        overlaps,
+    };
+    let n_conds = conditions.len();
+    let eventually: Vec<usize> = props
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.kind == crate::syntax::manifest::PropertyKind::Eventually)
+        .map(|(j, _)| project.invariants.len() + j)
+        .collect();
+    let mut facts = Facts {
+        first_holds: vec![None; n_conds],
+        first_fails: vec![None; n_conds],
+        bad: vec![Vec::new(); eventually.len()],
+        ..Facts::default()
+    };
     // First (hence shallowest-source) transition of each failure, keyed by place.
-    let mut action_failures: BTreeMap<(u32, u32), (u32, u32, Note)> = BTreeMap::new();
-    let mut goal_failures: BTreeMap<String, (u32, u32, Note)> = BTreeMap::new();
-    let mut no_plan: BTreeMap<(String, usize), (u32, u32)> = BTreeMap::new();
-    let graph = explore(
-        &sem,
+    let mut action_failures: BTreeMap<(u32, u32), Failure> = BTreeMap::new();
+    let mut goal_failures: BTreeMap<String, Failure> = BTreeMap::new();
+    let mut no_plan: BTreeMap<(String, usize), Failure> = BTreeMap::new();
+    let search = Options {
+        threads: opts.threads,
+        keep_edges: true,
+        max_memory: opts.max_memory,
+        shard: opts.shard,
+    };
+    let graph = explore_with(
+        &agent,
         limits,
-        |src, k, notes: &Vec<Note>| {
+        &search,
+        |s| conditions.summarize(&sem, s),
+        |i, sum| facts.record(i, sum, &eventually),
+        |src, k, notes: &Vec<Note>, fp| {
             for n in notes {
+                let at = Failure {
+                    src,
+                    k,
+                    fp,
+                    note: n.clone(),
+                };
                 match n {
                     Note::ActionFailed { span, .. } => {
-                        action_failures.entry((span.file.0, span.start)).or_insert((
-                            src,
-                            k,
-                            n.clone(),
-                        ));
+                        action_failures
+                            .entry((span.file.0, span.start))
+                            .or_insert(at);
                     }
                     Note::GoalFailed { goal, span, .. } => {
                         let key = match span {
                             Some(sp) => format!("{}:{}", sp.file.0, sp.start),
                             None => goal.to_string(),
                         };
-                        goal_failures.entry(key).or_insert((src, k, n.clone()));
+                        goal_failures.entry(key).or_insert(at);
                     }
                     Note::NoApplicablePlan(t) => {
                         let key = (
                             t.literal.functor().unwrap_or("").to_string(),
                             t.literal.arity(),
                         );
-                        no_plan.entry(key).or_insert((src, k));
+                        no_plan.entry(key).or_insert(at);
                     }
                     _ => {}
                 }
@@ -114,8 +299,10 @@ pub fn verify(
     );
     let c = Checker {
         project,
-        sem: &sem,
+        agent: &agent,
         graph: &graph,
+        facts: &facts,
+        conditions: &conditions,
     };
     let mut findings: Vec<Finding> = lint
         .iter()
@@ -124,15 +311,33 @@ pub fn verify(
     c.safety(&mut findings, &props);
     c.failures(&mut findings, action_failures, goal_failures);
     c.liveness(&mut findings, &props);
+    // The explanation properties: one more search per user, each state paired with the
+    // user's expected successors.
+    let explore_opts = explore::Options {
+        threads: opts.threads,
+        keep_edges: false,
+        max_memory: opts.max_memory,
+        shard: opts.shard,
+    };
+    findings.extend(
+        explanation::verify(
+            project,
+            &sem,
+            agent.symmetry.as_ref(),
+            limits,
+            &explore_opts,
+        )?
+        .0,
+    );
     let seconds = graph.seconds;
     let stats = Stats {
-        initial_states: graph.initial,
-        states: graph.states.len(),
+        initial_states: graph.initial_covered,
+        states: graph.len(),
         transitions: graph.transitions,
         depth: graph.max_depth() as usize,
         seconds,
         states_per_second: if seconds > 0.0 {
-            graph.states.len() as f64 / seconds
+            graph.len() as f64 / seconds
         } else {
             0.0
         },
@@ -142,16 +347,79 @@ pub fn verify(
         findings,
         stats,
         bound: graph.bound,
+        memory: (graph.store_bytes(), graph.edge_bytes()),
+        peak_memory: graph.peak_memory,
+        symmetric_types,
     })
 }
 
+/// Whether a lint finding is one that exploration settles.
+fn settles(f: &Finding) -> bool {
+    matches!(
+        f.check.as_str(),
+        "coverage-gap" | "plan-overlap" | "precondition"
+    ) && f.status == Status::Fail
+        && f.severity == Severity::Warning
+}
+
+/// A transition that shows a failure: where it starts, its number there, the fingerprint
+/// of its target, and the note.
+struct Failure {
+    src: u32,
+    k: u32,
+    fp: u64,
+    note: Note,
+}
+
+impl Facts {
+    fn record(&mut self, i: u32, s: Summary, eventually: &[usize]) {
+        for j in 0..self.first_holds.len() {
+            let slot = if bit(&s.holds, j as u32) {
+                &mut self.first_holds[j]
+            } else {
+                &mut self.first_fails[j]
+            };
+            slot.get_or_insert(i);
+        }
+        set_bit(&mut self.idle, i, s.idle);
+        let next = self.masks.len() as u32;
+        let id = *self.mask_ids.entry(s.pending).or_insert(next);
+        if id == next {
+            self.masks.push(s.pending);
+        }
+        self.pending.push(id);
+        for (b, &j) in self.bad.iter_mut().zip(eventually) {
+            set_bit(b, i, !bit(&s.holds, j as u32));
+        }
+    }
+
+    fn pending(&self, i: u32) -> u64 {
+        self.masks[self.pending[i as usize] as usize]
+    }
+}
+
 /// A run reaching a state: the path to it, and the transition taken there, if any.
-type Reach = (Vec<u32>, Option<(u32, u32)>);
+type Reach<'f> = (Vec<u32>, Option<&'f Failure>);
 
 struct Checker<'a> {
     project: &'a Project,
-    sem: &'a Semantics<'a>,
+    agent: &'a Agent<'a>,
     graph: &'a Graph,
+    facts: &'a Facts,
+    conditions: &'a Conditions<'a>,
+}
+
+/// Whether a transition's notes show the same failure as `want` (the same place; under
+/// symmetry the goal may be a renaming of the one seen in exploration).
+fn same_failure(want: &Note, notes: &[Note]) -> bool {
+    notes.iter().any(|n| match (want, n) {
+        (Note::ActionFailed { span: a, .. }, Note::ActionFailed { span: b, .. }) => a == b,
+        (Note::GoalFailed { span: a, .. }, Note::GoalFailed { span: b, .. }) => a == b,
+        (Note::NoApplicablePlan(a), Note::NoApplicablePlan(b)) => {
+            a.literal.functor() == b.literal.functor() && a.literal.arity() == b.literal.arity()
+        }
+        _ => false,
+    })
 }
 
 impl Checker<'_> {
@@ -199,16 +467,38 @@ impl Checker<'_> {
     fn counterexample(
         &self,
         path: &[u32],
-        extra: Option<(u32, u32)>,
+        extra: Option<&Failure>,
         cycle: &[u32],
     ) -> Counterexample {
-        trace::counterexample(self.project, self.sem, self.graph, path, extra, cycle)
+        let want = |notes: &Vec<Note>| extra.is_some_and(|f| same_failure(&f.note, notes));
+        let extra = extra.map(|f| trace::Extra {
+            src: f.src,
+            k: f.k,
+            fp: f.fp,
+            want: &want,
+        });
+        trace::counterexample(self.project, self.agent, self.graph, path, extra, cycle)
+    }
+
+    /// A finding for a state reached by a shortest run, with that run.
+    fn reached(
+        &self,
+        check: &str,
+        name: &str,
+        span: Span,
+        status: Status,
+        message: String,
+        at: u32,
+    ) -> Finding {
+        let mut f = self.finding(check, name, span, status, message);
+        f.counterexample = Some(self.counterexample(&self.graph.path_to(at), None, &[]));
+        f
     }
 
     fn safety(&self, out: &mut Vec<Finding>, props: &[Prop]) {
-        let states = &self.graph.states;
-        let n = states.len();
-        for (name, cond) in &self.project.invariants {
+        let n = self.graph.len();
+        let facts = self.facts;
+        for (j, (name, _)) in self.project.invariants.iter().enumerate() {
             let span = self
                 .project
                 .manifest
@@ -216,22 +506,18 @@ impl Checker<'_> {
                 .iter()
                 .find(|i| &i.name.value == name)
                 .map_or(Span::default(), |i| i.formula.span);
-            match (0..n).find(|&i| !cond.eval(&states[i].beliefs)) {
-                Some(i) => {
-                    let mut f = self.finding(
-                        "invariant",
-                        name,
-                        span,
-                        Status::Fail,
-                        format!(
-                            "invariant `{name}` is violated after {} steps",
-                            self.graph.depth[i]
-                        ),
-                    );
-                    f.counterexample =
-                        Some(self.counterexample(&self.graph.path_to(i as u32), None, &[]));
-                    out.push(f);
-                }
+            match facts.first_fails[j] {
+                Some(i) => out.push(self.reached(
+                    "invariant",
+                    name,
+                    span,
+                    Status::Fail,
+                    format!(
+                        "invariant `{name}` is violated after {} steps",
+                        self.graph.depth(i)
+                    ),
+                    i,
+                )),
                 None => out.push(self.finding(
                     "invariant",
                     name,
@@ -242,24 +528,22 @@ impl Checker<'_> {
             }
         }
         use crate::syntax::manifest::PropertyKind;
-        for p in props {
+        let base = self.project.invariants.len();
+        for (j, p) in props.iter().enumerate() {
             match p.kind {
-                PropertyKind::Always => match (0..n).find(|&i| !p.cond.eval(&states[i].beliefs)) {
-                    Some(i) => {
-                        let mut f = self.finding(
-                            "property",
-                            &p.name,
-                            p.span,
-                            Status::Fail,
-                            format!(
-                                "`{}` does not always hold: it is false after {} steps",
-                                p.name, self.graph.depth[i]
-                            ),
-                        );
-                        f.counterexample =
-                            Some(self.counterexample(&self.graph.path_to(i as u32), None, &[]));
-                        out.push(f);
-                    }
+                PropertyKind::Always => match facts.first_fails[base + j] {
+                    Some(i) => out.push(self.reached(
+                        "property",
+                        &p.name,
+                        p.span,
+                        Status::Fail,
+                        format!(
+                            "`{}` does not always hold: it is false after {} steps",
+                            p.name,
+                            self.graph.depth(i)
+                        ),
+                        i,
+                    )),
                     None => out.push(self.finding(
                         "property",
                         &p.name,
@@ -268,62 +552,52 @@ impl Checker<'_> {
                         format!("`{}` holds in all {n} reached states", p.name),
                     )),
                 },
-                PropertyKind::Reachable => {
-                    match (0..n).find(|&i| p.cond.eval(&states[i].beliefs)) {
-                        Some(i) => {
-                            let mut f = self.finding(
-                                "property",
-                                &p.name,
-                                p.span,
-                                Status::Pass,
-                                format!(
-                                    "`{}` is reached after {} steps (witness run attached)",
-                                    p.name, self.graph.depth[i]
-                                ),
-                            );
-                            f.counterexample =
-                                Some(self.counterexample(&self.graph.path_to(i as u32), None, &[]));
-                            out.push(f);
-                        }
-                        None => {
-                            let status = if self.graph.complete() {
-                                Status::Fail
-                            } else {
-                                Status::Unknown
-                            };
-                            out.push(self.finding(
-                                "property",
-                                &p.name,
-                                p.span,
-                                status,
-                                format!("`{}` is never reached", p.name),
-                            ));
-                        }
+                PropertyKind::Reachable => match facts.first_holds[base + j] {
+                    Some(i) => out.push(self.reached(
+                        "property",
+                        &p.name,
+                        p.span,
+                        Status::Pass,
+                        format!(
+                            "`{}` is reached after {} steps (witness run attached)",
+                            p.name,
+                            self.graph.depth(i)
+                        ),
+                        i,
+                    )),
+                    None => {
+                        let status = if self.graph.complete() {
+                            Status::Fail
+                        } else {
+                            Status::Unknown
+                        };
+                        out.push(self.finding(
+                            "property",
+                            &p.name,
+                            p.span,
+                            status,
+                            format!("`{}` is never reached", p.name),
+                        ));
                     }
-                }
+                },
                 PropertyKind::Eventually => {}
             }
         }
         // Deadlock: a state with nothing to do that is not a finished run. Such states cannot
         // arise from this semantics' rules; the check guards them.
-        let stuck = (0..n).find(|&i| {
-            let s = &states[i];
-            self.graph.edges[i].as_ref().is_some_and(|e| e.is_empty()) && !self.is_done(s)
+        let stuck = (0..n as u32).find(|&i| {
+            self.graph.successors(i).is_some_and(|e| e.is_empty()) && !bit(&facts.idle, i)
         });
         let span = self.project.manifest.agent.plans.written.span;
         match stuck {
-            Some(i) => {
-                let mut f = self.finding(
-                    "deadlock",
-                    "agent",
-                    span,
-                    Status::Fail,
-                    "the agent is stuck: no step is possible, but it is not done".into(),
-                );
-                f.counterexample =
-                    Some(self.counterexample(&self.graph.path_to(i as u32), None, &[]));
-                out.push(f);
-            }
+            Some(i) => out.push(self.reached(
+                "deadlock",
+                "agent",
+                span,
+                Status::Fail,
+                "the agent is stuck: no step is possible, but it is not done".into(),
+                i,
+            )),
             None => out.push(self.finding(
                 "deadlock",
                 "agent",
@@ -338,14 +612,10 @@ impl Checker<'_> {
     fn settle(
         &self,
         f: &Finding,
-        action_failures: &BTreeMap<(u32, u32), (u32, u32, Note)>,
-        no_plan: &BTreeMap<(String, usize), (u32, u32)>,
+        action_failures: &BTreeMap<(u32, u32), Failure>,
+        no_plan: &BTreeMap<(String, usize), Failure>,
     ) -> Finding {
-        let settles = matches!(
-            f.check.as_str(),
-            "coverage-gap" | "plan-overlap" | "precondition"
-        );
-        if !settles || f.status != Status::Fail || f.severity != Severity::Warning {
+        if !settles(f) {
             return f.clone();
         }
         let Some(span) = f.span else { return f.clone() };
@@ -353,12 +623,12 @@ impl Checker<'_> {
         let reached: Option<Reach> = match f.check.as_str() {
             "precondition" => action_failures
                 .get(&(span.file.0, span.start))
-                .map(|(src, k, _)| (self.graph.path_to(*src), Some((*src, *k)))),
+                .map(|x| (self.graph.path_to(x.src), Some(x))),
             "coverage-gap" => plan_at(span).and_then(|i| {
                 let t = &self.project.plans.plans[i].trigger.literal;
                 no_plan
                     .get(&(t.functor().unwrap_or("").to_string(), t.arity()))
-                    .map(|(src, k)| (self.graph.path_to(*src), Some((*src, *k))))
+                    .map(|x| (self.graph.path_to(x.src), Some(x)))
             }),
             _ => {
                 // plan-overlap: the later plan at the finding, the earlier one beside it.
@@ -390,27 +660,16 @@ impl Checker<'_> {
 
     /// The first explored state whose next event has both plans applicable.
     fn overlap(&self, a: u32, b: u32) -> Option<u32> {
-        (0..self.graph.states.len() as u32).find(|&i| {
-            let s = &self.graph.states[i as usize];
-            let Some(ev) = s.events.first() else {
-                return false;
-            };
-            let applicable = self.sem.applicable(s, &ev.trigger, false);
-            applicable.iter().any(|(p, _)| *p == a) && applicable.iter().any(|(p, _)| *p == b)
-        })
-    }
-
-    /// A state with no successor ends a run when the agent is idle there (requests that
-    /// could still arrive would be successors).
-    fn is_done(&self, s: &State) -> bool {
-        s.is_idle()
+        let c = self.conditions;
+        let k = c.overlaps.iter().position(|&p| p == (a, b))?;
+        self.facts.first_holds[c.invariants.len() + c.props.len() + k]
     }
 
     fn failures(
         &self,
         out: &mut Vec<Finding>,
-        actions: BTreeMap<(u32, u32), (u32, u32, Note)>,
-        goals: BTreeMap<String, (u32, u32, Note)>,
+        actions: BTreeMap<(u32, u32), Failure>,
+        goals: BTreeMap<String, Failure>,
     ) {
         let span = self.project.manifest.agent.plans.written.span;
         if actions.is_empty() {
@@ -422,13 +681,13 @@ impl Checker<'_> {
                 "no action is ever attempted when its precondition does not hold".into(),
             ));
         }
-        for (src, k, note) in actions.values() {
+        for x in actions.values() {
             if let Note::ActionFailed {
                 text,
                 plan,
                 span,
                 reason,
-            } = note
+            } = &x.note
             {
                 let loc = self.location(*span);
                 let plan = &self.project.plans.plans[*plan as usize];
@@ -441,7 +700,7 @@ impl Checker<'_> {
                 );
                 f.id = format!("action-failure:{}:{}", loc.file, loc.line);
                 f.counterexample =
-                    Some(self.counterexample(&self.graph.path_to(*src), Some((*src, *k)), &[]));
+                    Some(self.counterexample(&self.graph.path_to(x.src), Some(x), &[]));
                 out.push(f);
             }
         }
@@ -454,14 +713,14 @@ impl Checker<'_> {
                 "no goal ever fails without a failure plan to handle it".into(),
             ));
         }
-        for (src, k, note) in goals.values() {
+        for x in goals.values() {
             if let Note::GoalFailed {
                 goal,
                 cause,
                 span: at,
                 reason,
                 ..
-            } = note
+            } = &x.note
             {
                 let place = at.unwrap_or(span);
                 let loc = self.location(place);
@@ -479,7 +738,7 @@ impl Checker<'_> {
                 );
                 f.id = format!("goal-failure:{}:{}", loc.file, loc.line);
                 f.counterexample =
-                    Some(self.counterexample(&self.graph.path_to(*src), Some((*src, *k)), &[]));
+                    Some(self.counterexample(&self.graph.path_to(x.src), Some(x), &[]));
                 out.push(f);
             }
         }
@@ -487,15 +746,14 @@ impl Checker<'_> {
 
     fn liveness(&self, out: &mut Vec<Finding>, props: &[Prop]) {
         let span = self.project.manifest.agent.plans.written.span;
-        let n = self.graph.states.len();
-        let all: Vec<bool> = vec![true; n];
-        let loops = self.cyclic_components(&all);
+        let n = self.graph.len();
+        let loops = self.cyclic_components(|_| true);
         let livelock = loops
             .iter()
-            .min_by_key(|c| c.iter().map(|&i| self.graph.depth[i as usize]).min());
+            .min_by_key(|c| c.iter().map(|&i| self.graph.depth(i)).min());
         match livelock {
             Some(comp) => {
-                let (entry, cycle) = self.lasso(comp);
+                let (entry, cycle) = self.lasso_within(comp, |_| true);
                 let mut f = self.finding(
                     "livelock",
                     "agent",
@@ -518,9 +776,9 @@ impl Checker<'_> {
         // A request pending in every state of a loop is never completed on that run.
         let mut starved: Option<(u8, &Vec<u32>)> = None;
         for comp in &loops {
-            let pending = comp.iter().fold(u64::MAX, |acc, &i| {
-                acc & self.graph.states[i as usize].pending_requests()
-            });
+            let pending = comp
+                .iter()
+                .fold(u64::MAX, |acc, &i| acc & self.facts.pending(i));
             if pending != 0 {
                 starved = Some((pending.trailing_zeros() as u8, comp));
                 break;
@@ -528,8 +786,8 @@ impl Checker<'_> {
         }
         match starved {
             Some((r, comp)) => {
-                let (entry, cycle) = self.lasso(comp);
-                let goal = &self.sem.requests[r as usize];
+                let (entry, cycle) = self.lasso_within(comp, |_| true);
+                let goal = &self.agent.sem.requests[r as usize];
                 let mut f = self.finding(
                     "request-not-completed",
                     &goal.to_string(),
@@ -550,26 +808,21 @@ impl Checker<'_> {
             )),
         }
         use crate::syntax::manifest::PropertyKind;
-        for p in props.iter().filter(|p| p.kind == PropertyKind::Eventually) {
-            let bad: Vec<bool> = self
-                .graph
-                .states
-                .iter()
-                .map(|s| !p.cond.eval(&s.beliefs))
-                .collect();
+        let eventually = props.iter().filter(|p| p.kind == PropertyKind::Eventually);
+        for (p, bad) in eventually.zip(&self.facts.bad) {
+            let bad = |i: u32| bit(bad, i);
             // States reachable from an initial state through states where the property
             // never held.
-            let mut seen = vec![false; n];
-            let mut queue: VecDeque<u32> = (0..self.graph.initial as u32)
-                .filter(|&i| bad[i as usize])
-                .collect();
-            queue.iter().for_each(|&i| seen[i as usize] = true);
-            let mut parent: Vec<Option<u32>> = vec![None; n];
+            let mut seen = vec![0u64; n.div_ceil(64)];
+            let mut queue: VecDeque<u32> =
+                (0..self.graph.initial as u32).filter(|&i| bad(i)).collect();
+            queue.iter().for_each(|&i| set_bit(&mut seen, i, true));
+            let mut parent: HashMap<u32, u32> = HashMap::new();
             while let Some(i) = queue.pop_front() {
-                for &j in self.graph.edges[i as usize].iter().flatten() {
-                    if bad[j as usize] && !seen[j as usize] {
-                        seen[j as usize] = true;
-                        parent[j as usize] = Some(i);
+                for &j in self.graph.successors(i).into_iter().flatten() {
+                    if bad(j) && !bit(&seen, j) {
+                        set_bit(&mut seen, j, true);
+                        parent.insert(j, i);
                         queue.push_back(j);
                     }
                 }
@@ -577,20 +830,16 @@ impl Checker<'_> {
             let path_in = |target: u32| {
                 let mut path = vec![target];
                 let mut at = target;
-                while let Some(p) = parent[at as usize] {
+                while let Some(&p) = parent.get(&at) {
                     path.push(p);
                     at = p;
                 }
                 path.reverse();
                 path
             };
-            let terminal = (0..n as u32).find(|&i| {
-                seen[i as usize]
-                    && self.graph.edges[i as usize]
-                        .as_ref()
-                        .is_some_and(|e| e.is_empty())
-            });
-            let loop_comp = self.cyclic_components(&seen).into_iter().next();
+            let terminal = (0..n as u32)
+                .find(|&i| bit(&seen, i) && self.graph.successors(i).is_some_and(|e| e.is_empty()));
+            let loop_comp = self.cyclic_components(|i| bit(&seen, i)).into_iter().next();
             let message = format!("`{}` may never hold", p.name);
             if let Some(t) = terminal {
                 let mut f = self.finding(
@@ -603,7 +852,7 @@ impl Checker<'_> {
                 f.counterexample = Some(self.counterexample(&path_in(t), None, &[]));
                 out.push(f);
             } else if let Some(comp) = loop_comp {
-                let (entry, cycle) = self.lasso_within(&comp, &seen);
+                let (entry, cycle) = self.lasso_within(&comp, |i| bit(&seen, i));
                 let mut f = self.finding(
                     "property",
                     &p.name,
@@ -626,56 +875,86 @@ impl Checker<'_> {
     }
 
     /// The strongly connected components, among the states where `keep` holds, that
-    /// contain a cycle; each sorted, components in order of their first state.
-    fn cyclic_components(&self, keep: &[bool]) -> Vec<Vec<u32>> {
-        let mut g: DiGraphMap<u32, ()> = DiGraphMap::new();
-        for (i, edges) in self.graph.edges.iter().enumerate() {
-            if !keep[i] {
+    /// contain a cycle; each sorted, components in order of their first state. Tarjan's
+    /// algorithm with an explicit stack.
+    fn cyclic_components(&self, keep: impl Fn(u32) -> bool) -> Vec<Vec<u32>> {
+        const UNSEEN: u32 = u32::MAX;
+        let n = self.graph.len();
+        let succ = |i: u32| -> &[u32] { self.graph.successors(i).unwrap_or(&[]) };
+        let mut index = vec![UNSEEN; n];
+        let mut low = vec![0u32; n];
+        let mut on_stack = vec![0u64; n.div_ceil(64)];
+        let mut stack: Vec<u32> = Vec::new();
+        let mut next = 0u32;
+        let mut comps = Vec::new();
+        // (state, position of the next successor to look at)
+        let mut calls: Vec<(u32, usize)> = Vec::new();
+        for root in 0..n as u32 {
+            if index[root as usize] != UNSEEN || !keep(root) {
                 continue;
             }
-            g.add_node(i as u32);
-            for &j in edges.iter().flatten() {
-                if keep[j as usize] {
-                    g.add_edge(i as u32, j, ());
+            calls.push((root, 0));
+            while let Some(&mut (v, ref mut pos)) = calls.last_mut() {
+                if *pos == 0 && index[v as usize] == UNSEEN {
+                    index[v as usize] = next;
+                    low[v as usize] = next;
+                    next += 1;
+                    stack.push(v);
+                    set_bit(&mut on_stack, v, true);
+                }
+                let edges = succ(v);
+                if let Some(&w) = edges.get(*pos) {
+                    *pos += 1;
+                    if !keep(w) {
+                        continue;
+                    }
+                    if index[w as usize] == UNSEEN {
+                        calls.push((w, 0));
+                    } else if bit(&on_stack, w) {
+                        low[v as usize] = low[v as usize].min(index[w as usize]);
+                    }
+                    continue;
+                }
+                calls.pop();
+                if let Some(&(u, _)) = calls.last() {
+                    low[u as usize] = low[u as usize].min(low[v as usize]);
+                }
+                if low[v as usize] == index[v as usize] {
+                    let mut comp = Vec::new();
+                    while let Some(w) = stack.pop() {
+                        on_stack[w as usize / 64] &= !(1 << (w % 64));
+                        comp.push(w);
+                        if w == v {
+                            break;
+                        }
+                    }
+                    let cyclic = comp.len() > 1 || succ(v).contains(&v);
+                    if cyclic {
+                        comp.sort();
+                        comps.push(comp);
+                    }
                 }
             }
         }
-        let mut comps: Vec<Vec<u32>> = petgraph::algo::kosaraju_scc(&g)
-            .into_iter()
-            .filter(|c| c.len() > 1 || g.contains_edge(c[0], c[0]))
-            .map(|mut c| {
-                c.sort();
-                c
-            })
-            .collect();
         comps.sort();
         comps
     }
 
     /// The shallowest state of a loop, and a cycle through it (state indices, ending back at
-    /// the entry), staying inside the component.
-    fn lasso(&self, comp: &[u32]) -> (u32, Vec<u32>) {
-        let keep: Vec<bool> = {
-            let mut k = vec![false; self.graph.states.len()];
-            comp.iter().for_each(|&i| k[i as usize] = true);
-            k
-        };
-        self.lasso_within(comp, &keep)
-    }
-
-    fn lasso_within(&self, comp: &[u32], keep: &[bool]) -> (u32, Vec<u32>) {
-        let members: HashSet<u32> = comp.iter().copied().collect();
+    /// the entry), staying inside the component and among the states where `keep` holds.
+    fn lasso_within(&self, comp: &[u32], keep: impl Fn(u32) -> bool) -> (u32, Vec<u32>) {
         let entry = *comp
             .iter()
-            .min_by_key(|&&i| (self.graph.depth[i as usize], i))
+            .min_by_key(|&&i| (self.graph.depth(i), i))
             .expect("a component has a state");
+        let member = |j: u32| comp.binary_search(&j).is_ok() && keep(j);
         // Breadth-first from the entry back to itself inside the component.
         let mut parent: BTreeMap<u32, u32> = BTreeMap::new();
         let mut queue = VecDeque::from([entry]);
         let mut closing = None;
         'bfs: while let Some(i) = queue.pop_front() {
-            for &j in self.graph.edges[i as usize].iter().flatten() {
-                if !members.contains(&j) || !keep[j as usize] {
+            for &j in self.graph.successors(i).into_iter().flatten() {
+                if !member(j) {
                     continue;
                 }
                 if j == entry {

@@ -1,63 +1,82 @@
 //! Counterexample runs rebuilt from the explored graph.
 //!
-//! The graph keeps states and parent links only; the steps of a run are recovered by
-//! re-executing each transition on the path and keeping the one that leads to the next
-//! state (matched by fingerprint), as stateright rebuilds paths.
+//! The graph keeps fingerprints and parent links only; the steps of a run are recovered by
+//! re-executing each transition on the path and keeping the first one that leads to the
+//! next state (matched by fingerprint), as stateright rebuilds paths. Under symmetry the
+//! fingerprints are those of canonical members, and the rebuilt run is a concrete run of
+//! the agent that reaches a renaming of the stored state; a loop is followed until the
+//! concrete state comes back, so a lasso is a real lasso.
 
-use super::explore::{fingerprint, Graph};
+use super::explore::{fingerprint, Graph, Walk};
+use super::model::Agent;
 use crate::model::atoms::AtomId;
 use crate::model::project::Project;
 use crate::report::{Counterexample, StepKindTag, TraceStep};
 use crate::semantics::{Note, Origin, Semantics};
 use std::collections::HashMap;
 
+/// The last transition of a run: from state `src`, the `k`-th transition as exploration
+/// numbered it, to a state with fingerprint `fp`, whose notes satisfy `want`.
+pub struct Extra<'w> {
+    /// The source state.
+    pub src: u32,
+    /// Its position among the source's transitions during exploration.
+    pub k: u32,
+    /// The target's fingerprint.
+    pub fp: u64,
+    /// What the transition must show.
+    pub want: &'w dyn Fn(&Vec<Note>) -> bool,
+}
+
+/// Most rounds a loop is followed before it closes: a renaming applied over and over
+/// comes back to the identity after at most this many rounds for the group sizes symmetry
+/// reduction handles (the order of a permutation of `n` objects is small).
+const MAX_LOOP_ROUNDS: usize = 720;
+
 /// The run along `path` (state indices from an initial state), then the transition
-/// `extra` (source state, transition index) if given, then the loop `cycle` (state
-/// indices from the loop's entry back to it) if given.
+/// `extra` if given, then the loop `cycle` (state indices from the loop's entry back to it)
+/// if given.
 pub fn counterexample(
     project: &Project,
-    sem: &Semantics,
+    agent: &Agent,
     graph: &Graph,
     path: &[u32],
-    extra: Option<(u32, u32)>,
+    extra: Option<Extra>,
     cycle: &[u32],
 ) -> Counterexample {
     let show = |a: &AtomId| project.atoms.display(*a, &project.universe);
-    let mut b = Builder::new(project, sem);
-    let notes_between = |a: u32, target: u32| -> Vec<Note> {
-        let want = fingerprint(&graph.states[target as usize]);
-        sem.successors(&graph.states[a as usize])
-            .into_iter()
-            .find(|t| fingerprint(&t.next) == want)
-            .map(|t| t.notes)
-            .unwrap_or_default()
+    let mut b = Builder::new(project, agent.sem);
+    let first = path.first().copied().unwrap_or(0);
+    let Some(mut walk) = Walk::start(agent, graph, first) else {
+        return Counterexample {
+            initial: Vec::new(),
+            requests: Vec::new(),
+            steps: Vec::new(),
+            loop_start: None,
+        };
     };
-    for w in path.windows(2) {
-        b.push(notes_between(w[0], w[1]));
+    let initial = walk.state.beliefs.iter().map(|a| show(&a)).collect();
+    for &j in &path[1..] {
+        b.push(walk.step_to(j).unwrap_or_default());
     }
-    if let Some((src, k)) = extra {
-        if let Some(t) = sem
-            .successors(&graph.states[src as usize])
-            .into_iter()
-            .nth(k as usize)
-        {
-            b.push(t.notes);
-        }
+    if let Some(x) = extra {
+        b.push(walk.step_by(x.k, x.fp, x.want).unwrap_or_default());
     }
     let mut loop_start = None;
     if cycle.len() >= 2 {
         loop_start = Some(b.steps.len());
-        for w in cycle.windows(2) {
-            b.push(notes_between(w[0], w[1]));
+        let entry = fingerprint(&walk.state);
+        for _ in 0..MAX_LOOP_ROUNDS {
+            for &j in &cycle[1..] {
+                b.push(walk.step_to(j).unwrap_or_default());
+            }
+            if fingerprint(&walk.state) == entry {
+                break;
+            }
         }
     }
-    let first = path.first().copied().unwrap_or(0) as usize;
     Counterexample {
-        initial: graph.states[first]
-            .beliefs
-            .iter()
-            .map(|a| show(&a))
-            .collect(),
+        initial,
         requests: b.requests,
         steps: b.steps,
         loop_start,
@@ -156,7 +175,7 @@ impl<'a> Builder<'a> {
                     self.step(StepKindTag::Request, format!("!{goal}"), Some(i), None)
                 }
                 Note::Event(t) => self.step(StepKindTag::Event, t.to_string(), None, None),
-                Note::Plan { plan, origin } => {
+                Note::Plan { plan, origin, .. } => {
                     let i = self.intention(origin);
                     let p = &self.project.plans.plans[plan as usize];
                     let place = self.plan_place(plan);

@@ -7,9 +7,13 @@
 //!   plan on the intention stack (`Γ`), and the actions of the current plan from the
 //!   explained one up to the first that modifies `Γ`: the intention behind it.
 //! * [`render`]: the content as one English sentence.
+//! * [`agent`]: the algorithms bound to a loaded project (its users, its phrases, the
+//!   intention stack an action of the reasoning cycle ran in), shared by `explain` and the
+//!   explanation properties of `verify`.
 //!
-//! Everything is keyed on ground [`Term`](crate::model::Term)s: the module knows nothing of
-//! the reasoning cycle or the model checker, which call it with what a run observed and a
+//! The algorithms are keyed on ground [`Term`](crate::model::Term)s: apart from [`agent`],
+//! which reads the reasoning cycle's intention stacks, the module knows nothing of the
+//! reasoning cycle or the model checker, which call it with what a run observed and a
 //! snapshot of the intention.
 //!
 //! # The paper's running example
@@ -105,6 +109,7 @@
 //! );
 //! ```
 
+pub mod agent;
 pub mod content;
 pub mod demand;
 pub mod render;

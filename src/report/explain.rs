@@ -10,19 +10,15 @@
 
 use crate::check::explore::fingerprint;
 use crate::check::trace::Builder;
-use crate::explain::{
-    content, sentence, ContextLiteral, Effects, ExpectedSuccessors, FrameSnapshot, Observation,
-    Pair, Phrases, PlanStep, Semantic, Syntactic,
-};
+use crate::explain::agent::{self, Explainer};
+use crate::explain::{ExpectedSuccessors, Observation};
 use crate::model::atoms::{AtomId, AtomSet};
-use crate::model::plans::BodyStep;
 use crate::model::project::{load_project, Project};
-use crate::model::term::Term;
-use crate::model::{unify, Converter, Substitution};
+use crate::model::Converter;
 use crate::report::{Report, StepKindTag, TraceStep};
-use crate::semantics::{FrameView, Note, Semantics, State};
-use crate::syntax::ast::{ExprKind, StepKind};
-use crate::syntax::manifest::{load_scenario, Modifies};
+use crate::semantics::{Note, Semantics, State};
+use crate::syntax::ast::ExprKind;
+use crate::syntax::manifest::load_scenario;
 use crate::syntax::{Diagnostic, SourceMap};
 use serde::Serialize;
 use std::collections::HashSet;
@@ -77,6 +73,17 @@ struct UserState {
     name: String,
     n: ExpectedSuccessors,
     prev: Option<Observation>,
+}
+
+fn users(p: &Project, only: Option<&str>) -> Result<Vec<UserState>, Vec<Diagnostic>> {
+    Ok(agent::users(p, only)?
+        .into_iter()
+        .map(|u| UserState {
+            name: u.name,
+            n: u.expected,
+            prev: None,
+        })
+        .collect())
 }
 
 /// Runs a scenario of a project and explains it for every user (or only `only`).
@@ -173,146 +180,6 @@ fn ground(p: &Project, e: &crate::syntax::ast::Expr) -> Option<AtomId> {
     p.atoms.id(pred, &args)
 }
 
-fn users(p: &Project, only: Option<&str>) -> Result<Vec<UserState>, Vec<Diagnostic>> {
-    let Some(ex) = &p.manifest.explanation else {
-        return Err(vec![Diagnostic::error(
-            "input",
-            "the manifest has no `[explanation]` section",
-        )
-        .in_file(p.manifest.path.display().to_string())
-        .with_help(
-            "add `[explanation.users.NAME]` with the user's `expected` pairs",
-        )]);
-    };
-    let mut out = Vec::new();
-    let mut errors = Vec::new();
-    for u in &ex.users {
-        if only.is_some_and(|o| o != u.name.value) {
-            continue;
-        }
-        let mut pairs = Vec::new();
-        for pair in &u.expected {
-            match Pair::from_steps(&pair.before.step, &pair.after.step) {
-                Ok(p) => pairs.push(p),
-                Err(e) => errors.push(Diagnostic::error("input", e).with_label(pair.span, "here")),
-            }
-        }
-        out.push(UserState {
-            name: u.name.value.clone(),
-            n: ExpectedSuccessors::new(pairs),
-            prev: None,
-        });
-    }
-    if let Some(o) = only {
-        if out.is_empty() {
-            errors.push(
-                Diagnostic::error("input", format!("the manifest has no user `{o}`"))
-                    .in_file(p.manifest.path.display().to_string()),
-            );
-        }
-    }
-    if errors.is_empty() {
-        Ok(out)
-    } else {
-        Err(errors)
-    }
-}
-
-/// The phrases of `[explanation.phrases]`.
-fn phrases(p: &Project) -> Phrases {
-    let mut ph = Phrases::new(Vec::new());
-    for entry in p.manifest.explanation.iter().flat_map(|e| &e.phrases) {
-        let mut c = Converter::new();
-        match &entry.pattern.step.kind {
-            StepKind::Achieve(e) => {
-                if let Ok(t) = c.term(e) {
-                    ph.push_goal(t, &entry.template.value);
-                }
-            }
-            StepKind::Action(e) => {
-                if let Ok(t) = c.term(e) {
-                    ph.push(t, &entry.template.value);
-                }
-            }
-            _ => {}
-        }
-    }
-    ph
-}
-
-/// `Eff+` and `Eff-` of a ground action: every atom any of its effects may add or delete.
-fn effects(p: &Project, action: &Term) -> Effects {
-    let Some(ga) = p.actions.of_term(action, &p.universe) else {
-        return Effects::none();
-    };
-    let term = |a: &AtomId| p.atoms.term(*a, &p.universe);
-    Effects::new(
-        ga.effects
-            .iter()
-            .flat_map(|e| e.add.iter().map(term))
-            .collect(),
-        ga.effects
-            .iter()
-            .flat_map(|e| e.del.iter().map(term))
-            .collect(),
-    )
-}
-
-/// The stack an action ran in, as Algorithm 2 reads it.
-fn snapshot(p: &Project, sem: &Semantics, stack: &[FrameView]) -> Vec<FrameSnapshot> {
-    let top = stack.len().saturating_sub(1);
-    stack
-        .iter()
-        .enumerate()
-        .map(|(i, f)| {
-            let plan = &p.plans.plans[f.plan as usize];
-            let body = if i == top {
-                let (block, pos) = f.at;
-                sem.block(f.plan, block)
-                    .iter()
-                    .skip(pos as usize)
-                    .filter_map(|s| match &s.kind {
-                        BodyStep::Action(t) => Some(PlanStep::Action(t.clone())),
-                        BodyStep::Achieve { goal, .. } => Some(PlanStep::Subgoal(goal.clone())),
-                        _ => None,
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            FrameSnapshot {
-                context: ContextLiteral::of_formula(&plan.context),
-                bindings: f.subst.clone(),
-                body,
-            }
-        })
-        .collect()
-}
-
-/// Whether an atom (possibly with variables) is believed in `s`.
-fn holds(p: &Project, s: &AtomSet, atom: &Term) -> bool {
-    let Some(pred) = atom.functor().and_then(|f| p.atoms.pred(f)) else {
-        return false;
-    };
-    p.atoms.atoms_of(pred).any(|a| {
-        s.contains(a) && {
-            let mut u = Substitution::new();
-            unify(
-                &atom.without_annots(),
-                &p.atoms.term(a, &p.universe),
-                &mut u,
-            )
-        }
-    })
-}
-
-fn apply(p: &Project, s: &AtomSet, action: &Term) -> AtomSet {
-    match p.actions.of_term(action, &p.universe) {
-        Some(ga) => ga.apply(s),
-        None => s.clone(),
-    }
-}
-
 fn execute(
     p: &Project,
     sem: &Semantics,
@@ -320,12 +187,7 @@ fn execute(
     requests: &[u8],
     mut users: Vec<UserState>,
 ) -> (Trace, Vec<Given>) {
-    let phrases = phrases(p);
-    let semantic = p
-        .manifest
-        .explanation
-        .as_ref()
-        .is_some_and(|e| e.modifies == Modifies::Semantic);
+    let ex = Explainer::new(p, sem);
     let mut state: State = sem.initial_state(beliefs);
     let mut builder = Builder::new(p, sem);
     let mut steps: Vec<TraceStep> = Vec::new();
@@ -361,24 +223,14 @@ fn execute(
                         u.prev = Some(obs.clone());
                     }
                 }
-                Note::Action { term, stack, .. } => {
+                Note::Action { term, stack, .. } if !sem.is_emission(term) => {
                     let obs = Observation::Action(term.clone());
                     for u in &mut users {
                         let after = u.prev.as_ref().map(|o| o.to_string());
                         if u.n.observe(u.prev.as_ref(), &obs) {
-                            let frames = snapshot(p, sem, stack);
-                            let c = if semantic {
-                                let m = Semantic::new(
-                                    &state.beliefs,
-                                    |s: &AtomSet, a: &Term| holds(p, s, a),
-                                    |s: &AtomSet, a: &Term| apply(p, s, a),
-                                );
-                                content(&frames, &m)
-                            } else {
-                                content(&frames, &Syntactic::new(|a: &Term| effects(p, a)))
-                            };
+                            let c = ex.explain(&state.beliefs, stack).map(|e| e.content);
                             if let Some(c) = c {
-                                let text = sentence(term, &c, &phrases);
+                                let text = ex.sentence(term, &c);
                                 steps.push(TraceStep {
                                     kind: StepKindTag::Explanation,
                                     text: format!("to {}: {text}", u.name),

@@ -107,7 +107,9 @@ pub fn states_dot(
 ) -> Result<(String, Option<String>), Vec<Diagnostic>> {
     let sem = Semantics::new(p)?;
     let graph = explore(&sem, limits, |_, _, _| {}, |_, _, _| {});
-    let n = graph.states.len();
+    let n = graph.len();
+    // Only fingerprints are kept: a drawn state is rebuilt by replaying the run to it.
+    let state = |i: u32| graph.state(&sem, i);
     let (drawn, note): (BTreeSet<u32>, Option<String>) = if n <= MAX_DRAWN_STATES {
         ((0..n as u32).collect(), None)
     } else {
@@ -116,18 +118,20 @@ pub fn states_dot(
         for f in v.findings.iter().filter(|f| f.status == Status::Fail) {
             if let Some(c) = &f.counterexample {
                 // The counterexample's initial state, then follow its steps through the graph.
-                let start = graph.states.iter().position(|s| {
-                    s.beliefs
-                        .iter()
-                        .map(|a| p.atoms.display(a, &p.universe))
-                        .collect::<Vec<_>>()
-                        == c.initial
+                let start = (0..graph.initial as u32).find(|&i| {
+                    state(i).is_some_and(|s| {
+                        s.beliefs
+                            .iter()
+                            .map(|a| p.atoms.display(a, &p.universe))
+                            .collect::<Vec<_>>()
+                            == c.initial
+                    })
                 });
                 if let Some(i) = start {
-                    keep.insert(i as u32);
-                    let mut at = i as u32;
+                    keep.insert(i);
+                    let mut at = i;
                     for _ in 0..c.steps.len() {
-                        let Some(Some(next)) = graph.edges.get(at as usize) else {
+                        let Some(next) = graph.successors(at) else {
                             break;
                         };
                         let Some(&j) = next.first() else { break };
@@ -148,7 +152,7 @@ pub fn states_dot(
     let mut g: DiGraph<String, String> = DiGraph::new();
     let mut node: HashMap<u32, NodeIndex> = HashMap::new();
     for &i in &drawn {
-        let s = &graph.states[i as usize];
+        let Some(s) = state(i) else { continue };
         let beliefs: Vec<String> = s
             .beliefs
             .iter()
@@ -165,13 +169,13 @@ pub fn states_dot(
         node.insert(i, g.add_node(label));
     }
     for &i in &drawn {
-        let Some(Some(targets)) = graph.edges.get(i as usize) else {
+        let (Some(targets), Some(from)) = (graph.successors(i), state(i)) else {
             continue;
         };
-        let succ = sem.successors(&graph.states[i as usize]);
+        let succ = sem.successors(&from);
         for &j in targets {
             let Some(&to) = node.get(&j) else { continue };
-            let want = fingerprint(&graph.states[j as usize]);
+            let want = graph.fingerprint(j);
             let label = succ
                 .iter()
                 .find(|t| fingerprint(&t.next) == want)

@@ -126,6 +126,9 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
     else {
         return no("its initial state is no longer an initial state of the project");
     };
+    if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
+        return replay_explained(project, sem, f, c, state);
+    }
     let check = Check::of(project, f);
     let mut builder = Builder::new(project, sem);
     let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
@@ -170,17 +173,7 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
         let at = builder.steps().len();
         let pick = succ
             .iter()
-            .position(|t| {
-                let mut b = Builder::new(project, sem);
-                b.push(t.notes.clone());
-                let steps = b.steps();
-                !steps.is_empty()
-                    && steps.iter().enumerate().all(|(i, s)| {
-                        recorded
-                            .get(at + i)
-                            .is_some_and(|(k, text)| kind_name(s.kind) == *k && s.text == *text)
-                    })
-            })
+            .position(|t| follows(project, sem, &t.notes, &recorded[at.min(recorded.len())..]))
             .unwrap_or(0);
         let t = &succ[pick];
         if t.notes.iter().any(|n| check.note_violates(n, project)) {
@@ -202,6 +195,95 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
         }
     }
     no("the run no longer reaches the violation")
+}
+
+/// Replays an explanation finding: the run as the finding's user sees it (the id is
+/// `check:user:file:line`), until a transition violates the same property at the same place.
+fn replay_explained(
+    project: &Project,
+    sem: &Semantics,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    agent: State,
+) -> Replayed {
+    use crate::check::explanation::Explained;
+    use crate::check::model::Model;
+    let no = |detail: &str| Replayed {
+        id: f.id.clone(),
+        reached: false,
+        detail: detail.to_string(),
+    };
+    let Some(user_name) = f.id.split(':').nth(1) else {
+        return no("the finding's id names no user");
+    };
+    let Ok(users) = crate::explain::agent::users(project, Some(user_name)) else {
+        return no("the project no longer has the finding's user");
+    };
+    let ex = crate::explain::agent::Explainer::new(project, sem);
+    let model = Explained::new(sem, &ex, &users[0], None);
+    let Some(mut state) = model.init_states().into_iter().find(|s| s.agent == agent) else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    // Explanations are the checker's, not the agent's: follow the agent's steps only.
+    let recorded: Vec<(&str, &str)> = c
+        .steps
+        .iter()
+        .filter(|s| s.kind != "explanation")
+        .map(|s| (s.kind.as_str(), s.text.as_str()))
+        .collect();
+    let place = f.location.as_ref().map(|l| (l.file.as_str(), l.line));
+    let mut builder = Builder::new(project, sem);
+    let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
+    for _ in 0..recorded.len() + 64 {
+        let succ = model.next_states(&state);
+        if succ.is_empty() {
+            break;
+        }
+        let at = builder.steps().len();
+        let pick = succ
+            .iter()
+            .position(|(step, _)| {
+                follows(
+                    project,
+                    sem,
+                    &step.notes,
+                    &recorded[at.min(recorded.len())..],
+                )
+            })
+            .unwrap_or(0);
+        let (step, next) = succ.into_iter().nth(pick).expect("a successor was picked");
+        builder.push(step.notes.clone());
+        let hit = step.violations.iter().any(|v| {
+            let loc = project.map.location(v.span);
+            v.check == f.check
+                && place.is_none_or(|(file, line)| loc.file == file && loc.line == line)
+        });
+        if hit {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {} steps", builder.steps().len()),
+            };
+        }
+        state = next;
+        if !seen.insert(fingerprint(&state)) {
+            break;
+        }
+    }
+    no("the run no longer reaches the violation")
+}
+
+/// Whether a transition's notes render as the next recorded steps (`(kind, text)`).
+fn follows(project: &Project, sem: &Semantics, notes: &[Note], recorded: &[(&str, &str)]) -> bool {
+    let mut b = Builder::new(project, sem);
+    b.push(notes.to_vec());
+    let steps = b.steps();
+    !steps.is_empty()
+        && steps.iter().enumerate().all(|(i, s)| {
+            recorded
+                .get(i)
+                .is_some_and(|(k, text)| kind_name(s.kind) == *k && s.text == *text)
+        })
 }
 
 fn kind_name(k: crate::report::StepKindTag) -> &'static str {

@@ -50,6 +50,10 @@ pub enum Note {
         plan: u32,
         /// Whose intention.
         origin: Origin,
+        /// The answer of its context: the frame's bindings at adoption.
+        subst: Substitution,
+        /// Where the frame sits on its intention's stack (0 = bottom).
+        depth: u16,
     },
     /// An environment action ran.
     Action {
@@ -192,6 +196,8 @@ pub struct Semantics<'p> {
     max_requests: u32,
     arrival_any: bool,
     select_any: bool,
+    /// `[explanation] emitted_by`: the agent's own explanation action.
+    emitted_by: Option<String>,
 }
 
 fn op_key(op: TriggerOp) -> u8 {
@@ -256,6 +262,11 @@ impl<'p> Semantics<'p> {
             max_requests: m.requests.max,
             arrival_any: m.requests.arrival == Arrival::Any,
             select_any: m.bounds.plan_selection == PlanSelection::Any,
+            emitted_by: m
+                .explanation
+                .as_ref()
+                .and_then(|e| e.emitted_by.as_ref())
+                .map(|e| e.value.clone()),
         })
     }
 
@@ -460,12 +471,15 @@ impl<'p> Semantics<'p> {
                     Some(i) => i.origin,
                     None => ev.origin,
                 };
-                notes.push(Note::Plan { plan: pi, origin });
-                match ev.intention.clone() {
-                    None => s.intentions.push(Intention {
-                        frames: vec![frame],
-                        origin,
-                    }),
+                let subst = frame.subst.clone();
+                let depth = match ev.intention.clone() {
+                    None => {
+                        s.intentions.push(Intention {
+                            frames: vec![frame],
+                            origin,
+                        });
+                        0
+                    }
                     Some(mut int) => {
                         let is_goal_add = ev.trigger.op == TriggerOp::Add
                             && ev.trigger.kind == TriggerKind::Achieve;
@@ -482,9 +496,17 @@ impl<'p> Semantics<'p> {
                             }
                         }
                         int.frames.push(frame);
+                        let depth = int.frames.len() - 1;
                         s.intentions.push(int);
+                        depth
                     }
-                }
+                };
+                notes.push(Note::Plan {
+                    plan: pi,
+                    origin,
+                    subst,
+                    depth: depth as u16,
+                });
                 (s, notes)
             })
             .collect()
@@ -800,6 +822,20 @@ impl<'p> Semantics<'p> {
             Flow::Gone
         };
         match &step.kind {
+            BodyStep::Action(t) if self.is_emission(t) => {
+                // The agent's own explanation: said, not done; the world does not change.
+                let term = eval(t, &frame.subst);
+                notes.push(Note::Action {
+                    text: term.to_string(),
+                    term,
+                    stack: views,
+                    plan,
+                    span: step.span,
+                    added: Vec::new(),
+                    removed: Vec::new(),
+                    origin,
+                });
+            }
             BodyStep::Action(t) => {
                 let term = eval(t, &frame.subst);
                 let text = term.to_string();
@@ -1150,6 +1186,11 @@ impl<'p> Semantics<'p> {
     }
 
     /// The ground action a term names, or why there is none.
+    /// Whether an action is the agent's own explanation (`[explanation] emitted_by`).
+    pub fn is_emission(&self, t: &Term) -> bool {
+        self.emitted_by.is_some() && t.functor() == self.emitted_by.as_deref()
+    }
+
     fn ground_action(&self, t: &Term) -> Result<&crate::model::ground::GroundAction, String> {
         let name = t.functor().ok_or("it is not an action")?;
         let args = self.objects(t).ok_or("its arguments are not all objects")?;

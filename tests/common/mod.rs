@@ -10,3 +10,51 @@ pub fn bdi_check(args: &[&str]) -> Output {
         .output()
         .expect("bdi-check runs")
 }
+
+/// A fresh, empty directory for one test's files.
+#[allow(dead_code)] // not every test target writes files
+pub fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("bdi-check-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs `verify --format json` on a project; returns the exit code, the report, and where
+/// the report was written (in `temp_dir(tag)`).
+#[allow(dead_code)] // not every test target verifies
+pub fn verify_json(project: &str, tag: &str) -> (i32, serde_json::Value, std::path::PathBuf) {
+    let file = temp_dir(tag).join("report.json");
+    let o = bdi_check(&[
+        "verify",
+        project,
+        "--format",
+        "json",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&file)
+        .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    (
+        o.status.code().unwrap(),
+        serde_json::from_str(&text).unwrap(),
+        file,
+    )
+}
+
+/// A finding's counterexample as `kind text` lines.
+#[allow(dead_code)] // not every test target reads counterexamples
+pub fn steps(f: &serde_json::Value) -> Vec<String> {
+    f["counterexample"]["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            format!(
+                "{} {}",
+                s["kind"].as_str().unwrap(),
+                s["text"].as_str().unwrap()
+            )
+        })
+        .collect()
+}

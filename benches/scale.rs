@@ -1,0 +1,242 @@
+//! Scale on the kitchen as the number of cups grows: `cargo bench --bench scale`.
+//!
+//! Three parts: successor generation (states expanded per second, one thread), the
+//! visited-state store (inserts per second and bytes per state), and the table of
+//! `docs/benchmarks.md`: for 1 to 6 cups, `verify` of the kitchen (`specs/kitchen` with n
+//! cups; the reachable property names every cup) with symmetry reduction and on every core,
+//! and without symmetry where that finishes in reasonable time. Each row runs in a child
+//! process so that its peak memory (`VmHWM`) is its own.
+//!
+//! `cargo bench --bench scale -- N` runs the rows up to N cups only; `--explain` keeps the
+//! manifest's `[explanation]` users, so that the explanation properties are checked too
+//! (their search is the explanation module's, without symmetry reduction).
+
+use bdi_check::check::explore::{explore_with, peak_memory, Limits, Options};
+use bdi_check::check::model::Model;
+use bdi_check::check::store::Store;
+use bdi_check::check::{verify_with, VerifyOptions};
+use bdi_check::model::project::load_project;
+use bdi_check::semantics::Semantics;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+// The same allocator as the `bdi-check` binary, so that the numbers are the binary's.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+/// The kitchen manifest with `cups` cups; without the explanation users unless `explain`.
+fn manifest(cups: usize, explain: bool) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen/bdi-check.toml");
+    let text = std::fs::read_to_string(root).expect("specs/kitchen/bdi-check.toml");
+    let names: Vec<String> = (1..=cups).map(|i| format!("\"cup{i}\"")).collect();
+    let away: Vec<String> = (1..=cups)
+        .map(|i| format!("cupAt(cup{i}, cupboard)"))
+        .collect();
+    let mut out = String::new();
+    let mut skipping = false;
+    for line in text.lines() {
+        if line.starts_with('[') {
+            skipping = !explain && line.starts_with("[explanation");
+        }
+        if skipping {
+            continue;
+        }
+        if line.starts_with("cup = [") {
+            out.push_str(&format!("cup = [{}]\n", names.join(", ")));
+        } else if line.starts_with("reachable = \"robotAt(cupboard)") {
+            out.push_str(&format!(
+                "reachable = \"robotAt(cupboard) & {}\"\n",
+                away.join(" & ")
+            ));
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out.replace("max_states = 5_000_000", "max_states = 200_000_000")
+}
+
+/// A temporary project folder with the kitchen's plans and domain and `cups` cups.
+fn project(cups: usize, explain: bool) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "bdi-check-bench-scale-{cups}-{explain}-{}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let specs = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+    for f in ["kitchen.asl", "kitchen.pddl"] {
+        std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
+    }
+    std::fs::write(dir.join("bdi-check.toml"), manifest(cups, explain)).expect("writable");
+    dir
+}
+
+/// Successor generation: the first `n` states of the 3-cup kitchen, breadth first, each
+/// expanded once more and timed.
+fn successors() {
+    let dir = project(3, false);
+    let p = load_project(&dir).expect("the project loads");
+    let sem = Semantics::new(&p).expect("the semantics");
+    let mut frontier = sem.init_states();
+    let mut states = Vec::new();
+    while states.len() < 20_000 && !frontier.is_empty() {
+        let mut next = Vec::new();
+        for s in frontier {
+            next.extend(sem.next_states(&s).into_iter().map(|(_, t)| t));
+            states.push(s);
+        }
+        frontier = next;
+    }
+    let start = Instant::now();
+    let mut succ = 0usize;
+    for s in &states {
+        succ += sem.next_states(s).len();
+    }
+    let t = start.elapsed().as_secs_f64();
+    println!(
+        "successors: {} states expanded in {t:.3}s: {:.0} states/s, {:.0} successors/s (one thread, 3 cups)",
+        states.len(),
+        states.len() as f64 / t,
+        succ as f64 / t
+    );
+    let start = Instant::now();
+    let mut x = 0u64;
+    for s in &states {
+        x ^= sem.fingerprint(s);
+    }
+    let t = start.elapsed().as_secs_f64();
+    println!(
+        "fingerprints: {:.0} states/s (checksum {x:x})",
+        states.len() as f64 / t
+    );
+}
+
+/// The store: ten million distinct fingerprints.
+fn store() {
+    let mut s = Store::new();
+    let n = 10_000_000u64;
+    let start = Instant::now();
+    for k in 0..n {
+        let fp = k.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (k >> 7);
+        s.insert(fp, Some(k.saturating_sub(1) as u32))
+            .expect("memory");
+    }
+    let t = start.elapsed().as_secs_f64();
+    println!(
+        "store: {n} inserts in {t:.2}s ({:.0}/s), {:.1} bytes per state",
+        n as f64 / t,
+        s.bytes() as f64 / n as f64
+    );
+}
+
+/// One table row, in this process: prints a tab-separated line.
+fn row(cups: usize, symmetry: bool, explain: bool) {
+    let dir = project(cups, explain);
+    let p = load_project(&dir).expect("the project loads");
+    let limits = Limits {
+        max_states: 200_000_000,
+        max_depth: 2_000,
+        timeout: Some(600.0),
+    };
+    let opts = VerifyOptions {
+        symmetry,
+        ..VerifyOptions::default()
+    };
+    let start = Instant::now();
+    let v = verify_with(&p, limits, &opts, |_, _, _| {}, &[]).expect("the kitchen verifies");
+    let total = start.elapsed().as_secs_f64();
+    let failed = v
+        .findings
+        .iter()
+        .filter(|f| f.status == bdi_check::report::Status::Fail)
+        .count();
+    let s = &v.stats;
+    println!(
+        "{cups}\t{}\t{}\t{}\t{:.2}\t{total:.2}\t{:.0}\t{}\t{:.1}\t{:.1}\t{}\t{failed}",
+        if symmetry { "on" } else { "off" },
+        s.states,
+        s.transitions,
+        s.seconds,
+        s.states_per_second,
+        peak_memory().unwrap_or(0) / (1 << 20),
+        v.memory.0 as f64 / s.states.max(1) as f64,
+        v.memory.1 as f64 / s.transitions.max(1) as f64,
+        if s.complete { "yes" } else { "no" },
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A bare search (no checks, no edges, no symmetry) of the 4-cup kitchen, per thread
+/// count: the raw speed of the explorer.
+fn threads() {
+    let dir = project(4, false);
+    let p = load_project(&dir).expect("the project loads");
+    let sem = Semantics::new(&p).expect("the semantics");
+    for threads in [1, 2] {
+        let opts = Options {
+            threads,
+            keep_edges: false,
+            max_memory: None,
+            shard: None,
+        };
+        let limits = Limits {
+            max_states: u64::MAX,
+            max_depth: u64::MAX,
+            timeout: None,
+        };
+        let g = explore_with(
+            &sem,
+            limits,
+            &opts,
+            |_| (),
+            |_, ()| {},
+            |_, _, _, _| {},
+            |_, _, _| {},
+        );
+        println!(
+            "bare search, 4 cups, no symmetry, {threads} thread(s): {} states in {:.2}s, {:.0} states/s",
+            g.len(),
+            g.seconds,
+            g.len() as f64 / g.seconds
+        );
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let explain = args.iter().any(|a| a == "--explain");
+    if let Some(i) = args.iter().position(|a| a == "--row") {
+        let cups = args[i + 1].parse().expect("cups");
+        row(cups, args[i + 2] == "on", explain);
+        return;
+    }
+    let max: usize = args
+        .iter()
+        .skip(1)
+        .find_map(|a| a.parse().ok())
+        .unwrap_or(6);
+    successors();
+    store();
+    threads();
+    println!(
+        "cups\tsymmetry\tstates\ttransitions\tsearch s\ttotal s\tstates/s\tpeak MiB\tstore B/state\tedge B/transition\tcomplete\tfailed"
+    );
+    let exe = std::env::current_exe().expect("the bench binary");
+    for cups in 1..=max {
+        // Without symmetry, 5 and 6 cups take too long to be worth a bench run.
+        let modes: &[&str] = if cups <= 4 { &["on", "off"] } else { &["on"] };
+        for mode in modes {
+            let mut cmd = Command::new(&exe);
+            cmd.args(["--row", &cups.to_string(), mode]);
+            if explain {
+                cmd.arg("--explain");
+            }
+            let out = cmd.output().expect("the row runs");
+            print!("{}", String::from_utf8_lossy(&out.stdout));
+            if !out.status.success() {
+                eprint!("{}", String::from_utf8_lossy(&out.stderr));
+            }
+        }
+    }
+}

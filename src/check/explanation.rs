@@ -1,0 +1,882 @@
+//! The explanation properties of SPEC §4, checked on every run for every user.
+//!
+//! A user's expected successors `N` change along a run, so they are part of the state: the
+//! model explored here is the agent's reasoning cycle paired with one user's view of it
+//! ([`Explained`]): `N` as Algorithm 1 updates it on the observed sequence, the last
+//! observation, `N` and the marks of Algorithm 1 as the paper wrote it (at plan adoption),
+//! and the explanations whose content is still to be judged against what the run really
+//! does. Each property is then a check on transitions:
+//!
+//! * `demand-exact`: Algorithm 1's answer at an action equals the declarative one (the pair
+//!   matches nothing in `N`, compared pair by pair), and `N` grows by exactly that pair;
+//! * `demand-adoption`: the paper's Algorithm 1 — marking, when a plan is adopted, each
+//!   action of its body whose pair with the one before is not in `N`, the first action paired
+//!   with what the user saw last — marks exactly the actions the observed sequence flags.
+//!   Only the body's own sequence of steps (block 0) is marked: actions inside `if`, `while`
+//!   and `for` are not known at adoption;
+//! * `content-truthful`: every literal of `Γ` is believed when the explanation is given;
+//! * `content-covers` and `content-concise`: after the explanation, the run is followed until
+//!   the truth of some literal of `Γ` changes. The step of the explained action's plan body
+//!   that was running then (an action, or a subgoal whose sub-intention made the change) is
+//!   the one the content must end at: `covers` fails when the content ends before it,
+//!   `concise` when it ends after it. When the body ends and nothing changed, the content
+//!   must run to the body's last step. A run in which the intention fails first decides
+//!   nothing;
+//! * with `emitted_by`, `demand-conformance` and `content-conformance`: the agent's own
+//!   explanation action, executed before an environment action, must come exactly when
+//!   Algorithm 1 says one is due, and carry the reference content.
+
+use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
+use super::model::Model;
+use super::symmetry::Symmetry;
+use super::trace::Builder;
+use crate::explain::agent::{Explainer, User};
+use crate::explain::{ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
+use crate::model::plans::BodyStep;
+use crate::model::project::Project;
+use crate::model::term::Term;
+use crate::report::{Counterexample, Finding, Status, StepKindTag, TraceStep};
+use crate::semantics::{Note, Origin, Semantics, State};
+use crate::syntax::{Diagnostic, Severity, Span};
+use std::collections::BTreeMap;
+
+/// Every explanation property, in report order.
+pub const CHECKS: [&str; 7] = [
+    "demand-exact",
+    "demand-adoption",
+    "content-covers",
+    "content-concise",
+    "content-truthful",
+    "demand-conformance",
+    "content-conformance",
+];
+
+/// The agent's reasoning cycle as one user sees it.
+pub struct Explained<'a> {
+    sem: &'a Semantics<'a>,
+    ex: &'a Explainer<'a>,
+    user: &'a User,
+    emitted_by: Option<&'a str>,
+    symmetry: Option<&'a Symmetry>,
+}
+
+/// A state of [`Explained`]: the agent's, and the user's view of the run so far.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct ExplainedState {
+    /// The agent.
+    pub agent: State,
+    /// `N` as Algorithm 1 updates it on the observed sequence.
+    n: ExpectedSuccessors,
+    /// The last observation, if any.
+    prev: Option<Observation>,
+    /// `N` as the paper's Algorithm 1 updates it at plan adoption.
+    adoption: ExpectedSuccessors,
+    /// Body actions that the paper's Algorithm 1 marked and that have not run yet.
+    marks: Vec<Mark>,
+    /// Explanations whose content the run has not judged yet.
+    open: Vec<Obligation>,
+    /// The agent's own explanation, emitted since the last environment action.
+    emitted: Option<Term>,
+}
+
+/// A body action marked at adoption: the frame (by intention, depth and plan) and the
+/// action's position in the body.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct Mark {
+    origin: Origin,
+    depth: u16,
+    plan: u32,
+    pos: u16,
+}
+
+/// An explanation given, to be judged by what the run does next.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct Obligation {
+    origin: Origin,
+    depth: u16,
+    plan: u32,
+    block: u16,
+    /// The explained action's position.
+    from: u16,
+    /// The position of the content's last step.
+    end: u16,
+    /// The position of the block's last action or subgoal.
+    last: u16,
+    gamma: Vec<ContextLiteral>,
+    /// Each literal's truth when the explanation was given.
+    truth: Vec<bool>,
+    /// The explained action and its step.
+    action: Term,
+    span: Span,
+    /// The content's steps, for messages.
+    steps: Vec<PlanStep>,
+}
+
+/// An explanation given during a transition.
+#[derive(Clone, Debug)]
+pub struct GivenExplanation {
+    /// The explained action.
+    pub action: Term,
+    /// The content, as the paper writes it.
+    pub content: String,
+    /// The sentence.
+    pub text: String,
+}
+
+/// A property violated by a transition.
+#[derive(Clone, Debug)]
+pub struct Violation {
+    /// The property (one of [`CHECKS`]).
+    pub check: &'static str,
+    /// Where: the explained (or emitted) action's step.
+    pub span: Span,
+    /// What was given and what the property demanded.
+    pub message: String,
+}
+
+/// What one transition of [`Explained`] did.
+#[derive(Clone, Debug, Default)]
+pub struct Step {
+    /// The agent's notes.
+    pub notes: Vec<Note>,
+    /// For each note, the explanation given at it, if any.
+    pub given: Vec<Option<GivenExplanation>>,
+    /// Properties violated.
+    pub violations: Vec<Violation>,
+}
+
+impl<'a> Explained<'a> {
+    /// The runs of `sem` as `user` sees them, explained by `ex`.
+    /// With `symmetry`, states are stored up to renaming of the interchangeable objects,
+    /// in the agent state and in the user's view alike.
+    pub fn new(
+        sem: &'a Semantics<'a>,
+        ex: &'a Explainer<'a>,
+        user: &'a User,
+        symmetry: Option<&'a Symmetry>,
+    ) -> Explained<'a> {
+        let emitted_by = sem
+            .project
+            .manifest
+            .explanation
+            .as_ref()
+            .and_then(|e| e.emitted_by.as_ref())
+            .map(|e| e.value.as_str());
+        Explained {
+            sem,
+            ex,
+            user,
+            emitted_by,
+            symmetry,
+        }
+    }
+
+    fn is_emission(&self, action: &Term) -> bool {
+        self.sem.is_emission(action)
+    }
+
+    fn step_text(&self, plan: u32, block: u16, pos: u16, st: &ExplainedState) -> String {
+        let Some(step) = self.sem.block(plan, block).get(pos as usize) else {
+            return "the end of the body".into();
+        };
+        let subst = st
+            .agent
+            .all_intentions()
+            .flat_map(|i| &i.frames)
+            .find(|f| f.plan == plan)
+            .map(|f| f.subst.clone())
+            .unwrap_or_default();
+        match &step.kind {
+            BodyStep::Action(t) => subst.apply(t).to_string(),
+            BodyStep::Achieve { goal, .. } => format!("!{}", subst.apply(goal)),
+            _ => {
+                let loc = self.sem.project.map.location(step.span);
+                format!("the step at {}:{}", loc.line, loc.column)
+            }
+        }
+    }
+
+    /// Algorithm 1 as the paper wrote it, at the adoption of `plan`.
+    fn adopt(
+        &self,
+        st: &mut ExplainedState,
+        plan: u32,
+        origin: Origin,
+        subst: &crate::model::Substitution,
+        depth: u16,
+    ) {
+        let mut prev = st.prev.clone();
+        for (pos, step) in self.sem.block(plan, 0).iter().enumerate() {
+            let BodyStep::Action(t) = &step.kind else {
+                continue;
+            };
+            let action = subst.apply(t);
+            if self.is_emission(&action) {
+                continue;
+            }
+            let next = Observation::Action(action);
+            if st.adoption.learn(prev.as_ref(), &next) {
+                st.marks.push(Mark {
+                    origin,
+                    depth,
+                    plan,
+                    pos: pos as u16,
+                });
+            }
+            prev = Some(next);
+        }
+    }
+
+    /// Judges the open explanations against the state after a transition.
+    fn judge(&self, st: &mut ExplainedState, failed: bool, out: &mut Vec<Violation>) {
+        let open = std::mem::take(&mut st.open);
+        for o in open {
+            let frame = st
+                .agent
+                .all_intentions()
+                .filter(|i| i.origin == o.origin)
+                .filter_map(|i| i.frames.get(o.depth as usize))
+                .find(|f| f.plan == o.plan);
+            if failed {
+                continue;
+            }
+            let at = frame.and_then(|f| f.cursors.iter().find(|c| c.block == o.block));
+            let changed = o
+                .gamma
+                .iter()
+                .zip(&o.truth)
+                .any(|(l, t)| self.ex.literal_holds(&st.agent.beliefs, l) != *t);
+            let real = match (changed, at) {
+                // The step before the cursor ran (or waits for its sub-intention).
+                (true, Some(c)) if c.pos > o.from => c.pos - 1,
+                (true, _) | (false, None) => o.last,
+                (false, Some(_)) => {
+                    st.open.push(o);
+                    continue;
+                }
+            };
+            if o.end == real {
+                continue;
+            }
+            let content: Vec<String> = o.steps.iter().map(|s| s.to_string()).collect();
+            let real_text = self.step_text(o.plan, o.block, real, st);
+            let how = if changed {
+                format!("the context first changes at {real_text}")
+            } else {
+                format!("the context does not change before the body ends at {real_text}")
+            };
+            out.push(if o.end < real {
+                Violation {
+                    check: "content-covers",
+                    span: o.span,
+                    message: format!(
+                        "the explanation of {} ends at {}, but {how}: it does not cover the step that changes the context (given: ({}); demanded: up to {real_text})",
+                        o.action,
+                        content.last().map_or("", String::as_str),
+                        content.join(", ")
+                    ),
+                }
+            } else {
+                Violation {
+                    check: "content-concise",
+                    span: o.span,
+                    message: format!(
+                        "the explanation of {} runs on to {}, but {how}: the steps after it are not needed (given: ({}); demanded: up to {real_text})",
+                        o.action,
+                        content.last().map_or("", String::as_str),
+                        content.join(", ")
+                    ),
+                }
+            });
+        }
+    }
+
+    fn transition(
+        &self,
+        s: &ExplainedState,
+        notes: Vec<Note>,
+        next: State,
+    ) -> (Step, ExplainedState) {
+        let mut st = ExplainedState {
+            agent: next,
+            ..s.clone()
+        };
+        let mut step = Step::default();
+        let mut failed = false;
+        for note in &notes {
+            let mut given = None;
+            match note {
+                Note::Request { index } => {
+                    let obs = Observation::Request(self.sem.requests[*index as usize].clone());
+                    st.n.observe(st.prev.as_ref(), &obs);
+                    st.prev = Some(obs);
+                }
+                Note::Plan {
+                    plan,
+                    origin,
+                    subst,
+                    depth,
+                } => self.adopt(&mut st, *plan, *origin, subst, *depth),
+                Note::Action {
+                    term,
+                    stack,
+                    plan,
+                    span,
+                    origin,
+                    ..
+                } => {
+                    if self.is_emission(term) {
+                        st.emitted = Some(term.clone());
+                    } else {
+                        given = self.action(
+                            s,
+                            &mut st,
+                            term,
+                            stack,
+                            *plan,
+                            *span,
+                            *origin,
+                            &mut step.violations,
+                        );
+                    }
+                }
+                Note::ActionFailed { .. } | Note::GoalFailed { .. } => failed = true,
+                _ => {}
+            }
+            step.given.push(given);
+        }
+        self.judge(&mut st, failed, &mut step.violations);
+        // Marks of frames that are gone (finished or failed) can never be executed.
+        let agent = &st.agent;
+        st.marks.retain(|m| {
+            agent.all_intentions().any(|i| {
+                i.origin == m.origin
+                    && i.frames
+                        .get(m.depth as usize)
+                        .is_some_and(|f| f.plan == m.plan)
+            })
+        });
+        step.notes = notes;
+        (step, st)
+    }
+
+    /// An executed environment action: demand, adoption marks, content, conformance.
+    #[allow(clippy::too_many_arguments)]
+    fn action(
+        &self,
+        s: &ExplainedState,
+        st: &mut ExplainedState,
+        term: &Term,
+        stack: &[crate::semantics::FrameView],
+        plan: u32,
+        span: Span,
+        origin: Origin,
+        out: &mut Vec<Violation>,
+    ) -> Option<GivenExplanation> {
+        let obs = Observation::Action(term.clone());
+        let prev = st.prev.clone();
+        let after = prev
+            .as_ref()
+            .map_or("the start".to_string(), |o| o.to_string());
+        // Declaratively: novel when no pair of N matches, pair by pair.
+        let novel = !st
+            .n
+            .initial()
+            .iter()
+            .any(|p| p.matches(prev.as_ref(), &obs))
+            && !st
+                .n
+                .learned()
+                .iter()
+                .any(|p| p.prev == prev && p.next == obs);
+        let mut grown: Vec<Pair> = st.n.learned().to_vec();
+        if novel {
+            grown.push(Pair {
+                prev: prev.clone(),
+                next: obs.clone(),
+            });
+            grown.sort();
+        }
+        let due = st.n.observe(prev.as_ref(), &obs);
+        st.prev = Some(obs);
+        if due != novel || st.n.learned() != grown.as_slice() {
+            out.push(Violation {
+                check: "demand-exact",
+                span,
+                message: format!(
+                    "at {term} after {after}, Algorithm 1 {} an explanation and N has {} learned pairs, but the pair is {} and N should have {}",
+                    if due { "gave" } else { "gave no" },
+                    st.n.learned().len(),
+                    if novel { "novel" } else { "expected" },
+                    grown.len()
+                ),
+            });
+        }
+        // The paper's Algorithm 1 marked this action at adoption, or not.
+        let depth = stack.len().saturating_sub(1) as u16;
+        let (block, pos) = stack.last().map_or((0, 0), |f| f.at);
+        let marked = block == 0
+            && st
+                .marks
+                .iter()
+                .position(|m| {
+                    m.origin == origin && m.depth == depth && m.plan == plan && m.pos == pos
+                })
+                .map(|i| st.marks.remove(i))
+                .is_some();
+        if marked != due {
+            out.push(Violation {
+                check: "demand-adoption",
+                span,
+                message: format!(
+                    "{term} after {after} {} by the observed sequence, but Algorithm 1 at plan adoption {} it",
+                    if due { "is surprising" } else { "is expected" },
+                    if marked { "marked" } else { "did not mark" }
+                ),
+            });
+        }
+        let emitted = st.emitted.take();
+        let explanation = if due {
+            self.ex.explain(&s.agent.beliefs, stack)
+        } else {
+            None
+        };
+        if self.emitted_by.is_some() {
+            self.conformance(
+                term,
+                &after,
+                emitted.as_ref(),
+                explanation.as_ref().map(|e| &e.content),
+                span,
+                out,
+            );
+        }
+        let e = explanation?;
+        let truth: Vec<bool> = e
+            .content
+            .context
+            .iter()
+            .map(|l| self.ex.literal_holds(&s.agent.beliefs, l))
+            .collect();
+        let false_now: Vec<String> = e
+            .content
+            .context
+            .iter()
+            .zip(&truth)
+            .filter(|(_, t)| !**t)
+            .map(|(l, _)| l.to_string())
+            .collect();
+        if !false_now.is_empty() {
+            out.push(Violation {
+                check: "content-truthful",
+                span,
+                message: format!(
+                    "the explanation of {term} gives the context {}, but {} {} not believed when it is given",
+                    e.content,
+                    false_now.join(", "),
+                    if false_now.len() == 1 { "is" } else { "are" }
+                ),
+            });
+        }
+        let given = GivenExplanation {
+            action: term.clone(),
+            content: e.content.to_string(),
+            text: self.ex.sentence(term, &e.content),
+        };
+        st.open.push(Obligation {
+            origin,
+            depth,
+            plan,
+            block: e.block,
+            from: pos,
+            end: *e.positions.last().unwrap_or(&pos),
+            last: e.last,
+            gamma: e.content.context.clone(),
+            truth,
+            action: term.clone(),
+            span,
+            steps: e.content.actions.clone(),
+        });
+        Some(given)
+    }
+
+    /// The agent's own explanation against the reference (see [`emitted_content`]).
+    fn conformance(
+        &self,
+        term: &Term,
+        after: &str,
+        emitted: Option<&Term>,
+        reference: Option<&crate::explain::Content>,
+        span: Span,
+        out: &mut Vec<Violation>,
+    ) {
+        match (emitted, reference) {
+            (None, None) => {}
+            (Some(e), None) => out.push(Violation {
+                check: "demand-conformance",
+                span,
+                message: format!(
+                    "the agent explains {term} after {after} with {e}, but no explanation is due"
+                ),
+            }),
+            (None, Some(r)) => out.push(Violation {
+                check: "demand-conformance",
+                span,
+                message: format!(
+                    "{term} after {after} is surprising, but the agent gives no explanation (demanded: {r})"
+                ),
+            }),
+            (Some(e), Some(r)) => {
+                if emitted_content(e) != Some(reference_content(term, r)) {
+                    out.push(Violation {
+                        check: "content-conformance",
+                        span,
+                        message: format!(
+                            "the agent explains {term} with {e}, but the reference explanation is {r}"
+                        ),
+                    });
+                }
+            }
+        }
+    }
+}
+
+/// What an explanation says, in the shape the agent's `emitted_by` action carries it: the
+/// explained action, `Γ` as a set, and the steps in order.
+type Carried = (String, Vec<String>, Vec<String>);
+
+/// What `explain(Action, [L1, ...], [S1, ...])` carries: `Γ` as a list of literals in any
+/// order (`not p` written `neg(p)`, since a Jason list holds terms, not formulas) and the
+/// steps in order (`!g` written `achieve(g)`). `None` when it has another shape.
+pub fn emitted_content(t: &Term) -> Option<Carried> {
+    let [action, context, steps] = t.args() else {
+        return None;
+    };
+    let items = |l: &Term| -> Option<Vec<String>> {
+        match l.list_elements()? {
+            (items, None) => Some(items.iter().map(|x| x.to_string()).collect()),
+            _ => None,
+        }
+    };
+    let mut context = items(context)?;
+    context.sort();
+    context.dedup();
+    Some((action.to_string(), context, items(steps)?))
+}
+
+/// The reference content in the shape of [`emitted_content`].
+pub fn reference_content(action: &Term, c: &crate::explain::Content) -> Carried {
+    let mut context: Vec<String> = c
+        .context
+        .iter()
+        .map(|l| {
+            if l.positive {
+                l.atom.to_string()
+            } else {
+                format!("neg({})", l.atom)
+            }
+        })
+        .collect();
+    context.sort();
+    context.dedup();
+    (
+        action.to_string(),
+        context,
+        c.actions
+            .iter()
+            .map(|s| match s {
+                PlanStep::Action(a) => a.to_string(),
+                PlanStep::Subgoal(g) => format!("achieve({g})"),
+            })
+            .collect(),
+    )
+}
+
+impl Model for Explained<'_> {
+    type State = ExplainedState;
+    type Label = Step;
+
+    fn init_states(&self) -> Vec<ExplainedState> {
+        self.sem
+            .initial_states()
+            .into_iter()
+            .map(|agent| ExplainedState {
+                agent,
+                n: self.user.expected.clone(),
+                prev: None,
+                adoption: self.user.expected.clone(),
+                marks: Vec::new(),
+                open: Vec::new(),
+                emitted: None,
+            })
+            .collect()
+    }
+
+    fn next_states(&self, s: &ExplainedState) -> Vec<(Step, ExplainedState)> {
+        self.sem
+            .successors(&s.agent)
+            .into_iter()
+            .map(|t| self.transition(s, t.notes, t.next))
+            .collect()
+    }
+
+    fn fingerprint(&self, s: &ExplainedState) -> u64 {
+        let Some(sym) = self.symmetry else {
+            return fingerprint(s);
+        };
+        sym.fingerprint_with(&s.agent, |r| {
+            let obs = |o: &Observation| match o {
+                Observation::Request(t) => Observation::Request(r.term(t)),
+                Observation::Action(t) => Observation::Action(r.term(t)),
+            };
+            let pairs = |n: &ExpectedSuccessors| {
+                let mut v: Vec<Pair> = n
+                    .learned()
+                    .iter()
+                    .map(|p| Pair {
+                        prev: p.prev.as_ref().map(obs),
+                        next: obs(&p.next),
+                    })
+                    .collect();
+                v.sort();
+                v
+            };
+            let mut marks: Vec<(Origin, u16, u32, u16)> = s
+                .marks
+                .iter()
+                .map(|m| (r.origin(m.origin), m.depth, m.plan, m.pos))
+                .collect();
+            marks.sort();
+            let open: Vec<Obligation> = s
+                .open
+                .iter()
+                .map(|o| Obligation {
+                    origin: r.origin(o.origin),
+                    gamma: o
+                        .gamma
+                        .iter()
+                        .map(|l| ContextLiteral {
+                            atom: r.term(&l.atom),
+                            positive: l.positive,
+                        })
+                        .collect(),
+                    action: r.term(&o.action),
+                    steps: o
+                        .steps
+                        .iter()
+                        .map(|p| match p {
+                            PlanStep::Action(t) => PlanStep::Action(r.term(t)),
+                            PlanStep::Subgoal(t) => PlanStep::Subgoal(r.term(t)),
+                        })
+                        .collect(),
+                    ..o.clone()
+                })
+                .collect();
+            (
+                pairs(&s.n),
+                s.prev.as_ref().map(obs),
+                pairs(&s.adoption),
+                marks,
+                open,
+                s.emitted.as_ref().map(|t| r.term(t)),
+            )
+        })
+    }
+}
+
+/// A transition of the product graph: source state, its position among the source's
+/// transitions, and the target's fingerprint.
+pub type Shown = (u32, u32, u64);
+
+/// The first violation of each check at each place, with the transition that shows it.
+pub struct UserResult {
+    /// The user.
+    pub user: String,
+    /// `(check, file, offset)` → where it shows and what it is.
+    pub violations: BTreeMap<(&'static str, u32, u32), (Shown, Violation)>,
+    /// The explored product graph.
+    pub graph: Graph<ExplainedState>,
+    /// Explanations given on the transitions explored.
+    pub given: usize,
+}
+
+/// Explores the runs as `user` sees them and collects the violations.
+pub fn check_user(
+    model: &Explained,
+    limits: Limits,
+    opts: &Options,
+    progress: impl FnMut(usize, u32, f64),
+) -> UserResult {
+    let mut violations = BTreeMap::new();
+    let mut given = 0;
+    let graph = explore_with(
+        model,
+        limits,
+        opts,
+        |_| (),
+        |_, ()| {},
+        |src, k, step: &Step, fp| {
+            given += step.given.iter().flatten().count();
+            for v in &step.violations {
+                violations
+                    .entry((v.check, v.span.file.0, v.span.start))
+                    .or_insert_with(|| ((src, k, fp), v.clone()));
+            }
+        },
+        progress,
+    );
+    UserResult {
+        user: model.user.name.clone(),
+        violations,
+        graph,
+        given,
+    }
+}
+
+/// The run to the violation `v`, shown by the `k`-th transition of state `src` of the
+/// product graph (to a state with fingerprint `fp`), with the explanations the user got in
+/// place. Under symmetry the run is a concrete one that reaches a renaming of the stored
+/// states, so the last transition is found by what it violates.
+pub fn counterexample(
+    project: &Project,
+    model: &Explained,
+    graph: &Graph<ExplainedState>,
+    (src, k, fp): Shown,
+    v: &Violation,
+) -> Counterexample {
+    let (sem, user) = (model.sem, model.user);
+    let path = graph.path_to(src);
+    let mut labels: Vec<Step> = Vec::new();
+    let mut initial = Vec::new();
+    if let Some(mut walk) = Walk::start(model, graph, path[0]) {
+        initial = walk
+            .state
+            .agent
+            .beliefs
+            .iter()
+            .map(|a| project.atoms.display(a, &project.universe))
+            .collect();
+        for &j in &path[1..] {
+            labels.extend(walk.step_to(j));
+        }
+        labels.extend(walk.step_by(k, fp, |l: &Step| {
+            l.violations
+                .iter()
+                .any(|w| w.check == v.check && w.span == v.span)
+        }));
+    }
+    let mut b = Builder::new(project, sem);
+    let mut steps: Vec<TraceStep> = Vec::new();
+    let mut requests = Vec::new();
+    for l in labels {
+        for (note, given) in l.notes.into_iter().zip(l.given) {
+            if let Note::Request { index } = &note {
+                requests.push(sem.requests[*index as usize].to_string());
+            }
+            if let Some(g) = given {
+                steps.push(TraceStep {
+                    kind: StepKindTag::Explanation,
+                    text: format!("to {}: {} {}", user.name, g.text, g.content),
+                    intention: None,
+                    plan: None,
+                    added: Vec::new(),
+                    removed: Vec::new(),
+                    explanation: Some(g.text),
+                });
+            }
+            let before = b.steps().len();
+            b.push(vec![note]);
+            steps.extend(b.steps()[before..].iter().cloned());
+        }
+    }
+    Counterexample {
+        initial,
+        requests,
+        steps,
+        loop_start: None,
+    }
+}
+
+/// The explanation properties for every user of the manifest: one finding per property and
+/// user when it holds (or is undecided), one per property, user and place when it fails.
+/// Nothing when the manifest has no `[explanation]` users. Also returns whether every
+/// user's search was complete.
+pub fn verify(
+    project: &Project,
+    sem: &Semantics,
+    symmetry: Option<&Symmetry>,
+    limits: Limits,
+    opts: &Options,
+) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
+    let Some(section) = &project.manifest.explanation else {
+        return Ok((Vec::new(), true));
+    };
+    let users = crate::explain::agent::users(project, None)?;
+    let ex = Explainer::new(project, sem);
+    let checks: &[&str] = if section.emitted_by.is_some() {
+        &CHECKS
+    } else {
+        &CHECKS[..5]
+    };
+    let mut out = Vec::new();
+    let mut complete = true;
+    for user in &users {
+        let model = Explained::new(sem, &ex, user, symmetry);
+        let r = check_user(&model, limits, opts, |_, _, _| {});
+        complete &= r.graph.complete();
+        let states = r.graph.len();
+        for check in checks {
+            let mut failed = false;
+            for ((c, _, _), (shown, v)) in &r.violations {
+                if c != check {
+                    continue;
+                }
+                failed = true;
+                let loc = project.map.location(v.span);
+                out.push(Finding {
+                    id: format!("{check}:{}:{}:{}", user.name, loc.file, loc.line),
+                    check: check.to_string(),
+                    severity: Severity::Error,
+                    status: Status::Fail,
+                    message: format!("for {}: {}", user.name, v.message),
+                    location: Some(loc),
+                    counterexample: Some(counterexample(project, &model, &r.graph, *shown, v)),
+                    span: Some(v.span),
+                    related: Vec::new(),
+                });
+            }
+            if failed {
+                continue;
+            }
+            let (status, message) = if r.graph.complete() {
+                (
+                    Status::Pass,
+                    format!(
+                        "for {}: holds on every run ({states} states with the user's N, {} explanations given)",
+                        user.name, r.given
+                    ),
+                )
+            } else {
+                (
+                    Status::Unknown,
+                    format!(
+                        "for {}: holds on the {states} states reached with the user's N, but the search was cut short",
+                        user.name
+                    ),
+                )
+            };
+            out.push(Finding {
+                id: format!("{check}:{}", user.name),
+                check: check.to_string(),
+                severity: Severity::Error,
+                status,
+                message,
+                location: Some(project.map.location(user.span)),
+                counterexample: None,
+                span: Some(user.span),
+                related: Vec::new(),
+            });
+        }
+    }
+    Ok((out, complete))
+}

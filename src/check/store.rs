@@ -1,0 +1,149 @@
+//! The visited-state store: a fingerprint and a parent link per state, nothing else.
+//!
+//! States are numbered in the order they are found (breadth first, so by depth). The store
+//! keeps, per state, its 64-bit fingerprint (8 bytes) and its parent's number (4 bytes),
+//! plus one 4-byte slot of an open-addressing hash table that maps fingerprints to numbers
+//! (kept between 3/8 and 3/4 full, so 5.3 to 10.7 bytes per state). The two arrays grow by
+//! a quarter at a time, so at most 25% of them is slack: 17 to 26 bytes per state. No state is kept: a state, or the run to it, is rebuilt by replaying transitions
+//! from an initial state and following the fingerprints (as stateright does). Growth uses
+//! `try_reserve`, so running out of memory ends the search as `incomplete` instead of
+//! aborting the process.
+
+/// Marks an empty hash-table slot, and "no parent".
+const NONE: u32 = u32::MAX;
+
+/// The store could not grow: memory is exhausted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutOfMemory;
+
+/// Fingerprints and parent links of the visited states.
+#[derive(Default)]
+pub struct Store {
+    fps: Vec<u64>,
+    parent: Vec<u32>,
+    slots: Vec<u32>,
+}
+
+impl Store {
+    /// An empty store.
+    pub fn new() -> Store {
+        Store::default()
+    }
+
+    /// Number of states stored.
+    pub fn len(&self) -> usize {
+        self.fps.len()
+    }
+
+    /// Whether nothing is stored.
+    pub fn is_empty(&self) -> bool {
+        self.fps.is_empty()
+    }
+
+    /// The fingerprint of state `i`.
+    pub fn fingerprint(&self, i: u32) -> u64 {
+        self.fps[i as usize]
+    }
+
+    /// The state `i` was first reached from (`None` for an initial state).
+    pub fn parent(&self, i: u32) -> Option<u32> {
+        let p = self.parent[i as usize];
+        (p != NONE).then_some(p)
+    }
+
+    /// The number of the state with fingerprint `fp`, if stored.
+    pub fn find(&self, fp: u64) -> Option<u32> {
+        if self.slots.is_empty() {
+            return None;
+        }
+        let mask = self.slots.len() - 1;
+        let mut at = fp as usize & mask;
+        loop {
+            let i = self.slots[at];
+            if i == NONE {
+                return None;
+            }
+            if self.fps[i as usize] == fp {
+                return Some(i);
+            }
+            at = (at + 1) & mask;
+        }
+    }
+
+    /// Stores `fp` (reached from `parent`) unless it is there: its number, and whether it
+    /// is new.
+    pub fn insert(&mut self, fp: u64, parent: Option<u32>) -> Result<(u32, bool), OutOfMemory> {
+        if let Some(i) = self.find(fp) {
+            return Ok((i, false));
+        }
+        if self.fps.len() >= NONE as usize - 1 {
+            return Err(OutOfMemory);
+        }
+        if (self.fps.len() + 1) * 4 > self.slots.len() * 3 {
+            self.grow()?;
+        }
+        if self.fps.len() == self.fps.capacity() {
+            // Grow by a quarter, not double: at most 25% slack in the two arrays.
+            let more = (self.fps.len() / 4).max(1024);
+            self.fps.try_reserve_exact(more).map_err(|_| OutOfMemory)?;
+            self.parent
+                .try_reserve_exact(more)
+                .map_err(|_| OutOfMemory)?;
+        }
+        let i = self.fps.len() as u32;
+        self.fps.push(fp);
+        self.parent.push(parent.unwrap_or(NONE));
+        self.place(i);
+        Ok((i, true))
+    }
+
+    fn place(&mut self, i: u32) {
+        let mask = self.slots.len() - 1;
+        let mut at = self.fps[i as usize] as usize & mask;
+        while self.slots[at] != NONE {
+            at = (at + 1) & mask;
+        }
+        self.slots[at] = i;
+    }
+
+    fn grow(&mut self) -> Result<(), OutOfMemory> {
+        let cap = (self.slots.len() * 2).max(1024);
+        let mut slots = Vec::new();
+        slots.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
+        slots.resize(cap, NONE);
+        self.slots = slots;
+        for i in 0..self.fps.len() as u32 {
+            self.place(i);
+        }
+        Ok(())
+    }
+
+    /// Bytes held (capacity, not just length).
+    pub fn bytes(&self) -> usize {
+        self.fps.capacity() * 8 + self.parent.capacity() * 4 + self.slots.capacity() * 4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inserts_find_and_link_parents() {
+        let mut s = Store::new();
+        let fp = |k: u64| k.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        assert_eq!(s.insert(fp(0), None), Ok((0, true)));
+        for k in 1..10_000u64 {
+            assert_eq!(s.insert(fp(k), Some(k as u32 - 1)), Ok((k as u32, true)));
+        }
+        assert_eq!(s.insert(fp(5), Some(0)), Ok((5, false)));
+        assert_eq!(s.len(), 10_000);
+        assert_eq!(s.find(fp(1234)), Some(1234));
+        assert_eq!(s.find(fp(10_001)), None);
+        assert_eq!(s.parent(0), None);
+        assert_eq!(s.parent(77), Some(76));
+        assert_eq!(s.fingerprint(9), fp(9));
+        // At most (8 + 4) * 5/4 + 4 / (3/8) bytes per state, plus the first allocations.
+        assert!(s.bytes() <= 10_000 * 26 + 1024 * 16, "{} bytes", s.bytes());
+    }
+}

@@ -1,0 +1,280 @@
+//! Scale (issue 9): symmetry reduction keeps every verdict and finding and really reduces;
+//! naming an interchangeable object is refused; the thread count changes no byte of a
+//! report; sharded runs merge to the unsharded verdict; counterexamples found under
+//! symmetry still replay.
+
+mod common;
+
+use common::bdi_check;
+use serde_json::Value;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// Every project the tests verify: `specs/*` and `tests/verify/*`.
+fn projects() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for dir in ["specs", "tests/verify"] {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        for e in std::fs::read_dir(&root)
+            .expect("the folder exists")
+            .flatten()
+        {
+            if e.path().join("bdi-check.toml").is_file() {
+                out.push(Path::new(dir).join(e.file_name()));
+            }
+        }
+    }
+    out.sort();
+    assert!(out.len() >= 3, "projects found: {out:?}");
+    out
+}
+
+fn verify_json(project: &Path, extra: &[&str]) -> (Value, i32) {
+    let p = project.to_str().expect("a UTF-8 path");
+    let mut args = vec!["verify", p, "--format", "json"];
+    args.extend_from_slice(extra);
+    let out = bdi_check(&args);
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "{p} {extra:?}: not JSON ({e}): {}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    (v, out.status.code().expect("an exit code"))
+}
+
+/// Each finding as (id, check, status, severity).
+fn finding_set(r: &Value) -> BTreeSet<(String, String, String, String)> {
+    let s = |f: &Value, k: &str| f[k].as_str().unwrap_or("").to_string();
+    r["findings"]
+        .as_array()
+        .expect("findings")
+        .iter()
+        .map(|f| (s(f, "id"), s(f, "check"), s(f, "status"), s(f, "severity")))
+        .collect()
+}
+
+fn states(r: &Value) -> u64 {
+    r["stats"]["states"].as_u64().expect("a state count")
+}
+
+/// A copy of `specs/kitchen` in a fresh temporary folder, with `edit` applied to the text
+/// of each file (name, text).
+fn kitchen_copy(name: &str, edit: impl Fn(&str, String) -> String) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("bdi-check-scale-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+    for e in std::fs::read_dir(src).expect("specs/kitchen").flatten() {
+        let file = e.file_name().to_string_lossy().to_string();
+        let text = std::fs::read_to_string(e.path()).expect("readable");
+        std::fs::write(dir.join(&file), edit(&file, text)).expect("writable");
+    }
+    dir
+}
+
+#[test]
+fn symmetry_keeps_every_verdict_and_finding() {
+    for p in projects() {
+        let (with, code_with) = verify_json(&p, &[]);
+        let (without, code_without) = verify_json(&p, &["--no-symmetry"]);
+        assert_eq!(with["verdict"], without["verdict"], "{}", p.display());
+        assert_eq!(code_with, code_without, "{}", p.display());
+        assert_eq!(finding_set(&with), finding_set(&without), "{}", p.display());
+        assert!(states(&with) <= states(&without), "{}", p.display());
+    }
+}
+
+#[test]
+fn symmetry_reduces_the_kitchen() {
+    let kitchen = Path::new("specs/kitchen");
+    let (with, _) = verify_json(kitchen, &[]);
+    let (without, _) = verify_json(kitchen, &["--no-symmetry"]);
+    assert_eq!(with["verdict"], "pass");
+    // Two interchangeable cups: close to half the states.
+    assert!(
+        states(&with) * 10 < states(&without) * 6,
+        "{} states with symmetry, {} without",
+        states(&with),
+        states(&without)
+    );
+}
+
+#[test]
+fn naming_an_interchangeable_object_is_refused_where_it_is_named() {
+    let dir = kitchen_copy("named", |file, text| {
+        if file.ends_with(".asl") {
+            text.replacen(
+                "+!wipeTable : dirty(table)",
+                "+!wipeTable : dirty(table) & used(cup2)",
+                1,
+            )
+        } else {
+            text
+        }
+    });
+    let d = dir.to_str().expect("UTF-8");
+    let out = bdi_check(&["verify", d]);
+    assert_eq!(out.status.code(), Some(2));
+    let err =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("kitchen.asl:"), "{err}");
+    assert!(
+        err.contains("names `cup2`") && err.contains("--no-symmetry"),
+        "{err}"
+    );
+    // Without symmetry the same project is checked.
+    let out = bdi_check(&["verify", d, "-q", "--no-symmetry"]);
+    assert_ne!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    // A property about one cup is not symmetric; one about both cups alike is.
+    let dir = kitchen_copy("property", |file, text| {
+        if file == "bdi-check.toml" {
+            text + "\n[[property]]\nname = \"first_cup_used\"\nreachable = \"used(cup1)\"\n"
+        } else {
+            text
+        }
+    });
+    let out = bdi_check(&["verify", dir.to_str().expect("UTF-8"), "--format", "json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let r: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let f = &r["findings"][0];
+    assert_eq!(f["check"], "input");
+    assert!(
+        f["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("first_cup_used"),
+        "{f}"
+    );
+    assert_eq!(
+        f["location"]["file"]
+            .as_str()
+            .map(|s| s.ends_with("bdi-check.toml")),
+        Some(true)
+    );
+    let dir = kitchen_copy("symmetric", |file, text| {
+        if file == "bdi-check.toml" {
+            text + "\n[[property]]\nname = \"both_used\"\nreachable = \"used(cup1) & used(cup2)\"\n"
+        } else {
+            text
+        }
+    });
+    let (r, code) = verify_json(&dir, &[]);
+    assert_eq!((r["verdict"].as_str(), code), (Some("pass"), 0));
+}
+
+#[test]
+fn counterexamples_found_under_symmetry_replay() {
+    // A property the kitchen breaks: cups do reach the cupboard.
+    let dir = kitchen_copy("replay", |file, text| {
+        if file == "bdi-check.toml" {
+            text + "\n[[property]]\nname = \"no_cup_put_away\"\nalways = \"not cupAt(C, cupboard) | used(C)\"\n"
+        } else {
+            text
+        }
+    });
+    let (r, code) = verify_json(&dir, &[]);
+    assert_eq!((r["verdict"].as_str(), code), (Some("fail"), 1));
+    let report = dir.join("report.json");
+    std::fs::write(&report, serde_json::to_string(&r).expect("JSON")).expect("writable");
+    let out = bdi_check(&[
+        "replay",
+        report.to_str().expect("UTF-8"),
+        "--finding",
+        "property:no_cup_put_away",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "the run still reaches the violation: {}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The report without its timings.
+fn without_timings(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes)
+        .lines()
+        .filter(|l| !l.contains("\"seconds\"") && !l.contains("\"states_per_second\""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn reports_are_byte_identical_for_any_thread_count() {
+    for p in ["specs/kitchen", "specs/paper", "tests/verify/livelock"] {
+        let run = |threads: &str| {
+            let out = bdi_check(&["verify", p, "--format", "json", "--threads", threads]);
+            without_timings(&out.stdout)
+        };
+        let one = run("1");
+        assert!(one.contains("\"findings\""), "{one}");
+        assert_eq!(one, run("2"), "{p}");
+        assert_eq!(one, run("3"), "{p}");
+    }
+}
+
+#[test]
+fn sharded_runs_merge_to_the_unsharded_verdict() {
+    for p in ["specs/kitchen", "specs/paper"] {
+        let (full, code) = verify_json(Path::new(p), &[]);
+        for n in [2, 3] {
+            let mut files = Vec::new();
+            for k in 1..=n {
+                let (part, _) = verify_json(Path::new(p), &["--shard", &format!("{k}/{n}")]);
+                assert!(states(&part) < states(&full), "{p} {k}/{n}");
+                let f = std::env::temp_dir().join(format!(
+                    "bdi-check-shard-{}-{k}-{n}-{}.json",
+                    p.replace('/', "-"),
+                    std::process::id()
+                ));
+                std::fs::write(&f, serde_json::to_string(&part).expect("JSON")).expect("writable");
+                files.push(f);
+            }
+            let mut args = vec!["merge"];
+            args.extend(files.iter().map(|f| f.to_str().expect("UTF-8")));
+            let out = bdi_check(&args);
+            assert_eq!(out.status.code(), Some(code), "{p} {n}");
+            let merged: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+            assert_eq!(merged["verdict"], full["verdict"], "{p} {n}");
+            assert_eq!(finding_set(&merged), finding_set(&full), "{p} {n}");
+            assert_eq!(
+                merged["stats"]["initial_states"], full["stats"]["initial_states"],
+                "{p} {n}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_shards_and_merges_are_refused() {
+    for shard in ["0/2", "3/2", "1", "a/b"] {
+        let out = bdi_check(&["verify", "specs/paper", "--shard", shard]);
+        assert_eq!(out.status.code(), Some(2), "{shard}");
+    }
+    let out = bdi_check(&["merge", "no-such-report.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let (a, _) = verify_json(Path::new("specs/paper"), &[]);
+    let (b, _) = verify_json(Path::new("tests/verify/tiny"), &[]);
+    let dir = std::env::temp_dir();
+    let (fa, fb) = (
+        dir.join(format!("bdi-check-merge-a-{}.json", std::process::id())),
+        dir.join(format!("bdi-check-merge-b-{}.json", std::process::id())),
+    );
+    std::fs::write(&fa, a.to_string()).expect("writable");
+    std::fs::write(&fb, b.to_string()).expect("writable");
+    let out = bdi_check(&[
+        "merge",
+        fa.to_str().expect("UTF-8"),
+        fb.to_str().expect("UTF-8"),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("one project"));
+}
