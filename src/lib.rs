@@ -98,6 +98,9 @@
 pub mod check;
 pub mod explain;
 pub mod model;
+#[cfg(kani)]
+#[path = "../proofs/mod.rs"]
+mod proofs;
 pub mod report;
 pub mod semantics;
 pub mod smt;
