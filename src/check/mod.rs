@@ -43,6 +43,10 @@ pub struct Verification {
     pub peak_memory: u64,
     /// The symmetric types (and how many objects each has) when symmetry reduction was on.
     pub symmetric_types: Vec<(String, usize)>,
+    /// When symmetry reduction was on and the agent does not treat the objects alike (a
+    /// reachable state whose renaming has other successors than its successors renamed):
+    /// the renaming, and which plans the stored state was about to use.
+    pub symmetry_caveat: Option<String>,
 }
 
 /// How `verify` searches.
@@ -257,12 +261,27 @@ pub fn verify_with(
         max_memory: opts.max_memory,
         shard: opts.shard,
     };
+    let mut not_equivariant: Option<String> = None;
     let graph = explore_with(
         &agent,
         limits,
         &search,
-        |s| conditions.summarize(&sem, s),
-        |i, sum| facts.record(i, sum, &eventually),
+        // Every stored state is also checked for equivariance: reduction is only exact if
+        // renaming a state renames its successors (see Symmetry::equivariance_violation);
+        // where it does not, the report says so.
+        |s| {
+            let unequal = agent
+                .symmetry
+                .as_ref()
+                .and_then(|sym| sym.equivariance_violation(&sem, s));
+            (conditions.summarize(&sem, s), unequal)
+        },
+        |i, (sum, unequal)| {
+            if unequal.is_some() && not_equivariant.is_none() {
+                not_equivariant = unequal;
+            }
+            facts.record(i, sum, &eventually)
+        },
         |src, k, notes: &Vec<Note>, fp| {
             for n in notes {
                 let at = Failure {
@@ -350,6 +369,7 @@ pub fn verify_with(
         memory: (graph.store_bytes(), graph.edge_bytes()),
         peak_memory: graph.peak_memory,
         symmetric_types,
+        symmetry_caveat: not_equivariant,
     })
 }
 

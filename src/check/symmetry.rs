@@ -639,6 +639,36 @@ impl Symmetry {
             .expect("at least one candidate")
     }
 
+    /// Whether the reasoning cycle treats the objects alike at `s`: for each generator `g`
+    /// of the renamings, the successors of `g(s)` are renamings of the successors of `s`
+    /// (compared as multisets of canonical fingerprints). Reduction is exact when this holds
+    /// at every state; Jason's first-answer selection can break it (answers come in belief
+    /// order, so `cup1` before `cup2`). `None` when it holds, otherwise the renaming that
+    /// breaks it, as object names.
+    pub fn equivariance_violation(&self, sem: &Semantics, s: &State) -> Option<String> {
+        let classes = |st: &State| {
+            let mut v: Vec<u64> = sem
+                .successors(st)
+                .iter()
+                .map(|t| self.fingerprint(&t.next))
+                .collect();
+            v.sort_unstable();
+            v
+        };
+        let here = classes(s);
+        self.generators().into_iter().find_map(|g| {
+            (classes(&self.apply(s, &g)) != here).then(|| {
+                let moved: Vec<String> = g
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, &j)| *i != j as usize)
+                    .map(|(i, &j)| format!("{} -> {}", self.names[i], self.names[j as usize]))
+                    .collect();
+                moved.join(", ")
+            })
+        })
+    }
+
     /// The canonical fingerprint of `s`.
     pub fn fingerprint(&self, s: &State) -> u64 {
         self.canonical(s).0

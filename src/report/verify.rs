@@ -18,6 +18,8 @@ pub struct VerifyRun {
     pub diagnostics: Vec<Diagnostic>,
     /// The bound that cut the search short, if any.
     pub bound: Option<Bound>,
+    /// Where symmetry reduction rests on an assumption the agent does not meet, if it does.
+    pub symmetry_caveat: Option<String>,
 }
 
 /// The limits of a project's search: the manifest's `[bounds]`, overridden by options.
@@ -79,6 +81,7 @@ pub fn run_with(
                 map: project.map,
                 diagnostics: Vec::new(),
                 bound: v.bound,
+                symmetry_caveat: v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (plan contexts answer in belief order): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")),
             }
         }
     }
@@ -96,6 +99,7 @@ fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> 
         map,
         diagnostics,
         bound: None,
+        symmetry_caveat: None,
     }
 }
 
@@ -137,6 +141,9 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
             }
         }
         if let Some(s) = &r.stats {
+            if let Some(why) = &run.symmetry_caveat {
+                out.push_str(&format!("warning: {why}\n"));
+            }
             out.push_str(&render_stats(s, run.bound));
         }
     }
