@@ -31,7 +31,7 @@ use super::model::Model;
 use super::symmetry::Symmetry;
 use super::trace::Builder;
 use crate::explain::agent::{Explainer, User};
-use crate::explain::{ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
+use crate::explain::{Content, ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
@@ -117,8 +117,10 @@ struct Obligation {
 pub struct GivenExplanation {
     /// The explained action.
     pub action: Term,
-    /// The content, as the paper writes it.
-    pub content: String,
+    /// What the user saw just before it, if anything.
+    pub after: Option<Observation>,
+    /// What Algorithm 2 says.
+    pub content: Content,
     /// The sentence.
     pub text: String,
 }
@@ -168,6 +170,20 @@ impl<'a> Explained<'a> {
             user,
             emitted_by,
             symmetry,
+        }
+    }
+
+    /// The user's view of a run that starts in `agent`: nothing seen, `N` as the manifest
+    /// gives it.
+    pub fn start(&self, agent: State) -> ExplainedState {
+        ExplainedState {
+            agent,
+            n: self.user.expected.clone(),
+            prev: None,
+            adoption: self.user.expected.clone(),
+            marks: Vec::new(),
+            open: Vec::new(),
+            emitted: None,
         }
     }
 
@@ -480,7 +496,8 @@ impl<'a> Explained<'a> {
         }
         let given = GivenExplanation {
             action: term.clone(),
-            content: e.content.to_string(),
+            after: prev,
+            content: e.content.clone(),
             text: self.ex.sentence(term, &e.content),
         };
         st.open.push(Obligation {
@@ -600,15 +617,7 @@ impl Model for Explained<'_> {
         self.sem
             .initial_states()
             .into_iter()
-            .map(|agent| ExplainedState {
-                agent,
-                n: self.user.expected.clone(),
-                prev: None,
-                adoption: self.user.expected.clone(),
-                marks: Vec::new(),
-                open: Vec::new(),
-                emitted: None,
-            })
+            .map(|agent| self.start(agent))
             .collect()
     }
 

@@ -6,12 +6,15 @@
 //! the reasoning cycle runs otherwise. At each executed environment action, Algorithm 1
 //! decides, per user, whether the action surprises them ([`crate::explain::demand`]); when it
 //! does, Algorithm 2 builds the explanation from the running intention's stack
-//! ([`crate::explain::content`]) and it is rendered as one sentence.
+//! ([`crate::explain::content`]) and it is rendered as one sentence. Each user's view of the
+//! run is [`Explained`], the model whose explanations `verify` checks: what `explain` prints
+//! is what was verified.
 
+use crate::check::explanation::{Explained, ExplainedState, Step};
 use crate::check::explore::fingerprint;
+use crate::check::model::Model;
 use crate::check::trace::Builder;
-use crate::explain::agent::{self, Explainer};
-use crate::explain::{ExpectedSuccessors, Observation};
+use crate::explain::agent::{self, Explainer, User};
 use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::project::{load_project, Project};
 use crate::model::Converter;
@@ -68,24 +71,6 @@ pub struct ExplainRun {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-/// A user's state along the run.
-struct UserState {
-    name: String,
-    n: ExpectedSuccessors,
-    prev: Option<Observation>,
-}
-
-fn users(p: &Project, only: Option<&str>) -> Result<Vec<UserState>, Vec<Diagnostic>> {
-    Ok(agent::users(p, only)?
-        .into_iter()
-        .map(|u| UserState {
-            name: u.name,
-            n: u.expected,
-            prev: None,
-        })
-        .collect())
-}
-
 /// Runs a scenario of a project and explains it for every user (or only `only`).
 pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
     let name = project.display().to_string();
@@ -139,7 +124,7 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
             ),
         }
     }
-    let users = match users(&p, only) {
+    let users = match agent::users(&p, only) {
         Ok(u) => u,
         Err(d) => {
             errors.extend(d);
@@ -149,7 +134,7 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
     if !errors.is_empty() {
         return fail(p.map.clone(), errors);
     }
-    let (trace, given) = execute(&p, &sem, &beliefs, &requests, users);
+    let (trace, given) = execute(&p, &sem, &beliefs, &requests, &users);
     let mut report = Report::new(name.clone(), Vec::new());
     report.explanations = given
         .iter()
@@ -185,10 +170,16 @@ fn execute(
     sem: &Semantics,
     beliefs: &AtomSet,
     requests: &[u8],
-    mut users: Vec<UserState>,
+    users: &[User],
 ) -> (Trace, Vec<Given>) {
     let ex = Explainer::new(p, sem);
+    // Each user's view of the run is the model whose explanations `verify` checks.
+    let models: Vec<Explained> = users
+        .iter()
+        .map(|u| Explained::new(sem, &ex, u, None))
+        .collect();
     let mut state: State = sem.initial_state(beliefs);
+    let mut views: Vec<ExplainedState> = models.iter().map(|m| m.start(state.clone())).collect();
     let mut builder = Builder::new(p, sem);
     let mut steps: Vec<TraceStep> = Vec::new();
     let mut given = Vec::new();
@@ -213,46 +204,39 @@ fn execute(
         if request.is_some() {
             next_request += 1;
         }
+        // The same transition as each user sees it (successors come in the agent's order).
+        let seen_by: Vec<Step> = models
+            .iter()
+            .zip(&mut views)
+            .map(|(m, v)| {
+                let (step, next) = m.next_states(v).swap_remove(k);
+                *v = next;
+                step
+            })
+            .collect();
         let t = &succ[k];
-        for note in &t.notes {
+        for (i, note) in t.notes.iter().enumerate() {
+            for (u, step) in users.iter().zip(&seen_by) {
+                let Some(g) = &step.given[i] else { continue };
+                steps.push(TraceStep {
+                    kind: StepKindTag::Explanation,
+                    text: format!("to {}: {}", u.name, g.text),
+                    intention: None,
+                    plan: None,
+                    added: Vec::new(),
+                    removed: Vec::new(),
+                    explanation: Some(g.text.clone()),
+                });
+                given.push(Given {
+                    user: u.name.clone(),
+                    action: g.action.to_string(),
+                    after: g.after.as_ref().map(|o| o.to_string()),
+                    context: g.content.context.iter().map(|l| l.to_string()).collect(),
+                    actions: g.content.actions.iter().map(|a| a.to_string()).collect(),
+                    text: g.text.clone(),
+                });
+            }
             match note {
-                Note::Request { index } => {
-                    let obs = Observation::Request(sem.requests[*index as usize].clone());
-                    for u in &mut users {
-                        u.n.observe(u.prev.as_ref(), &obs);
-                        u.prev = Some(obs.clone());
-                    }
-                }
-                Note::Action { term, stack, .. } if !sem.is_emission(term) => {
-                    let obs = Observation::Action(term.clone());
-                    for u in &mut users {
-                        let after = u.prev.as_ref().map(|o| o.to_string());
-                        if u.n.observe(u.prev.as_ref(), &obs) {
-                            let c = ex.explain(&state.beliefs, stack).map(|e| e.content);
-                            if let Some(c) = c {
-                                let text = ex.sentence(term, &c);
-                                steps.push(TraceStep {
-                                    kind: StepKindTag::Explanation,
-                                    text: format!("to {}: {text}", u.name),
-                                    intention: None,
-                                    plan: None,
-                                    added: Vec::new(),
-                                    removed: Vec::new(),
-                                    explanation: Some(text.clone()),
-                                });
-                                given.push(Given {
-                                    user: u.name.clone(),
-                                    action: term.to_string(),
-                                    after,
-                                    context: c.context.iter().map(|l| l.to_string()).collect(),
-                                    actions: c.actions.iter().map(|a| a.to_string()).collect(),
-                                    text,
-                                });
-                            }
-                        }
-                        u.prev = Some(obs.clone());
-                    }
-                }
                 Note::ActionFailed { .. } => outcome = "action-failure",
                 Note::GoalFailed { .. } => outcome = "goal-failure",
                 _ => {}
@@ -371,7 +355,7 @@ pub struct Scenario {
 pub fn catalogue(project: &Path, only: Option<&str>) -> Result<Catalogue, LoadFailure> {
     let p = load_project(project).map_err(|e| (e.map, e.diagnostics))?;
     let sem = Semantics::new(&p).map_err(|d| (p.map.clone(), d))?;
-    users(&p, only).map_err(|d| (p.map.clone(), d))?;
+    let users = agent::users(&p, only).map_err(|d| (p.map.clone(), d))?;
     let n = sem.requests.len();
     let max = (p.manifest.requests.max as usize).min(n);
     // Every sequence of distinct request indices of length 1..=max, shortest first.
@@ -394,8 +378,7 @@ pub fn catalogue(project: &Path, only: Option<&str>) -> Result<Catalogue, LoadFa
     let mut entries: Vec<Entry> = Vec::new();
     for beliefs in &p.initial.states {
         for seq in &sequences {
-            let users = users(&p, only).map_err(|d| (p.map.clone(), d))?;
-            let (trace, given) = execute(&p, &sem, beliefs, seq, users);
+            let (trace, given) = execute(&p, &sem, beliefs, seq, &users);
             for g in given {
                 if !entries.iter().any(|e| e.given == g) {
                     entries.push(Entry {
