@@ -19,5 +19,6 @@ pub mod cond;
 pub mod content;
 pub mod demand;
 pub mod effects;
+pub mod store;
 pub mod symmetry;
 pub mod unify;

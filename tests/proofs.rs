@@ -16,7 +16,7 @@ use model::atoms::AtomSet;
 use model::cond::Cond;
 use model::ground::GroundAction;
 use model::{unifier, Substitution, Term};
-use proofs::{cond, content, demand, effects, symmetry, unify};
+use proofs::{cond, content, demand, effects, store, symmetry, unify};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 use semantics::State;
@@ -251,6 +251,125 @@ fn effects_twin_fails_on_broken_kernels() {
             all.apply(s)
         })
     });
+}
+
+// ----- the visited-state store ----------------------------------------------------------------
+
+#[test]
+fn store_exhaustive() {
+    let inputs = store::all_inserts(4);
+    assert_eq!(
+        inputs.len(),
+        1 + 15 + 15 * 15 + 15 * 15 * 15 + 15 * 15 * 15 * 15
+    );
+    let seen = exhaustively(&inputs, |i| {
+        store::store_numbers_first_insertions(i, check::store::Store::new())
+    });
+    assert!(seen.iter().any(|s| s.collision));
+    assert!(seen.iter().any(|s| s.duplicate));
+}
+
+/// A store that never recognises a fingerprint it has seen.
+#[derive(Default)]
+struct Forgetful(Vec<(u64, Option<u32>)>);
+
+impl store::VisitedStore for Forgetful {
+    fn insert(&mut self, fp: u64, parent: Option<u32>) -> (u32, bool) {
+        self.0.push((fp, parent));
+        (self.0.len() as u32 - 1, true)
+    }
+    fn find(&self, fp: u64) -> Option<u32> {
+        self.0.iter().position(|x| x.0 == fp).map(|i| i as u32)
+    }
+    fn fingerprint(&self, i: u32) -> u64 {
+        self.0[i as usize].0
+    }
+    fn parent(&self, i: u32) -> Option<u32> {
+        self.0[i as usize].1
+    }
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+}
+
+/// A hash table without probing: a fingerprint whose home slot is taken overwrites it.
+#[derive(Default)]
+struct NoProbing {
+    states: Vec<(u64, Option<u32>)>,
+    slots: std::collections::BTreeMap<u32, u32>,
+}
+
+impl store::VisitedStore for NoProbing {
+    fn insert(&mut self, fp: u64, parent: Option<u32>) -> (u32, bool) {
+        if let Some(i) = self.find(fp) {
+            return (i, false);
+        }
+        let i = self.states.len() as u32;
+        self.states.push((fp, parent));
+        self.slots.insert(fp as u32, i);
+        (i, true)
+    }
+    fn find(&self, fp: u64) -> Option<u32> {
+        let &i = self.slots.get(&(fp as u32))?;
+        (self.states[i as usize].0 == fp).then_some(i)
+    }
+    fn fingerprint(&self, i: u32) -> u64 {
+        self.states[i as usize].0
+    }
+    fn parent(&self, i: u32) -> Option<u32> {
+        self.states[i as usize].1
+    }
+    fn len(&self) -> usize {
+        self.states.len()
+    }
+}
+
+/// The real store, keeping the parent of a state's last insertion instead of its first.
+#[derive(Default)]
+struct LastParent {
+    store: check::store::Store,
+    parents: Vec<Option<u32>>,
+}
+
+impl store::VisitedStore for LastParent {
+    fn insert(&mut self, fp: u64, parent: Option<u32>) -> (u32, bool) {
+        let (i, new) = self.store.insert(fp, parent).expect("memory");
+        if new {
+            self.parents.push(parent);
+        } else {
+            self.parents[i as usize] = parent;
+        }
+        (i, new)
+    }
+    fn find(&self, fp: u64) -> Option<u32> {
+        self.store.find(fp)
+    }
+    fn fingerprint(&self, i: u32) -> u64 {
+        self.store.fingerprint(i)
+    }
+    fn parent(&self, i: u32) -> Option<u32> {
+        self.parents[i as usize]
+    }
+    fn len(&self) -> usize {
+        self.store.len()
+    }
+}
+
+#[test]
+fn store_twin_fails_on_broken_kernels() {
+    let inputs = store::all_inserts(3);
+    let e = first_violation(&inputs, |i| {
+        store::store_numbers_first_insertions(i, Forgetful::default())
+    });
+    assert!(e.contains("not (0, false)"), "{e}");
+    let e = first_violation(&inputs, |i| {
+        store::store_numbers_first_insertions(i, NoProbing::default())
+    });
+    assert!(e.contains("find("), "{e}");
+    let e = first_violation(&inputs, |i| {
+        store::store_numbers_first_insertions(i, LastParent::default())
+    });
+    assert!(e.contains("state 0 is"), "{e}");
 }
 
 // ----- Algorithm 1 ---------------------------------------------------------------------------
@@ -534,6 +653,19 @@ proptest! {
     fn evaluation_proptest(raw in prop::array::uniform7(0u16..cond::CODES)) {
         let f = cond::SmallCond::normalized(raw);
         let r = cond::eval_agrees_with_truth_table(&f, cond::Evaluators::real());
+        prop_assert!(r.is_ok(), "{}", r.unwrap_err());
+    }
+
+    /// Up to 6 inserts.
+    #[test]
+    fn store_proptest(
+        len in 0..=store::MAX_OPS,
+        ops in prop::array::uniform6((0..store::FPS.len() as u8, 0..store::PARENTS)),
+    ) {
+        let mut codes = ops;
+        codes[len..].iter_mut().for_each(|c| *c = (0, 0));
+        let input = store::SmallInserts::new(len as u8, codes).expect("canonical");
+        let r = store::store_numbers_first_insertions(&input, check::store::Store::new());
         prop_assert!(r.is_ok(), "{}", r.unwrap_err());
     }
 
