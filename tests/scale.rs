@@ -116,6 +116,21 @@ fn a_run_symmetry_may_leave_out_is_announced() {
         "{warned}"
     );
     assert!(!human(kitchen, &["--no-symmetry"]).contains("symmetry reduction"));
+    // JSON says it too, and so does SARIF, for CI.
+    let (r, _) = verify_json(kitchen, &[]);
+    let w = r["warnings"][0].as_str().expect("a warning");
+    assert!(w.contains("renaming cup1 -> cup2"), "{w}");
+    assert!(verify_json(kitchen, &["--no-symmetry"])
+        .0
+        .get("warnings")
+        .is_none());
+    let sarif: Value = serde_json::from_slice(
+        &bdi_check(&["verify", "specs/kitchen", "--format", "sarif"]).stdout,
+    )
+    .expect("SARIF");
+    let n = &sarif["runs"][0]["invocations"][0]["toolExecutionNotifications"][0];
+    assert_eq!(n["level"], "warning");
+    assert_eq!(n["message"]["text"].as_str(), Some(w));
     // Storing one cup on request binds the cup by the request alone: no warning.
     let store_only = kitchen_copy("store-only", |file, text| {
         if file == "bdi-check.toml" {

@@ -197,6 +197,10 @@ pub struct Report {
     /// Search statistics (filled by `verify`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stats: Option<Stats>,
+    /// What the reader must know about how the verdict was reached (e.g. that symmetry
+    /// reduction rests on an assumption the agent does not meet).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 impl Report {
@@ -209,6 +213,7 @@ impl Report {
             findings,
             explanations: Vec::new(),
             stats: None,
+            warnings: Vec::new(),
         }
     }
 }

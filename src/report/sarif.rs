@@ -65,6 +65,11 @@ pub fn log(report: &Report, command: &str) -> Value {
             "invocations": [{
                 "executionSuccessful": report.verdict != super::Verdict::Error,
                 "exitCode": report.verdict.exit_code(),
+                "toolExecutionNotifications": report
+                    .warnings
+                    .iter()
+                    .map(|w| json!({"level": "warning", "message": {"text": w}}))
+                    .collect::<Vec<_>>(),
             }],
             "properties": {"project": report.project, "verdict": report.verdict},
             "results": results,

@@ -18,8 +18,6 @@ pub struct VerifyRun {
     pub diagnostics: Vec<Diagnostic>,
     /// The bound that cut the search short, if any.
     pub bound: Option<Bound>,
-    /// Where symmetry reduction rests on an assumption the agent does not meet, if it does.
-    pub symmetry_caveat: Option<String>,
 }
 
 /// The limits of a project's search: the manifest's `[bounds]`, overridden by options.
@@ -76,12 +74,12 @@ pub fn run_with(
                 report.verdict = Verdict::Incomplete;
             }
             report.stats = Some(v.stats);
+            report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (plan contexts answer in belief order): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
             VerifyRun {
                 report,
                 map: project.map,
                 diagnostics: Vec::new(),
                 bound: v.bound,
-                symmetry_caveat: v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (plan contexts answer in belief order): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")),
             }
         }
     }
@@ -99,7 +97,6 @@ fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> 
         map,
         diagnostics,
         bound: None,
-        symmetry_caveat: None,
     }
 }
 
@@ -141,8 +138,8 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
             }
         }
         if let Some(s) = &r.stats {
-            if let Some(why) = &run.symmetry_caveat {
-                out.push_str(&format!("warning: {why}\n"));
+            for w in &r.warnings {
+                out.push_str(&format!("warning: {w}\n"));
             }
             out.push_str(&render_stats(s, run.bound));
         }
@@ -465,9 +462,25 @@ pub fn merge(reports: &[serde_json::Value]) -> Result<serde_json::Value, String>
     } else {
         "pass"
     };
+    let mut warnings: Vec<Value> = Vec::new();
+    for w in reports
+        .iter()
+        .filter_map(|r| r.get("warnings")?.as_array())
+        .flatten()
+    {
+        if !warnings.contains(w) {
+            warnings.push(w.clone());
+        }
+    }
     let mut out = first.clone();
     out["verdict"] = json!(verdict);
     out["findings"] = Value::Array(findings);
+    if let Some(o) = out.as_object_mut() {
+        o.remove("warnings");
+        if !warnings.is_empty() {
+            o.insert("warnings".into(), Value::Array(warnings));
+        }
+    }
     out["stats"] = json!({
         "initial_states": initial,
         "states": states,
