@@ -290,3 +290,32 @@ fn the_agent_written_mechanism_says_what_the_kitchen_says() {
     assert!(kitchen.len() > 10, "{kitchen:#?}");
     assert_eq!(kitchen, catalogue("specs/kitchen-explaining"));
 }
+
+#[test]
+fn the_semantic_test_agrees_with_the_runs_on_the_kitchen() {
+    // Algorithm 2 with `modifies = "semantic"` predicts, from the state, where the context
+    // changes; content-covers and content-concise find it in the runs: on the kitchen,
+    // whose bodies change their context only through actions, the two must agree.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir =
+        std::env::temp_dir().join(format!("bdi-check-kitchen-semantic-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["kitchen.asl", "kitchen.pddl"] {
+        std::fs::copy(root.join("specs/kitchen").join(f), dir.join(f)).unwrap();
+    }
+    let manifest = std::fs::read_to_string(root.join("specs/kitchen/bdi-check.toml"))
+        .unwrap()
+        .replace(r#"modifies = "syntactic""#, r#"modifies = "semantic""#);
+    assert!(manifest.contains(r#"modifies = "semantic""#));
+    std::fs::write(dir.join("bdi-check.toml"), manifest).unwrap();
+    let (code, r, _) = verify(dir.to_str().unwrap());
+    assert_eq!(code, 0, "{r:#}");
+    let passed: Vec<&str> = explanation_findings(&r)
+        .iter()
+        .filter(|f| f["status"] == "pass")
+        .map(|f| f["id"].as_str().unwrap())
+        .collect();
+    for id in ["content-covers:owner", "content-concise:newcomer"] {
+        assert!(passed.contains(&id), "{passed:?}");
+    }
+}
