@@ -785,15 +785,27 @@ impl<'p> Semantics<'p> {
                 _ => None,
             }
         });
-        let views: Vec<FrameView> = int
-            .frames
-            .iter()
-            .map(|f| FrameView {
-                plan: f.plan,
-                subst: f.subst.clone(),
-                at: f.cursors.last().map_or((0, 0), |c| (c.block, c.pos)),
+        // The stack an environment action runs in (for explanations); other steps need none.
+        let acts = int.frames.last().is_some_and(|f| {
+            f.cursors.last().is_some_and(|c| {
+                matches!(
+                    self.blocks[f.plan as usize].blocks[c.block as usize][c.pos as usize].kind,
+                    BodyStep::Action(_)
+                )
             })
-            .collect();
+        });
+        let views: Vec<FrameView> = if acts {
+            int.frames
+                .iter()
+                .map(|f| FrameView {
+                    plan: f.plan,
+                    subst: f.subst.clone(),
+                    at: f.cursors.last().map_or((0, 0), |c| (c.block, c.pos)),
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let frame = int.frames.last_mut().expect("an intention has a frame");
         let plan = frame.plan;
         let blocks = &self.blocks[plan as usize];
