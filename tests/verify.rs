@@ -466,3 +466,39 @@ fn a_timeout_is_incomplete_and_undecided_checks_say_how_far_they_hold() {
         "{out}"
     );
 }
+
+#[test]
+fn every_spec_has_its_expected_outcome() {
+    // What .github/workflows/verify.yml expects of the examples: the paper's plans and the
+    // misleading-content example fail on purpose, every other project passes.
+    let mut seen = Vec::new();
+    for e in std::fs::read_dir("specs").unwrap().flatten() {
+        if !e.path().join("bdi-check.toml").is_file() {
+            continue;
+        }
+        let name = e.file_name().to_string_lossy().to_string();
+        let o = bdi_check(&["verify", e.path().to_str().unwrap(), "-q"]);
+        let want = if name == "paper" || name == "misleading-content" {
+            1
+        } else {
+            0
+        };
+        assert_eq!(
+            o.status.code(),
+            Some(want),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stdout)
+        );
+        seen.push(name);
+    }
+    seen.sort();
+    assert_eq!(
+        seen,
+        [
+            "kitchen",
+            "kitchen-explaining",
+            "misleading-content",
+            "paper"
+        ]
+    );
+}
