@@ -244,8 +244,12 @@ impl<'a> Explained<'a> {
     }
 
     /// Judges the open explanations against the state after a transition.
+    /// A failure in the transition decides nothing: its explanations are dropped.
     fn judge(&self, st: &mut ExplainedState, failed: bool, out: &mut Vec<Violation>) {
         let open = std::mem::take(&mut st.open);
+        if failed {
+            return;
+        }
         for o in open {
             let frame = st
                 .agent
@@ -253,9 +257,6 @@ impl<'a> Explained<'a> {
                 .filter(|i| i.origin == o.origin)
                 .filter_map(|i| i.frames.get(o.depth as usize))
                 .find(|f| f.plan == o.plan);
-            if failed {
-                continue;
-            }
             let at = frame.and_then(|f| f.cursors.iter().find(|c| c.block == o.block));
             let changed = o
                 .gamma
