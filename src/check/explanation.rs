@@ -56,7 +56,6 @@ pub struct Explained<'a> {
     sem: &'a Semantics<'a>,
     ex: &'a Explainer<'a>,
     user: &'a User,
-    emitted_by: Option<&'a str>,
     symmetry: Option<&'a Symmetry>,
 }
 
@@ -157,18 +156,10 @@ impl<'a> Explained<'a> {
         user: &'a User,
         symmetry: Option<&'a Symmetry>,
     ) -> Explained<'a> {
-        let emitted_by = sem
-            .project
-            .manifest
-            .explanation
-            .as_ref()
-            .and_then(|e| e.emitted_by.as_ref())
-            .map(|e| e.value.as_str());
         Explained {
             sem,
             ex,
             user,
-            emitted_by,
             symmetry,
         }
     }
@@ -185,10 +176,6 @@ impl<'a> Explained<'a> {
             open: Vec::new(),
             emitted: None,
         }
-    }
-
-    fn is_emission(&self, action: &Term) -> bool {
-        self.sem.is_emission(action)
     }
 
     fn step_text(&self, plan: u32, block: u16, pos: u16, st: &ExplainedState) -> String {
@@ -227,7 +214,7 @@ impl<'a> Explained<'a> {
                 continue;
             };
             let action = subst.apply(t);
-            if self.is_emission(&action) {
+            if self.sem.is_emission(&action) {
                 continue;
             }
             let next = Observation::Action(action);
@@ -342,7 +329,7 @@ impl<'a> Explained<'a> {
                     origin,
                     ..
                 } => {
-                    if self.is_emission(term) {
+                    if self.sem.is_emission(term) {
                         st.emitted = Some(term.clone());
                     } else {
                         given = self.action(
@@ -458,7 +445,7 @@ impl<'a> Explained<'a> {
         } else {
             None
         };
-        if self.emitted_by.is_some() {
+        if self.sem.explains_itself() {
             self.conformance(
                 term,
                 &after,

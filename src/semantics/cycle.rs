@@ -1198,6 +1198,11 @@ impl<'p> Semantics<'p> {
     }
 
     /// The ground action a term names, or why there is none.
+    /// Whether the agent explains itself (the manifest names an `emitted_by` action).
+    pub fn explains_itself(&self) -> bool {
+        self.emitted_by.is_some()
+    }
+
     /// Whether an action is the agent's own explanation (`[explanation] emitted_by`).
     pub fn is_emission(&self, t: &Term) -> bool {
         self.emitted_by.is_some() && t.functor() == self.emitted_by.as_deref()
