@@ -301,7 +301,32 @@ fn sharded_runs_merge_to_the_unsharded_verdict() {
                 merged["stats"]["initial_states"], full["stats"]["initial_states"],
                 "{p} {n}"
             );
+            assert_eq!(merged.get("warnings"), full.get("warnings"), "{p} {n}");
         }
+    }
+}
+
+#[test]
+fn merge_keeps_every_reports_warnings_once() {
+    // The exact report has no warning; the reduced one has the symmetry caveat. Whichever
+    // comes first, the merged report keeps the caveat, once.
+    let write = |name: &str, extra: &[&str]| {
+        let (r, _) = verify_json(Path::new("specs/kitchen"), extra);
+        let f =
+            std::env::temp_dir().join(format!("bdi-check-warn-{name}-{}.json", std::process::id()));
+        std::fs::write(&f, serde_json::to_string(&r).expect("JSON")).expect("writable");
+        (f, r)
+    };
+    let (exact, e) = write("exact", &["--no-symmetry"]);
+    let (reduced, r) = write("reduced", &[]);
+    assert!(e.get("warnings").is_none());
+    let caveat = r["warnings"].clone();
+    assert_eq!(caveat.as_array().map(Vec::len), Some(1));
+    for files in [[&exact, &reduced, &reduced], [&reduced, &exact, &reduced]] {
+        let mut args = vec!["merge"];
+        args.extend(files.iter().map(|f| f.to_str().expect("UTF-8")));
+        let merged: Value = serde_json::from_slice(&bdi_check(&args).stdout).expect("JSON");
+        assert_eq!(merged["warnings"], caveat, "{files:?}");
     }
 }
 
