@@ -252,6 +252,7 @@ fn main() -> ExitCode {
                 symmetry: !no_symmetry,
                 shard,
                 max_memory: bdi_check::check::explore::default_max_memory(),
+                compiled: defaults.compiled,
             };
             let run = report::verify::run_with(
                 &project,

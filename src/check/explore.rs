@@ -419,6 +419,23 @@ fn search<M: Model, T>(
 }
 
 impl<S> Graph<S> {
+    /// The same graph, for another model of the same transition system with the same
+    /// fingerprints: the compiled search's graph, read with the reference model.
+    pub fn cast<T>(self) -> Graph<T> {
+        Graph {
+            store: self.store,
+            levels: self.levels,
+            edges: self.edges,
+            initial: self.initial,
+            initial_covered: self.initial_covered,
+            transitions: self.transitions,
+            bound: self.bound,
+            seconds: self.seconds,
+            peak_memory: self.peak_memory,
+            state: PhantomData,
+        }
+    }
+
     /// Records state `i`'s edges (from `edge_start` on) as complete or not. States are
     /// recorded in number order.
     fn mark(&mut self, i: u32, edge_start: usize, complete: bool) {

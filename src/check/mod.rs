@@ -23,10 +23,10 @@ use crate::model::cond::Cond;
 use crate::model::formula;
 use crate::model::project::Project;
 use crate::report::{Counterexample, Finding, Stats, Status};
-use crate::semantics::{Note, Semantics, State};
+use crate::semantics::{Compiled, Note, Semantics};
 use crate::syntax::{Diagnostic, Severity, Span};
 use explore::{explore_with, Bound, Graph, Limits, Options};
-use model::Agent;
+use model::{Agent, AgentState, CycleNotes, Model};
 use std::collections::{BTreeMap, HashMap, VecDeque};
 
 /// What `verify` found.
@@ -60,6 +60,9 @@ pub struct VerifyOptions {
     pub shard: Option<(u32, u32)>,
     /// Stop, as incomplete, once the process holds this many bytes.
     pub max_memory: Option<u64>,
+    /// Search the compiled reasoning cycle ([`Compiled`]) where it applies (no symmetry
+    /// reduction, a local library); off, the reference one. The two give the same report.
+    pub compiled: bool,
 }
 
 impl Default for VerifyOptions {
@@ -70,6 +73,7 @@ impl Default for VerifyOptions {
             symmetry: true,
             shard: None,
             max_memory: None,
+            compiled: true,
         }
     }
 }
@@ -103,18 +107,18 @@ impl Conditions<'_> {
         self.invariants.len() + self.props.len() + self.overlaps.len()
     }
 
-    fn summarize(&self, sem: &Semantics, s: &State) -> Summary {
+    fn summarize(&self, sem: &Semantics, s: &impl AgentState) -> Summary {
         let mut holds = smallvec::SmallVec::from_elem(0u64, self.len().div_ceil(64).max(1));
         let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
         let conds = self.invariants.iter().chain(&self.props);
         for (j, c) in conds.enumerate() {
-            if c.eval(&s.beliefs) {
+            if c.eval(s.beliefs()) {
                 set(j);
             }
         }
         if !self.overlaps.is_empty() {
-            if let Some(ev) = s.events.first() {
-                let applicable = sem.applicable(s, &ev.trigger, false);
+            if let Some(ev) = s.first_event() {
+                let applicable = s.applicable(sem, &ev.trigger);
                 let base = self.invariants.len() + self.props.len();
                 for (k, (a, b)) in self.overlaps.iter().enumerate() {
                     if applicable.iter().any(|(p, _)| p == a)
@@ -251,71 +255,55 @@ pub fn verify_with(
         bad: vec![Vec::new(); eventually.len()],
         ..Facts::default()
     };
-    // First (hence shallowest-source) transition of each failure, keyed by place.
-    let mut action_failures: BTreeMap<(u32, u32), Failure> = BTreeMap::new();
-    let mut goal_failures: BTreeMap<String, Failure> = BTreeMap::new();
-    let mut no_plan: BTreeMap<(String, usize), Failure> = BTreeMap::new();
     let search = Options {
         threads: opts.threads,
         keep_edges: true,
         max_memory: opts.max_memory,
         shard: opts.shard,
     };
-    let mut not_equivariant: Option<String> = None;
-    let graph = explore_with(
-        &agent,
-        limits,
-        &search,
+    let mut failures = Failures::default();
+    let compiled = match &agent.symmetry {
+        None if opts.compiled => Compiled::new(&sem),
+        None => None,
+        // Symmetry reduction renames whole states; the compiled search does not.
+        Some(_) => None,
+    };
+    let (graph, not_equivariant) = match &compiled {
+        Some(c) => {
+            let (g, _) = search_agent(
+                &c,
+                &sem,
+                &conditions,
+                |_| None,
+                (limits, &search),
+                (&mut facts, &eventually, &mut failures),
+                progress,
+            );
+            (g.cast(), None)
+        }
         // Every stored state is also checked for equivariance: reduction is only exact if
         // renaming a state renames its successors (see Symmetry::equivariance_violation);
         // where it does not, the report says so.
-        |s| {
-            let unequal = agent
-                .symmetry
-                .as_ref()
-                .and_then(|sym| sym.equivariance_violation(&sem, s));
-            (conditions.summarize(&sem, s), unequal)
-        },
-        |i, (sum, unequal)| {
-            if unequal.is_some() && not_equivariant.is_none() {
-                not_equivariant = unequal;
-            }
-            facts.record(i, sum, &eventually)
-        },
-        |src, k, notes: &Vec<Note>, fp| {
-            for n in notes {
-                let at = Failure {
-                    src,
-                    k,
-                    fp,
-                    note: n.clone(),
-                };
-                match n {
-                    Note::ActionFailed { span, .. } => {
-                        action_failures
-                            .entry((span.file.0, span.start))
-                            .or_insert(at);
-                    }
-                    Note::GoalFailed { goal, span, .. } => {
-                        let key = match span {
-                            Some(sp) => format!("{}:{}", sp.file.0, sp.start),
-                            None => goal.to_string(),
-                        };
-                        goal_failures.entry(key).or_insert(at);
-                    }
-                    Note::NoApplicablePlan(t) => {
-                        let key = (
-                            t.literal.functor().unwrap_or("").to_string(),
-                            t.literal.arity(),
-                        );
-                        no_plan.entry(key).or_insert(at);
-                    }
-                    _ => {}
-                }
-            }
-        },
-        progress,
-    );
+        None => search_agent(
+            &agent,
+            &sem,
+            &conditions,
+            |s| {
+                agent
+                    .symmetry
+                    .as_ref()
+                    .and_then(|sym| sym.equivariance_violation(&sem, s))
+            },
+            (limits, &search),
+            (&mut facts, &eventually, &mut failures),
+            progress,
+        ),
+    };
+    let Failures {
+        actions: action_failures,
+        goals: goal_failures,
+        no_plan,
+    } = failures;
     let c = Checker {
         project,
         agent: &agent,
@@ -371,6 +359,86 @@ pub fn verify_with(
         symmetric_types,
         symmetry_caveat: not_equivariant,
     })
+}
+
+/// The first (hence shallowest-source) transition of each failure, keyed by place.
+#[derive(Default)]
+struct Failures {
+    actions: BTreeMap<(u32, u32), Failure>,
+    goals: BTreeMap<String, Failure>,
+    no_plan: BTreeMap<(String, usize), Failure>,
+}
+
+impl Failures {
+    /// Records the failures a transition shows.
+    fn record<'n>(&mut self, src: u32, k: u32, fp: u64, notes: impl Iterator<Item = &'n Note>) {
+        for n in notes {
+            let at = || Failure {
+                src,
+                k,
+                fp,
+                note: n.clone(),
+            };
+            match n {
+                Note::ActionFailed { span, .. } => {
+                    self.actions
+                        .entry((span.file.0, span.start))
+                        .or_insert_with(at);
+                }
+                Note::GoalFailed { goal, span, .. } => {
+                    let key = match span {
+                        Some(sp) => format!("{}:{}", sp.file.0, sp.start),
+                        None => goal.to_string(),
+                    };
+                    self.goals.entry(key).or_insert_with(at);
+                }
+                Note::NoApplicablePlan(t) => {
+                    let key = (
+                        t.literal.functor().unwrap_or("").to_string(),
+                        t.literal.arity(),
+                    );
+                    self.no_plan.entry(key).or_insert_with(at);
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+/// The agent's search (on the reference or the compiled model: they have the same
+/// fingerprints), recording each state's facts and each transition's failures. Returns
+/// the graph and the first equivariance violation `equivariance` reports.
+#[allow(clippy::too_many_arguments)]
+fn search_agent<M>(
+    model: &M,
+    sem: &Semantics,
+    conditions: &Conditions,
+    equivariance: impl Fn(&M::State) -> Option<String> + Sync,
+    (limits, opts): (Limits, &Options),
+    (facts, eventually, failures): (&mut Facts, &[usize], &mut Failures),
+    progress: impl FnMut(usize, u32, f64),
+) -> (Graph, Option<String>)
+where
+    M: Model + Sync,
+    M::State: AgentState + Send + Sync,
+    M::Label: CycleNotes + Send,
+{
+    let mut not_equivariant = None;
+    let graph = explore_with(
+        model,
+        limits,
+        opts,
+        |s| (conditions.summarize(sem, s), equivariance(s)),
+        |i, (sum, unequal)| {
+            if not_equivariant.is_none() {
+                not_equivariant = unequal;
+            }
+            facts.record(i, sum, eventually)
+        },
+        |src, k, label: &M::Label, fp| failures.record(src, k, fp, label.notes()),
+        progress,
+    );
+    (graph.cast(), not_equivariant)
 }
 
 /// Whether a lint finding is one that exploration settles.

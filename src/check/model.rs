@@ -7,7 +7,9 @@
 
 use super::explore::fingerprint;
 use super::symmetry::Symmetry;
-use crate::semantics::{Note, Semantics, State};
+use crate::model::atoms::AtomSet;
+use crate::model::Substitution;
+use crate::semantics::{Compiled, Event, EventTrigger, Note, Notes, Packed, Semantics, State};
 use std::hash::Hash;
 
 /// A transition system: initial states and, for each state, its labelled successors.
@@ -72,5 +74,97 @@ impl Model for Agent<'_> {
             Some(sym) => sym.fingerprint(s),
             None => fingerprint(s),
         }
+    }
+}
+
+/// The compiled reasoning cycle ([`Compiled`]): the same transition system as
+/// [`Semantics`], with the same fingerprints and notes, searched faster. Its states borrow
+/// from it, so the model is a reference to it.
+impl<'c> Model for &'c Compiled<'_, '_> {
+    type State = Packed<'c>;
+    type Label = Notes<'c>;
+
+    fn init_states(&self) -> Vec<Packed<'c>> {
+        (*self).initial_states()
+    }
+
+    fn next_states(&self, s: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {
+        (*self).successors(s)
+    }
+}
+
+/// What the agent's checks read of a state, in either representation.
+pub trait AgentState {
+    /// The beliefs.
+    fn beliefs(&self) -> &AtomSet;
+    /// The first event of the queue.
+    fn first_event(&self) -> Option<&Event>;
+    /// The requests still being served.
+    fn pending_requests(&self) -> u64;
+    /// Whether the agent has nothing to do.
+    fn is_idle(&self) -> bool;
+    /// The applicable plans for `trigger` (see [`Semantics::applicable`]).
+    fn applicable(&self, sem: &Semantics, trigger: &EventTrigger) -> Vec<(u32, Substitution)>;
+}
+
+impl AgentState for State {
+    fn beliefs(&self) -> &AtomSet {
+        &self.beliefs
+    }
+    fn first_event(&self) -> Option<&Event> {
+        self.events.first()
+    }
+    fn pending_requests(&self) -> u64 {
+        State::pending_requests(self)
+    }
+    fn is_idle(&self) -> bool {
+        State::is_idle(self)
+    }
+    fn applicable(&self, sem: &Semantics, trigger: &EventTrigger) -> Vec<(u32, Substitution)> {
+        sem.applicable(self, trigger, false)
+    }
+}
+
+impl AgentState for Packed<'_> {
+    fn beliefs(&self) -> &AtomSet {
+        Packed::beliefs(self)
+    }
+    fn first_event(&self) -> Option<&Event> {
+        Packed::first_event(self)
+    }
+    fn pending_requests(&self) -> u64 {
+        Packed::pending_requests(self)
+    }
+    fn is_idle(&self) -> bool {
+        Packed::is_idle(self)
+    }
+    fn applicable(&self, sem: &Semantics, trigger: &EventTrigger) -> Vec<(u32, Substitution)> {
+        // Packed states exist for local libraries only, whose contexts read the beliefs
+        // alone.
+        let beliefs = State {
+            beliefs: self.beliefs().clone(),
+            events: Vec::new(),
+            intentions: Vec::new(),
+            requested: 0,
+        };
+        sem.applicable(&beliefs, trigger, false)
+    }
+}
+
+/// A transition label made of reasoning-cycle notes, in either representation.
+pub trait CycleNotes {
+    /// The notes in order.
+    fn notes(&self) -> impl Iterator<Item = &Note>;
+}
+
+impl CycleNotes for Vec<Note> {
+    fn notes(&self) -> impl Iterator<Item = &Note> {
+        self.iter()
+    }
+}
+
+impl CycleNotes for Notes<'_> {
+    fn notes(&self) -> impl Iterator<Item = &Note> {
+        self.iter()
     }
 }

@@ -288,6 +288,41 @@ impl AtomSet {
         out
     }
 
+    /// Whether the set has no atom.
+    pub fn is_empty(&self) -> bool {
+        self.words.iter().all(|w| *w == 0)
+    }
+
+    /// The atoms in both sets (over the first set's atoms).
+    pub fn intersection(&self, other: &AtomSet) -> AtomSet {
+        self.zip_with(other, |a, b| a & b)
+    }
+
+    /// The atoms in this set and not in `other` (over the first set's atoms).
+    pub fn difference(&self, other: &AtomSet) -> AtomSet {
+        self.zip_with(other, |a, b| a & !b)
+    }
+
+    /// This set without `removed` and with `added`.
+    pub fn with_changes(&self, added: &AtomSet, removed: &AtomSet) -> AtomSet {
+        let mut out = self.difference(removed);
+        for (w, a) in out.words.iter_mut().zip(added.words.iter()) {
+            *w |= a;
+        }
+        out
+    }
+
+    fn zip_with(&self, other: &AtomSet, f: impl Fn(u64, u64) -> u64) -> AtomSet {
+        AtomSet {
+            words: self
+                .words
+                .iter()
+                .enumerate()
+                .map(|(i, &a)| f(a, other.words.get(i).copied().unwrap_or(0)))
+                .collect(),
+        }
+    }
+
     /// The raw words, for hashing and storage.
     pub fn words(&self) -> &[u64] {
         &self.words

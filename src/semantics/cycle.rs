@@ -198,6 +198,8 @@ pub struct Semantics<'p> {
     select_any: bool,
     /// `[explanation] emitted_by`: the agent's own explanation action.
     emitted_by: Option<String>,
+    /// No plan reads or changes other intentions (see [`Semantics::is_local`]).
+    local: bool,
 }
 
 fn op_key(op: TriggerOp) -> u8 {
@@ -267,7 +269,192 @@ impl<'p> Semantics<'p> {
                 .as_ref()
                 .and_then(|e| e.emitted_by.as_ref())
                 .map(|e| e.value.clone()),
+            local: project
+                .plans
+                .plans
+                .iter()
+                .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
         })
+    }
+
+    /// Whether one reasoning cycle's phases depend only on their own part of the state:
+    /// deliberation on the event and the beliefs, acting on the intention and the beliefs.
+    /// True unless some plan uses `.desire`, `.intend` (which read the other intentions) or
+    /// `.succeed_goal`, `.fail_goal`, `.drop_desire`, `.drop_intention` (which change
+    /// them). The compiled search ([`super::compiled::Compiled`]) relies on it.
+    pub fn is_local(&self) -> bool {
+        self.local
+    }
+
+    /// Every belief deliberating on `ev` may read: the atoms the contexts of its relevant
+    /// plans may query (an over-approximation; see [`Semantics::literal_reads`]). The
+    /// compiled search memoizes deliberation on the beliefs restricted to these atoms.
+    pub(super) fn event_reads(&self, ev: &Event) -> AtomSet {
+        let mut out = AtomSet::empty(self.project.atoms.len());
+        for &pi in self.relevant_plans(&ev.trigger) {
+            let plan = &self.project.plans.plans[pi as usize];
+            let mut u = Substitution::new();
+            if unify(&plan.trigger.literal, &ev.trigger.literal, &mut u) {
+                self.formula_reads(&plan.context, &u, &mut out);
+            }
+            // A new frame is normalized at the first step of its body, which reads nothing
+            // unless the body is empty (then there is no cursor at all).
+        }
+        out
+    }
+
+    /// Every belief the act phase may read when `int` runs: its next step's queries, the
+    /// atoms of its action (precondition, conditions and effects), and the `while`
+    /// conditions that leaving blocks may test again, in every frame (a finished plan
+    /// hands over to the one below in the same cycle).
+    pub(super) fn intention_reads(&self, int: &Intention) -> AtomSet {
+        let mut out = AtomSet::empty(self.project.atoms.len());
+        let empty = Substitution::new();
+        for f in &int.frames {
+            let blocks = &self.blocks[f.plan as usize];
+            // A `for` moves to its next answer when its body ends, rebinding its
+            // variables: a `while` around it is then tested with bindings not known here.
+            let rebinds = f
+                .cursors
+                .iter()
+                .any(|c| matches!(c.kind, CursorKind::For { .. }));
+            let subst = if rebinds { &empty } else { &f.subst };
+            for c in &f.cursors {
+                if let CursorKind::While { outer, at } = c.kind {
+                    if let BodyStep::While(cond, _) =
+                        &blocks.blocks[outer as usize][at as usize].kind
+                    {
+                        self.formula_reads(cond, subst, &mut out);
+                    }
+                }
+            }
+        }
+        let Some(f) = int.frames.last() else {
+            return out;
+        };
+        let Some(c) = f.cursors.last() else {
+            return out;
+        };
+        let Some(step) = self.blocks[f.plan as usize].blocks[c.block as usize].get(c.pos as usize)
+        else {
+            return out;
+        };
+        match &step.kind {
+            BodyStep::Action(t) if self.is_emission(t) => {}
+            BodyStep::Action(t) => {
+                if let Ok(ga) = self.ground_action(&eval(t, &f.subst)) {
+                    let conds = std::iter::once(&ga.pre).chain(ga.effects.iter().map(|e| &e.when));
+                    conds.flat_map(|c| c.atoms()).for_each(|a| out.insert(a));
+                    for e in &ga.effects {
+                        e.add.iter().chain(&e.del).for_each(|a| out.insert(*a));
+                    }
+                }
+            }
+            BodyStep::Internal(t) => {
+                self.formula_reads(&Formula::Call(t.clone()), &f.subst, &mut out)
+            }
+            BodyStep::Test(cond) | BodyStep::While(cond, _) | BodyStep::For(cond, _) => {
+                self.formula_reads(cond, &f.subst, &mut out)
+            }
+            BodyStep::If { branches, .. } => {
+                for (cond, _) in branches {
+                    self.formula_reads(cond, &f.subst, &mut out);
+                }
+            }
+            BodyStep::AddBel(t) | BodyStep::DelBel(t) | BodyStep::DelAddBel(t) => {
+                let lit = f.subst.apply(t);
+                if matches!(step.kind, BodyStep::DelAddBel(_)) {
+                    // `-+b` removes any belief of the predicate.
+                    let p = lit.functor().and_then(|f| self.project.atoms.pred(f));
+                    for a in p.into_iter().flat_map(|p| self.project.atoms.atoms_of(p)) {
+                        out.insert(a);
+                    }
+                } else {
+                    self.literal_reads(&lit, &mut out);
+                }
+                if let Some(a) = self.ground_atom(&lit) {
+                    out.insert(a);
+                }
+            }
+            BodyStep::Achieve { .. } | BodyStep::Constraint(..) => {}
+        }
+        out
+    }
+
+    /// The atoms a formula's answers may depend on under `s` (bindings made inside the
+    /// formula are not followed: their variables count as unbound).
+    fn formula_reads(&self, f: &Formula, s: &Substitution, out: &mut AtomSet) {
+        match f {
+            Formula::True | Formula::Rel(..) => {}
+            Formula::Literal(t) => self.literal_reads(&s.apply(t), out),
+            Formula::Not(g) => self.formula_reads(g, s, out),
+            Formula::And(a, b) | Formula::Or(a, b) => {
+                self.formula_reads(a, s, out);
+                self.formula_reads(b, s, out);
+            }
+            Formula::Call(t) => match (t.functor(), t.args()) {
+                (Some(".count"), [q, _]) | (Some(".findall"), [_, q, _]) => {
+                    self.literal_reads(&s.apply(q), out)
+                }
+                _ => {}
+            },
+        }
+    }
+
+    /// The atoms [`Beliefs::literal_answers`] may look at for `lit`: those of its
+    /// predicate whose arguments agree with its object arguments.
+    fn literal_reads(&self, lit: &Term, out: &mut AtomSet) {
+        let atoms = &self.project.atoms;
+        if lit.is_negated() {
+            return;
+        }
+        let Some(p) = lit.functor().and_then(|f| atoms.pred(f)) else {
+            return;
+        };
+        if atoms.pred_params(p).len() != lit.arity() {
+            return;
+        }
+        let fixed: Vec<Option<ObjectId>> = lit
+            .args()
+            .iter()
+            .map(|a| match a {
+                Term::Atom(n) => self.project.universe.object(n),
+                _ => None,
+            })
+            .collect();
+        let any_fixed = fixed.iter().any(Option::is_some);
+        for a in atoms.atoms_of(p) {
+            if any_fixed {
+                let (_, args) = atoms.decode(a);
+                if fixed
+                    .iter()
+                    .zip(&args)
+                    .any(|(f, o)| f.is_some_and(|f| f != *o))
+                {
+                    continue;
+                }
+            }
+            out.insert(a);
+        }
+    }
+
+    /// Whether a request may arrive in a state with these requests made and this idleness.
+    pub(super) fn may_request(&self, requested: u64, idle: bool) -> bool {
+        requested.count_ones() < self.max_requests && (self.arrival_any || idle)
+    }
+
+    /// The event of request `r`.
+    pub(super) fn request_event(&self, r: usize) -> Event {
+        Event {
+            trigger: EventTrigger {
+                op: TriggerOp::Add,
+                kind: TriggerKind::Achieve,
+                literal: self.requests[r].clone(),
+            },
+            intention: None,
+            origin: Origin::Request(r as u8),
+            posted_at: None,
+        }
     }
 
     fn beliefs<'s>(&'s self, state: &'s State) -> Beliefs<'s> {
@@ -367,24 +554,14 @@ impl<'p> Semantics<'p> {
     /// Every successor of `state`.
     pub fn successors(&self, state: &State) -> Vec<Transition> {
         let mut out = Vec::new();
-        let made = state.requested.count_ones();
-        if made < self.max_requests && (self.arrival_any || state.is_idle()) {
-            for (r, goal) in self.requests.iter().enumerate() {
+        if self.may_request(state.requested, state.is_idle()) {
+            for r in 0..self.requests.len() {
                 if state.requested >> r & 1 == 1 {
                     continue;
                 }
                 let mut next = state.clone();
                 next.requested |= 1 << r;
-                next.events.push(Event {
-                    trigger: EventTrigger {
-                        op: TriggerOp::Add,
-                        kind: TriggerKind::Achieve,
-                        literal: goal.clone(),
-                    },
-                    intention: None,
-                    origin: Origin::Request(r as u8),
-                    posted_at: None,
-                });
+                next.events.push(self.request_event(r));
                 out.push(Transition {
                     notes: vec![Note::Request { index: r as u8 }],
                     next,
@@ -416,8 +593,9 @@ impl<'p> Semantics<'p> {
             .collect()
     }
 
-    /// Handles one event: every option the plan selection allows, as its own state.
-    fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
+    /// Handles one event (already out of the queue): every option the plan selection
+    /// allows, as its own state.
+    pub(super) fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
         let mut notes = vec![Note::Event(ev.trigger.clone())];
         let applicable = self.applicable_for(&s, &ev, !self.select_any);
         if applicable.is_empty() {
@@ -700,7 +878,7 @@ impl<'p> Semantics<'p> {
     }
 
     /// The act phase: the first intention runs one step.
-    fn act(&self, s: &mut State, notes: &mut Vec<Note>) {
+    pub(super) fn act(&self, s: &mut State, notes: &mut Vec<Note>) {
         if s.intentions.is_empty() {
             return;
         }
@@ -1233,6 +1411,50 @@ impl<'p> Semantics<'p> {
         }
         let p = self.project.atoms.pred(t.functor()?)?;
         self.project.atoms.id(p, &self.objects(t)?)
+    }
+}
+
+/// Internal actions that read or change intentions other than the one running them.
+const GLOBAL_ACTIONS: [&str; 6] = [
+    ".desire",
+    ".intend",
+    ".succeed_goal",
+    ".fail_goal",
+    ".drop_desire",
+    ".drop_intention",
+];
+
+fn formula_is_local(f: &Formula) -> bool {
+    match f {
+        Formula::True | Formula::Literal(_) | Formula::Rel(..) => true,
+        Formula::Not(g) => formula_is_local(g),
+        Formula::And(a, b) | Formula::Or(a, b) => formula_is_local(a) && formula_is_local(b),
+        Formula::Call(t) => !t.functor().is_some_and(|f| GLOBAL_ACTIONS.contains(&f)),
+    }
+}
+
+fn step_is_local(s: &Step) -> bool {
+    match &s.kind {
+        BodyStep::Internal(t) => !t.functor().is_some_and(|f| GLOBAL_ACTIONS.contains(&f)),
+        BodyStep::Test(f) => formula_is_local(f),
+        BodyStep::If {
+            branches,
+            else_body,
+        } => {
+            branches
+                .iter()
+                .all(|(c, b)| formula_is_local(c) && b.iter().all(step_is_local))
+                && else_body.iter().all(step_is_local)
+        }
+        BodyStep::While(c, b) | BodyStep::For(c, b) => {
+            formula_is_local(c) && b.iter().all(step_is_local)
+        }
+        BodyStep::Action(_)
+        | BodyStep::Achieve { .. }
+        | BodyStep::AddBel(_)
+        | BodyStep::DelBel(_)
+        | BodyStep::DelAddBel(_)
+        | BodyStep::Constraint(..) => true,
     }
 }
 

@@ -5,9 +5,11 @@
 //! material of counterexample traces and of the dynamic checks). [`query`] answers plan
 //! contexts and test goals against the beliefs.
 
+pub mod compiled;
 pub mod cycle;
 pub mod query;
 pub mod state;
 
+pub use compiled::{Compiled, Notes, Packed};
 pub use cycle::{FrameView, Note, Semantics, Transition};
 pub use state::{Event, EventTrigger, Frame, Intention, Origin, State};

@@ -7,6 +7,7 @@ use crate::model::Substitution;
 use crate::syntax::ast::{TriggerKind, TriggerOp};
 use crate::syntax::Span;
 use std::fmt;
+use std::hash::{Hash, Hasher};
 
 /// A triggering event's content: `+!g`, `-!g`, `+b`, `-b`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -107,7 +108,11 @@ pub struct Intention {
 }
 
 /// The whole agent state.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+///
+/// Its hash is built from the hashes of its parts ([`part_hash`] of the beliefs, of each
+/// event and of each intention), so that a representation that keeps those parts shared
+/// and their hashes cached (the compiled search's) fingerprints a state exactly as this one.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct State {
     /// Beliefs: the environment's atoms as perceived (exactly) and the mental notes.
     pub beliefs: AtomSet,
@@ -117,6 +122,43 @@ pub struct State {
     pub intentions: Vec<Intention>,
     /// Bit `i`: request `i` has been made in this run.
     pub requested: u64,
+}
+
+/// The hash of one part of a state: std's SipHash with fixed keys, so it is the same in
+/// every run and process.
+pub fn part_hash<T: Hash>(x: &T) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    x.hash(&mut h);
+    h.finish()
+}
+
+/// Feeds a state's part hashes to `h`: the one definition of a state's hash, whatever holds
+/// the parts.
+pub fn hash_parts<H: Hasher>(
+    h: &mut H,
+    beliefs: u64,
+    events: impl ExactSizeIterator<Item = u64>,
+    intentions: impl ExactSizeIterator<Item = u64>,
+    requested: u64,
+) {
+    h.write_u64(beliefs);
+    h.write_usize(events.len());
+    events.for_each(|e| h.write_u64(e));
+    h.write_usize(intentions.len());
+    intentions.for_each(|i| h.write_u64(i));
+    h.write_u64(requested);
+}
+
+impl Hash for State {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        hash_parts(
+            h,
+            part_hash(&self.beliefs),
+            self.events.iter().map(part_hash),
+            self.intentions.iter().map(part_hash),
+            self.requested,
+        );
+    }
 }
 
 impl State {

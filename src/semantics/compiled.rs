@@ -1,0 +1,574 @@
+//! The reasoning cycle compiled for search: states made of shared, interned parts, and the
+//! two phases of a cycle memoized on the beliefs they read.
+//!
+//! [`Semantics::successors`] clones a whole [`State`] (terms, substitutions, stacks) for
+//! every successor and re-runs plan selection and body steps from scratch each time. Yet a
+//! cycle looks at little: deliberation at the first event and the atoms its relevant plans'
+//! contexts query, acting at the first intention and the atoms its next step (and the
+//! `while` conditions around it) query, when the library
+//! [`is_local`](Semantics::is_local). So [`Compiled`] keeps each distinct belief set, event
+//! and intention once ([`Part`], with its hash and the atoms it reads), a state as a
+//! [`Packed`] list of parts, and each phase's outcome per part and *read* beliefs: the
+//! same step of the same intention, with the same atoms around, is computed once however
+//! many states it occurs in. A phase is computed by the reference functions of
+//! [`Semantics`] on a state holding only that part and the read beliefs, and an act phase
+//! is kept as the change it makes to the beliefs; `tests/compiled.rs` checks that the two
+//! transition systems agree on every reachable state of every example project, notes and
+//! fingerprints included.
+//!
+//! Tables are sharded behind mutexes, so that the search threads share them. Parts and
+//! memoized outcomes are boxed and never freed before the [`Compiled`] that holds them, so
+//! states and notes refer to them by plain references (no reference counting between
+//! threads).
+
+use super::cycle::{Note, Semantics};
+use super::state::{hash_parts, part_hash, Event, Intention, Origin, State};
+use crate::model::atoms::AtomSet;
+use smallvec::SmallVec;
+use std::collections::{HashMap, HashSet};
+use std::hash::{BuildHasherDefault, Hash, Hasher};
+use std::ops::Deref;
+use std::ptr::NonNull;
+use std::sync::{Mutex, MutexGuard};
+
+/// A part of states (a belief set, an event, an intention), kept once: its value, its
+/// [`part_hash`], and the atoms the phase that takes it reads.
+#[derive(Debug)]
+pub struct Part<T> {
+    hash: u64,
+    reads: AtomSet,
+    value: T,
+}
+
+impl<T> Deref for Part<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.value
+    }
+}
+
+impl<T: PartialEq> PartialEq for Part<T> {
+    fn eq(&self, other: &Part<T>) -> bool {
+        std::ptr::eq(self, other) || (self.hash == other.hash && self.value == other.value)
+    }
+}
+
+impl<T: Eq> Eq for Part<T> {}
+
+impl<T> Hash for Part<T> {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        h.write_u64(self.hash);
+    }
+}
+
+/// A hasher for keys that are already well-mixed hashes: it keeps the last `u64` written.
+#[derive(Default)]
+struct PassThrough(u64);
+
+impl Hasher for PassThrough {
+    fn write(&mut self, bytes: &[u8]) {
+        for b in bytes {
+            self.0 = (self.0 ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = x;
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type Fast = BuildHasherDefault<PassThrough>;
+
+/// Tables are split in this many shards, each behind its own lock.
+const SHARDS: usize = 64;
+
+/// The shard of a hash: bits the hash tables themselves use little (they take the low
+/// bits for the bucket and the top seven as a tag).
+fn shard_of(hash: u64) -> usize {
+    (hash >> 40) as usize % SHARDS
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    // A panic in another search thread is re-raised by the explorer; the tables it left
+    // are consistent (every insertion is a single call).
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// A reference to something boxed in a table of a [`Compiled`], valid as long as it.
+struct Held<T: ?Sized>(NonNull<T>);
+
+impl<T: ?Sized> Clone for Held<T> {
+    fn clone(&self) -> Held<T> {
+        *self
+    }
+}
+
+impl<T: ?Sized> Copy for Held<T> {}
+
+// SAFETY: a `Held` is only read through shared references, and what it points to is
+// `Sync` (parts and notes are plain data).
+unsafe impl<T: ?Sized + Sync> Send for Held<T> {}
+// SAFETY: as above.
+unsafe impl<T: ?Sized + Sync> Sync for Held<T> {}
+
+impl<T: ?Sized> Held<T> {
+    fn new(r: &T) -> Held<T> {
+        Held(NonNull::from(r))
+    }
+
+    /// The referent, for as long as its owner is borrowed.
+    ///
+    /// SAFETY: the caller's `_owner` must be the [`Compiled`] whose tables hold the box this
+    /// points into. Boxes in those tables are never moved out, replaced or dropped before
+    /// the tables are, so the referent lives (unchanged) as long as `_owner`.
+    unsafe fn get<'c>(self, _owner: &'c Compiled) -> &'c T {
+        // SAFETY: see above.
+        unsafe { self.0.as_ref() }
+    }
+}
+
+/// Each distinct value once.
+struct Interner<T> {
+    shards: Vec<Mutex<HashSet<Box<Part<T>>, Fast>>>,
+}
+
+impl<T: Hash + Eq> Interner<T> {
+    fn new() -> Interner<T> {
+        Interner {
+            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
+        }
+    }
+
+    /// The part holding `value`, its read atoms computed by `reads` when it is new.
+    fn intern(&self, value: T, reads: impl FnOnce(&T) -> AtomSet) -> Held<Part<T>> {
+        let probe = Part {
+            hash: part_hash(&value),
+            reads: AtomSet::default(),
+            value,
+        };
+        let mut shard = lock(&self.shards[shard_of(probe.hash)]);
+        if let Some(p) = shard.get(&probe) {
+            return Held::new(&**p);
+        }
+        let part = Box::new(Part {
+            reads: reads(&probe.value),
+            ..probe
+        });
+        let held = Held::new(&*part);
+        shard.insert(part);
+        held
+    }
+
+    fn len(&self) -> usize {
+        self.shards.iter().map(|s| lock(s).len()).sum()
+    }
+}
+
+/// A memo key: a part (by address: parts are unique) and the beliefs it reads.
+#[derive(PartialEq, Eq)]
+struct Key {
+    part: usize,
+    read: SmallVec<[u64; 4]>,
+    hash: u64,
+}
+
+impl Hash for Key {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        h.write_u64(self.hash);
+    }
+}
+
+impl Key {
+    fn new<T>(part: &Part<T>, beliefs: &AtomSet) -> Key {
+        let read: SmallVec<[u64; 4]> = beliefs
+            .words()
+            .iter()
+            .zip(part.reads.words())
+            .map(|(b, r)| b & r)
+            .collect();
+        let mut h = part.hash;
+        for w in &read {
+            h = (h.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
+        }
+        // splitmix64's finalizer: every bit of the key reaches the shard and bucket bits.
+        h ^= h >> 30;
+        h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        h ^= h >> 27;
+        h = h.wrapping_mul(0x94d0_49bb_1331_11eb);
+        h ^= h >> 31;
+        Key {
+            part: part as *const Part<T> as usize,
+            read,
+            hash: h,
+        }
+    }
+}
+
+/// Outcomes per key, computed once (or, when two threads race, twice alike).
+struct Memo<V> {
+    shards: Vec<Mutex<HashMap<Key, Box<V>, Fast>>>,
+}
+
+impl<V> Memo<V> {
+    fn new() -> Memo<V> {
+        Memo {
+            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
+        }
+    }
+
+    fn get(&self, key: Key, compute: impl FnOnce() -> V) -> Held<V> {
+        let shard = &self.shards[shard_of(key.hash)];
+        if let Some(v) = lock(shard).get(&key) {
+            return Held::new(&**v);
+        }
+        // Computed without the lock: computing interns parts, which takes other locks.
+        let v = Box::new(compute());
+        Held::new(&**lock(shard).entry(key).or_insert(v))
+    }
+
+    fn len(&self) -> usize {
+        self.shards.iter().map(|s| lock(s).len()).sum()
+    }
+}
+
+/// A state of the compiled search: [`State`]'s parts, shared. Hashed exactly as the
+/// [`State`] it stands for, so that its fingerprint is that state's.
+#[derive(Clone, Debug)]
+pub struct Packed<'c> {
+    beliefs: &'c Part<AtomSet>,
+    events: SmallVec<[&'c Part<Event>; 4]>,
+    intentions: SmallVec<[&'c Part<Intention>; 4]>,
+    requested: u64,
+}
+
+impl PartialEq for Packed<'_> {
+    fn eq(&self, o: &Packed<'_>) -> bool {
+        self.requested == o.requested
+            && self.beliefs == o.beliefs
+            && self.events == o.events
+            && self.intentions == o.intentions
+    }
+}
+
+impl Eq for Packed<'_> {}
+
+impl Hash for Packed<'_> {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        hash_parts(
+            h,
+            self.beliefs.hash,
+            self.events.iter().map(|e| e.hash),
+            self.intentions.iter().map(|i| i.hash),
+            self.requested,
+        );
+    }
+}
+
+impl Packed<'_> {
+    /// The beliefs.
+    pub fn beliefs(&self) -> &AtomSet {
+        &self.beliefs.value
+    }
+
+    /// The first event of the queue.
+    pub fn first_event(&self) -> Option<&Event> {
+        self.events.first().map(|e| &e.value)
+    }
+
+    /// Whether the agent has nothing to do (see [`State::is_idle`]).
+    pub fn is_idle(&self) -> bool {
+        self.events.is_empty() && self.intentions.is_empty()
+    }
+
+    /// The requests still being served (see [`State::pending_requests`]).
+    pub fn pending_requests(&self) -> u64 {
+        let origins = self
+            .intentions
+            .iter()
+            .map(|i| i.origin)
+            .chain(self.events.iter().map(|e| e.origin));
+        origins.fold(0, |bits, o| match o {
+            Origin::Request(r) => bits | 1 << r,
+            _ => bits,
+        })
+    }
+}
+
+/// What a transition of the compiled search did: the notes of its phases, shared with
+/// every transition that took the same phase.
+#[derive(Clone, Debug, Default)]
+pub struct Notes<'c>(SmallVec<[&'c [Note]; 2]>);
+
+impl Notes<'_> {
+    /// The notes in order.
+    pub fn iter(&self) -> impl Iterator<Item = &Note> {
+        self.0.iter().flat_map(|n| n.iter())
+    }
+
+    /// The notes as [`Semantics::successors`] gives them.
+    pub fn to_vec(&self) -> Vec<Note> {
+        self.iter().cloned().collect()
+    }
+}
+
+/// One option of a deliberation: the events it queues, the intention it starts or resumes,
+/// its notes.
+struct Chosen {
+    events: SmallVec<[Held<Part<Event>>; 1]>,
+    intention: Option<Held<Part<Intention>>>,
+    notes: Box<[Note]>,
+}
+
+/// One act phase: the atoms it adds and removes, the events it queues, the intention that
+/// goes to the back of the queue (none when it finished, failed or was suspended), its
+/// notes.
+struct Acted {
+    added: AtomSet,
+    removed: AtomSet,
+    events: SmallVec<[Held<Part<Event>>; 2]>,
+    back: Option<Held<Part<Intention>>>,
+    notes: Box<[Note]>,
+}
+
+/// The compiled transition system of a [`Semantics`] whose library is local.
+pub struct Compiled<'s, 'p> {
+    sem: &'s Semantics<'p>,
+    beliefs: Interner<AtomSet>,
+    events: Interner<Event>,
+    intentions: Interner<Intention>,
+    deliberations: Memo<Vec<Chosen>>,
+    acts: Memo<Acted>,
+    /// Per request: its event and its note.
+    requests: Vec<(Held<Part<Event>>, [Note; 1])>,
+}
+
+/// How many distinct parts and memoized phases a compiled search holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sizes {
+    /// Distinct belief sets.
+    pub beliefs: usize,
+    /// Distinct events.
+    pub events: usize,
+    /// Distinct intentions.
+    pub intentions: usize,
+    /// Memoized deliberations (event, read beliefs).
+    pub deliberations: usize,
+    /// Memoized act phases (intention, read beliefs).
+    pub acts: usize,
+}
+
+impl<'s, 'p> Compiled<'s, 'p> {
+    /// The compiled form of `sem`, or `None` when its library is not local (then only the
+    /// whole state decides a cycle, and [`Semantics::successors`] must be used).
+    pub fn new(sem: &'s Semantics<'p>) -> Option<Compiled<'s, 'p>> {
+        if !sem.is_local() {
+            return None;
+        }
+        let mut c = Compiled {
+            sem,
+            beliefs: Interner::new(),
+            events: Interner::new(),
+            intentions: Interner::new(),
+            deliberations: Memo::new(),
+            acts: Memo::new(),
+            requests: Vec::new(),
+        };
+        c.requests = (0..sem.requests.len())
+            .map(|r| {
+                let event = c.event(sem.request_event(r));
+                (event, [Note::Request { index: r as u8 }])
+            })
+            .collect();
+        Some(c)
+    }
+
+    /// The semantics compiled.
+    pub fn semantics(&self) -> &'s Semantics<'p> {
+        self.sem
+    }
+
+    fn belief_set(&self, b: AtomSet) -> Held<Part<AtomSet>> {
+        self.beliefs.intern(b, |_| AtomSet::default())
+    }
+
+    fn event(&self, e: Event) -> Held<Part<Event>> {
+        self.events.intern(e, |e| self.sem.event_reads(e))
+    }
+
+    fn intention(&self, i: Intention) -> Held<Part<Intention>> {
+        self.intentions.intern(i, |i| self.sem.intention_reads(i))
+    }
+
+    /// The packed form of a state.
+    pub fn pack<'c>(&'c self, s: &State) -> Packed<'c> {
+        // SAFETY: every `Held` here comes from this compiled system's tables.
+        unsafe {
+            Packed {
+                beliefs: self.belief_set(s.beliefs.clone()).get(self),
+                events: s
+                    .events
+                    .iter()
+                    .map(|e| self.event(e.clone()).get(self))
+                    .collect(),
+                intentions: s
+                    .intentions
+                    .iter()
+                    .map(|i| self.intention(i.clone()).get(self))
+                    .collect(),
+                requested: s.requested,
+            }
+        }
+    }
+
+    /// The state a packed one stands for.
+    pub fn unpack(&self, p: &Packed) -> State {
+        State {
+            beliefs: p.beliefs.value.clone(),
+            events: p.events.iter().map(|e| e.value.clone()).collect(),
+            intentions: p.intentions.iter().map(|i| i.value.clone()).collect(),
+            requested: p.requested,
+        }
+    }
+
+    /// The initial states (see [`Semantics::initial_states`]).
+    pub fn initial_states(&self) -> Vec<Packed<'_>> {
+        self.sem
+            .initial_states()
+            .iter()
+            .map(|s| self.pack(s))
+            .collect()
+    }
+
+    /// How much the tables hold.
+    pub fn sizes(&self) -> Sizes {
+        Sizes {
+            beliefs: self.beliefs.len(),
+            events: self.events.len(),
+            intentions: self.intentions.len(),
+            deliberations: self.deliberations.len(),
+            acts: self.acts.len(),
+        }
+    }
+
+    /// Every successor of `p`, in [`Semantics::successors`]'s order, with its notes.
+    pub fn successors<'c>(&'c self, p: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {
+        let mut out = Vec::new();
+        if self.sem.may_request(p.requested, p.is_idle()) {
+            for (r, (event, note)) in self.requests.iter().enumerate() {
+                if p.requested >> r & 1 == 1 {
+                    continue;
+                }
+                let mut next = p.clone();
+                next.requested |= 1 << r;
+                // SAFETY: the request events are in this system's tables.
+                next.events.push(unsafe { event.get(self) });
+                out.push((Notes(smallvec::smallvec![&note[..]]), next));
+            }
+        }
+        if p.is_idle() {
+            return out;
+        }
+        let Some(event) = p.events.first() else {
+            let mut next = p.clone();
+            let mut notes = Notes::default();
+            self.act(&mut next, &mut notes);
+            out.push((notes, next));
+            return out;
+        };
+        let key = Key::new(event, &p.beliefs.value);
+        // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
+        let chosen = unsafe {
+            self.deliberations
+                .get(key, || self.deliberate(event, &p.beliefs.value))
+                .get(self)
+        };
+        for c in chosen {
+            let mut next = Packed {
+                beliefs: p.beliefs,
+                events: p.events[1..].iter().copied().collect(),
+                intentions: p.intentions.clone(),
+                requested: p.requested,
+            };
+            // SAFETY: as above.
+            unsafe {
+                next.events.extend(c.events.iter().map(|e| e.get(self)));
+                next.intentions.extend(c.intention.map(|i| i.get(self)));
+            }
+            let mut notes = Notes(smallvec::smallvec![&c.notes[..]]);
+            self.act(&mut next, &mut notes);
+            out.push((notes, next));
+        }
+        out
+    }
+
+    /// The act phase on `p`, memoized.
+    fn act<'c>(&'c self, p: &mut Packed<'c>, notes: &mut Notes<'c>) {
+        if p.intentions.is_empty() {
+            return;
+        }
+        let first = p.intentions.remove(0);
+        let held: &'c Part<AtomSet> = p.beliefs;
+        let beliefs = &held.value;
+        let key = Key::new(first, beliefs);
+        // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
+        unsafe {
+            let acted = self
+                .acts
+                .get(key, || self.compute_act(first, beliefs))
+                .get(self);
+            if !acted.added.is_empty() || !acted.removed.is_empty() {
+                let next = beliefs.with_changes(&acted.added, &acted.removed);
+                p.beliefs = self.belief_set(next).get(self);
+            }
+            p.events.extend(acted.events.iter().map(|e| e.get(self)));
+            p.intentions.extend(acted.back.map(|i| i.get(self)));
+            notes.0.push(&acted.notes[..]);
+        }
+    }
+
+    /// A state with only the beliefs `reads` selects and the given intention: what a phase
+    /// that reads no more sees of a whole state.
+    fn alone(beliefs: &AtomSet, reads: &AtomSet, intention: Option<&Intention>) -> State {
+        State {
+            beliefs: beliefs.intersection(reads),
+            events: Vec::new(),
+            intentions: intention.into_iter().cloned().collect(),
+            requested: 0,
+        }
+    }
+
+    fn deliberate(&self, event: &Part<Event>, beliefs: &AtomSet) -> Vec<Chosen> {
+        let read = Self::alone(beliefs, &event.reads, None);
+        let before = read.beliefs.clone();
+        self.sem
+            .deliberate(read, event.value.clone())
+            .into_iter()
+            .map(|(mut s, notes)| {
+                debug_assert!(s.beliefs == before, "deliberation changes no belief");
+                debug_assert!(s.intentions.len() <= 1, "one intention at most");
+                Chosen {
+                    events: s.events.into_iter().map(|e| self.event(e)).collect(),
+                    intention: s.intentions.pop().map(|i| self.intention(i)),
+                    notes: notes.into(),
+                }
+            })
+            .collect()
+    }
+
+    fn compute_act(&self, intention: &Part<Intention>, beliefs: &AtomSet) -> Acted {
+        let mut s = Self::alone(beliefs, &intention.reads, Some(&intention.value));
+        let before = s.beliefs.clone();
+        let mut notes = Vec::new();
+        self.sem.act(&mut s, &mut notes);
+        debug_assert!(s.intentions.len() <= 1, "one intention at most");
+        Acted {
+            added: s.beliefs.difference(&before),
+            removed: before.difference(&s.beliefs),
+            events: s.events.into_iter().map(|e| self.event(e)).collect(),
+            back: s.intentions.pop().map(|i| self.intention(i)),
+            notes: notes.into(),
+        }
+    }
+}

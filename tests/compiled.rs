@@ -1,0 +1,133 @@
+//! The compiled reasoning cycle (`semantics::compiled`) against the reference one: on every
+//! reachable state of every example project, the same successors in the same order, with
+//! the same notes and the same fingerprints. And `verify` with either gives the same report.
+
+use bdi_check::check::explore::fingerprint;
+use bdi_check::model::project::load_project;
+use bdi_check::semantics::{Compiled, Semantics, State};
+use std::collections::{HashSet, VecDeque};
+use std::path::{Path, PathBuf};
+
+/// Every project the tests verify (`specs/*`, `tests/verify/*`) and `tests/compiled/*`.
+fn projects() -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for dir in ["specs", "tests/verify", "tests/compiled"] {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        for e in std::fs::read_dir(&root)
+            .expect("the folder exists")
+            .flatten()
+        {
+            if e.path().join("bdi-check.toml").is_file() {
+                out.push(e.path());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Walks the reference transition system breadth first (up to `cap` states) and compares
+/// each state's successors with the compiled system's. Returns the states compared.
+fn agree(dir: &Path, cap: usize) -> usize {
+    let p = load_project(dir).unwrap_or_else(|e| panic!("{}: {e:?}", dir.display()));
+    let sem = Semantics::new(&p).expect("the semantics");
+    let Some(compiled) = Compiled::new(&sem) else {
+        return 0;
+    };
+    let mut seen: HashSet<u64> = HashSet::new();
+    let mut queue: VecDeque<State> = VecDeque::new();
+    for s in sem.initial_states() {
+        let packed = compiled.pack(&s);
+        assert_eq!(fingerprint(&packed), fingerprint(&s), "{}", dir.display());
+        if seen.insert(fingerprint(&s)) {
+            queue.push_back(s);
+        }
+    }
+    let mut compared = 0;
+    while let Some(s) = queue.pop_front() {
+        if compared == cap {
+            break;
+        }
+        compared += 1;
+        let want = sem.successors(&s);
+        let got = compiled.successors(&compiled.pack(&s));
+        assert_eq!(
+            want.len(),
+            got.len(),
+            "{}: successor count of {s:?}",
+            dir.display()
+        );
+        for (w, (notes, next)) in want.into_iter().zip(got) {
+            assert_eq!(
+                w.notes,
+                notes.to_vec(),
+                "{}: notes from {s:?}",
+                dir.display()
+            );
+            assert_eq!(
+                w.next,
+                compiled.unpack(&next),
+                "{}: from {s:?}",
+                dir.display()
+            );
+            assert_eq!(
+                fingerprint(&w.next),
+                fingerprint(&next),
+                "{}",
+                dir.display()
+            );
+            if seen.insert(fingerprint(&w.next)) {
+                queue.push_back(w.next);
+            }
+        }
+    }
+    compared
+}
+
+#[test]
+fn compiled_successors_are_the_reference_ones_on_every_project() {
+    let mut total = 0;
+    for dir in projects() {
+        total += agree(&dir, 40_000);
+    }
+    assert!(total > 10_000, "states compared: {total}");
+}
+
+#[test]
+fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
+    use bdi_check::check::explore::Limits;
+    use bdi_check::check::{verify_with, VerifyOptions};
+    let limits = Limits {
+        max_states: 200_000,
+        max_depth: 10_000,
+        timeout: None,
+    };
+    let mut compared = 0;
+    for dir in projects() {
+        let p = load_project(&dir).expect("the project loads");
+        if !Semantics::new(&p).is_ok_and(|s| s.is_local()) {
+            continue;
+        }
+        let lint: Vec<_> = bdi_check::smt::lint(&p, &bdi_check::smt::LintOptions::default())
+            .into_iter()
+            .map(|l| l.finding)
+            .collect();
+        let run = |compiled| {
+            let opts = VerifyOptions {
+                threads: 2,
+                symmetry: false,
+                compiled,
+                ..VerifyOptions::default()
+            };
+            verify_with(&p, limits, &opts, |_, _, _| {}, &lint).expect("verify runs")
+        };
+        let (fast, slow) = (run(true), run(false));
+        let at = dir.display();
+        assert_eq!(fast.findings, slow.findings, "{at}");
+        assert_eq!(fast.stats.states, slow.stats.states, "{at}");
+        assert_eq!(fast.stats.transitions, slow.stats.transitions, "{at}");
+        assert_eq!(fast.memory.0, slow.memory.0, "{at}");
+        compared += 1;
+    }
+    assert!(compared >= 5, "projects compared: {compared}");
+}
