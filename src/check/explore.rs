@@ -1,11 +1,12 @@
 //! Breadth-first exploration of every reachable state, with parent links so that the path
 //! to any state is a shortest one.
 //!
-//! The search is level-synchronous: the states of one depth (the frontier) are expanded in
-//! chunks, each chunk split between `threads` worker threads, and the successors are then
-//! merged into the [`Store`] one by one in frontier order and successor order. The merge
-//! alone decides the numbering, so the graph, the first transition seen for each check,
-//! and therefore every verdict and counterexample, are the same for any number of threads.
+//! The search is level-synchronous: the states of one depth (the frontier) go in jobs to
+//! `threads` worker threads, which compute their summaries and successors, while this
+//! thread merges the finished jobs' successors into the [`Store`] one by one, in frontier
+//! order and successor order, a few jobs behind the workers. The merge alone decides the
+//! numbering, so the graph, the first transition seen for each check, and therefore every
+//! verdict and counterexample, are the same for any number of threads.
 //!
 //! States are identified by a 64-bit fingerprint ([`Model::fingerprint`]: std's SipHash
 //! with fixed keys, of the state or of its canonical member under symmetry). Two distinct
@@ -115,9 +116,105 @@ struct Expanded<T, L, S> {
     successors: Option<Vec<(L, S, u64)>>,
 }
 
-/// States expanded per chunk: enough to keep every thread busy, few enough that the
-/// successors of one chunk take little memory.
-const CHUNK: usize = 4096;
+/// States per job handed to a worker: enough to make a job worth its hand-over, few
+/// enough to spread a level over the workers.
+const JOB: usize = 1024;
+
+/// Frontier states, each with its number.
+type Batch<S> = Vec<(u32, S)>;
+
+/// A batch and, in its order, what expanding each state produced.
+type Expansion<S, T, L> = (Batch<S>, Vec<Expanded<T, L, S>>);
+
+/// How many jobs may be out (being expanded, or expanded and waiting for the merge) per
+/// worker: enough to keep the workers busy while the merge catches up.
+const AHEAD: usize = 4;
+
+/// Expands frontier states in jobs and hands the results back in the order the jobs were
+/// submitted: in this thread, or on worker threads while this one merges.
+trait Expander<S, T, L> {
+    /// How many jobs may be out at once.
+    fn ahead(&self) -> usize;
+    /// Queues `states` (each with its number): their summaries, and their successors if
+    /// `expand`.
+    fn submit(&mut self, states: Batch<S>, expand: bool);
+    /// The oldest submitted job, expanded.
+    fn take(&mut self) -> Expansion<S, T, L>;
+}
+
+/// Expands each job in this thread, when it is taken.
+struct Inline<'a, M: Model, F> {
+    model: &'a M,
+    summarize: F,
+    queue: std::collections::VecDeque<(Batch<M::State>, bool)>,
+}
+
+impl<M: Model, T, F: Fn(&M::State) -> T> Expander<M::State, T, M::Label> for Inline<'_, M, F> {
+    fn ahead(&self) -> usize {
+        1
+    }
+
+    fn submit(&mut self, states: Batch<M::State>, expand: bool) {
+        self.queue.push_back((states, expand));
+    }
+
+    fn take(&mut self) -> Expansion<M::State, T, M::Label> {
+        let (states, expand) = self.queue.pop_front().expect("a job was submitted");
+        let out = states
+            .iter()
+            .map(|(_, s)| expand_one(self.model, s, expand, &self.summarize))
+            .collect();
+        (states, out)
+    }
+}
+
+/// A job's result from a worker: its states and their expansions, or the worker's panic.
+type Done<S, T, L> = std::thread::Result<Expansion<S, T, L>>;
+
+/// A job for a worker: its number, its states, whether to expand them.
+type Job<S> = (u64, Batch<S>, bool);
+
+/// Expands jobs on worker threads; results are put back in submission order.
+struct Workers<S, T, L> {
+    threads: usize,
+    jobs: Option<std::sync::mpsc::Sender<Job<S>>>,
+    done: std::sync::mpsc::Receiver<(u64, Done<S, T, L>)>,
+    submitted: u64,
+    taken: u64,
+    early: std::collections::BTreeMap<u64, Done<S, T, L>>,
+}
+
+impl<S, T, L> Expander<S, T, L> for Workers<S, T, L> {
+    fn ahead(&self) -> usize {
+        AHEAD * self.threads
+    }
+
+    fn submit(&mut self, states: Batch<S>, expand: bool) {
+        let jobs = self
+            .jobs
+            .as_ref()
+            .expect("workers run until the search ends");
+        // A send fails only when every worker has stopped, which `take` reports.
+        let _ = jobs.send((self.submitted, states, expand));
+        self.submitted += 1;
+    }
+
+    fn take(&mut self) -> Expansion<S, T, L> {
+        let result = loop {
+            if let Some(r) = self.early.remove(&self.taken) {
+                break r;
+            }
+            match self.done.recv() {
+                Ok((seq, r)) => {
+                    self.early.insert(seq, r);
+                }
+                Err(_) => panic!("every search worker stopped"),
+            }
+        };
+        self.taken += 1;
+        result.unwrap_or_else(|e| std::panic::resume_unwind(e))
+    }
+}
 
 /// Explores a model from every initial state, breadth first, on one thread, keeping the
 /// edges. `on_transition` sees every transition (source index, its position among the
@@ -128,24 +225,25 @@ pub fn explore<M: Model>(
     mut on_transition: impl FnMut(u32, u32, &M::Label),
     progress: impl FnMut(usize, u32, f64),
 ) -> Graph<M::State> {
+    let mut inline = Inline {
+        model,
+        summarize: |_: &M::State| (),
+        queue: Default::default(),
+    };
     search(
         model,
         limits,
         &Options::default(),
-        |chunk, expand| {
-            chunk
-                .iter()
-                .map(|(_, s)| expand_one(model, s, expand, &|_| ()))
-                .collect()
-        },
+        &mut inline,
         |_, ()| {},
         |src, k, label, _| on_transition(src, k, label),
         progress,
     )
 }
 
-/// Explores a model with `opts.threads` threads. `summarize` runs on every stored state
-/// (in a worker thread); `on_state` then receives its summary, in state number order;
+/// Explores a model with `opts.threads` worker threads expanding states while this thread
+/// merges their successors into the store. `summarize` runs on every stored state (in a
+/// worker thread); `on_state` then receives its summary, in state number order;
 /// `on_transition` sees every transition with the fingerprint of its target, in a fixed
 /// order.
 pub fn explore_with<M, T>(
@@ -164,41 +262,68 @@ where
     T: Send,
 {
     let threads = opts.threads.max(1);
-    search(
-        model,
-        limits,
-        opts,
-        |chunk, expand| {
-            if threads == 1 || chunk.len() < 2 * threads {
-                return chunk
-                    .iter()
-                    .map(|(_, s)| expand_one(model, s, expand, &summarize))
-                    .collect();
-            }
-            // Contiguous parts, joined in order: the result does not depend on `threads`.
-            let part = chunk.len().div_ceil(threads);
-            std::thread::scope(|scope| {
-                let handles: Vec<_> = chunk
-                    .chunks(part)
-                    .map(|p| {
-                        let summarize = &summarize;
-                        scope.spawn(move || {
-                            p.iter()
-                                .map(|(_, s)| expand_one(model, s, expand, summarize))
-                                .collect::<Vec<_>>()
-                        })
-                    })
-                    .collect();
-                handles
-                    .into_iter()
-                    .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                    .collect()
-            })
-        },
-        on_state,
-        on_transition,
-        progress,
-    )
+    if threads == 1 {
+        let mut inline = Inline {
+            model,
+            summarize,
+            queue: Default::default(),
+        };
+        return search(
+            model,
+            limits,
+            opts,
+            &mut inline,
+            on_state,
+            on_transition,
+            progress,
+        );
+    }
+    let (jobs, queue) = std::sync::mpsc::channel::<Job<M::State>>();
+    let queue = std::sync::Mutex::new(queue);
+    let (results, done) = std::sync::mpsc::channel();
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            let (queue, results, summarize) = (&queue, results.clone(), &summarize);
+            scope.spawn(move || loop {
+                let job = queue.lock().unwrap_or_else(|e| e.into_inner()).recv();
+                let Ok((seq, states, expand)) = job else {
+                    return;
+                };
+                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    let out = states
+                        .iter()
+                        .map(|(_, s)| expand_one(model, s, expand, summarize))
+                        .collect();
+                    (states, out)
+                }));
+                let failed = r.is_err();
+                if results.send((seq, r)).is_err() || failed {
+                    return;
+                }
+            });
+        }
+        drop(results);
+        let mut workers = Workers {
+            threads,
+            jobs: Some(jobs),
+            done,
+            submitted: 0,
+            taken: 0,
+            early: Default::default(),
+        };
+        let g = search(
+            model,
+            limits,
+            opts,
+            &mut workers,
+            on_state,
+            on_transition,
+            progress,
+        );
+        // Closing the queue ends the workers.
+        workers.jobs = None;
+        g
+    })
 }
 
 fn expand_one<M: Model, T>(
@@ -268,14 +393,16 @@ pub fn default_max_memory() -> Option<u64> {
     Some(limit)
 }
 
-/// The level-synchronous search; `expand_chunk` maps frontier states to their summaries
-/// and (when the flag says so) successors, in order.
+/// The level-synchronous search; `expander` gives frontier states their summaries and
+/// successors, in order. States are expanded ahead of the merge; what the merge decides
+/// not to expand (the depth bound, a stop) has its successors dropped, so the graph is the
+/// one a search expanding on demand would build.
 #[allow(clippy::too_many_arguments)]
 fn search<M: Model, T>(
     model: &M,
     limits: Limits,
     opts: &Options,
-    mut expand_chunk: impl FnMut(&[(u32, M::State)], bool) -> Vec<Expanded<T, M::Label, M::State>>,
+    expander: &mut impl Expander<M::State, T, M::Label>,
     mut on_state: impl FnMut(u32, T),
     mut on_transition: impl FnMut(u32, u32, &M::Label, u64),
     mut progress: impl FnMut(usize, u32, f64),
@@ -333,8 +460,22 @@ fn search<M: Model, T>(
             g.bound.get_or_insert(Bound::Depth);
         }
         let mut next: Vec<(u32, M::State)> = Vec::new();
-        let mut at = 0;
-        while at < frontier.len() {
+        let mut level = std::mem::take(&mut frontier).into_iter();
+        let mut out = 0;
+        loop {
+            while out < expander.ahead() {
+                let job: Batch<M::State> = level.by_ref().take(JOB).collect();
+                if job.is_empty() {
+                    break;
+                }
+                expander.submit(job, expand);
+                out += 1;
+            }
+            if out == 0 {
+                break;
+            }
+            let (states, results) = expander.take();
+            out -= 1;
             let elapsed = start.elapsed().as_secs_f64();
             progress(g.store.len(), depth, elapsed);
             if !stopped && limits.timeout.is_some_and(|t| elapsed > t) {
@@ -350,13 +491,12 @@ fn search<M: Model, T>(
                     }
                 }
             }
-            let end = (at + CHUNK).min(frontier.len());
-            let chunk = &frontier[at..end];
-            let results = expand_chunk(chunk, expand && !stopped);
-            for ((src, _), r) in chunk.iter().zip(results) {
+            // A job merged after a stop counts as not expanded, as if it had not been.
+            let expanded = !stopped;
+            for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
                 let edge_start = g.edges.as_ref().map_or(0, |e| e.to.len());
-                let Some(succ) = r.successors else {
+                let Some(succ) = r.successors.filter(|_| expanded) else {
                     g.mark(*src, edge_start, false);
                     continue;
                 };
@@ -403,7 +543,6 @@ fn search<M: Model, T>(
                 // run.
                 g.mark(*src, edge_start, !cut);
             }
-            at = end;
         }
         frontier = next;
         depth += 1;
