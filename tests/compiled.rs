@@ -1,6 +1,7 @@
 //! The compiled reasoning cycle (`semantics::compiled`) against the reference one: on every
 //! reachable state of every example project, the same successors in the same order, with
-//! the same notes and the same fingerprints. And `verify` with either gives the same report.
+//! the same notes and the same fingerprints. And `verify` with either gives the same report,
+//! with symmetry reduction and without.
 
 use bdi_check::check::explore::fingerprint;
 use bdi_check::model::project::load_project;
@@ -112,21 +113,24 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
             .into_iter()
             .map(|l| l.finding)
             .collect();
-        let run = |compiled| {
-            let opts = VerifyOptions {
-                threads: 2,
-                symmetry: false,
-                compiled,
-                ..VerifyOptions::default()
+        for symmetry in [false, true] {
+            let run = |compiled| {
+                let opts = VerifyOptions {
+                    threads: 2,
+                    symmetry,
+                    compiled,
+                    ..VerifyOptions::default()
+                };
+                verify_with(&p, limits, &opts, |_, _, _| {}, &lint).expect("verify runs")
             };
-            verify_with(&p, limits, &opts, |_, _, _| {}, &lint).expect("verify runs")
-        };
-        let (fast, slow) = (run(true), run(false));
-        let at = dir.display();
-        assert_eq!(fast.findings, slow.findings, "{at}");
-        assert_eq!(fast.stats.states, slow.stats.states, "{at}");
-        assert_eq!(fast.stats.transitions, slow.stats.transitions, "{at}");
-        assert_eq!(fast.memory.0, slow.memory.0, "{at}");
+            let (fast, slow) = (run(true), run(false));
+            let at = format!("{} (symmetry {symmetry})", dir.display());
+            assert_eq!(fast.findings, slow.findings, "{at}");
+            assert_eq!(fast.stats.states, slow.stats.states, "{at}");
+            assert_eq!(fast.stats.transitions, slow.stats.transitions, "{at}");
+            assert_eq!(fast.memory.0, slow.memory.0, "{at}");
+            assert_eq!(fast.symmetry_caveat, slow.symmetry_caveat, "{at}");
+        }
         compared += 1;
     }
     assert!(compared >= 5, "projects compared: {compared}");

@@ -26,7 +26,7 @@ use crate::report::{Counterexample, Finding, Stats, Status};
 use crate::semantics::{Compiled, Note, Semantics};
 use crate::syntax::{Diagnostic, Severity, Span};
 use explore::{explore_with, Bound, Graph, Limits, Options};
-use model::{Agent, AgentState, CycleNotes, Model};
+use model::{Agent, AgentState, CompiledAgent, CycleNotes, Model};
 use std::collections::{BTreeMap, HashMap, VecDeque};
 
 /// What `verify` found.
@@ -60,8 +60,8 @@ pub struct VerifyOptions {
     pub shard: Option<(u32, u32)>,
     /// Stop, as incomplete, once the process holds this many bytes.
     pub max_memory: Option<u64>,
-    /// Search the compiled reasoning cycle ([`Compiled`]) where it applies (no symmetry
-    /// reduction, a local library); off, the reference one. The two give the same report.
+    /// Search the compiled reasoning cycle ([`Compiled`]) where it applies (a local
+    /// library); off, the reference one. The two give the same report.
     pub compiled: bool,
 }
 
@@ -262,28 +262,31 @@ pub fn verify_with(
         shard: opts.shard,
     };
     let mut failures = Failures::default();
-    let compiled = match &agent.symmetry {
-        None if opts.compiled => Compiled::new(&sem),
-        None => None,
-        // Symmetry reduction renames whole states; the compiled search does not.
-        Some(_) => None,
+    let compiled = if opts.compiled {
+        Compiled::new(&sem)
+    } else {
+        None
     };
+    // Every stored state is also checked for equivariance: reduction is only exact if
+    // renaming a state renames its successors (see Symmetry::equivariance_violation);
+    // where it does not, the report says so.
     let (graph, not_equivariant) = match &compiled {
         Some(c) => {
-            let (g, _) = search_agent(
-                &c,
+            let model = CompiledAgent {
+                compiled: c,
+                symmetry: agent.symmetry.as_ref(),
+            };
+            let (g, unequal) = search_agent(
+                &model,
                 &sem,
                 &conditions,
-                |_| None,
+                |s| model.equivariance_violation(s),
                 (limits, &search),
                 (&mut facts, &eventually, &mut failures),
                 progress,
             );
-            (g.cast(), None)
+            (g.cast(), unequal)
         }
-        // Every stored state is also checked for equivariance: reduction is only exact if
-        // renaming a state renames its successors (see Symmetry::equivariance_violation);
-        // where it does not, the report says so.
         None => search_agent(
             &agent,
             &sem,

@@ -1,8 +1,9 @@
 //! What the explorer explores: a [`Model`] is any transition system with hashable states.
 //!
 //! The agent's reasoning cycle ([`Semantics`]) is one, and [`Agent`] is the same with
-//! symmetry reduction; a model that also carries each user's expected successors (for the
-//! explanation properties) is another. Exploration, traces and liveness work on any of
+//! symmetry reduction; [`CompiledAgent`] is the same again, compiled for speed; a model
+//! that also carries each user's expected successors (for the explanation properties) is
+//! another. Exploration, traces and liveness work on any of
 //! them, as in stateright.
 
 use super::explore::fingerprint;
@@ -78,18 +79,48 @@ impl Model for Agent<'_> {
 }
 
 /// The compiled reasoning cycle ([`Compiled`]): the same transition system as
-/// [`Semantics`], with the same fingerprints and notes, searched faster. Its states borrow
-/// from it, so the model is a reference to it.
-impl<'c> Model for &'c Compiled<'_, '_> {
+/// [`Semantics`] (and [`Agent`]), with the same fingerprints and notes, searched faster.
+/// Its states borrow from the compiled cycle.
+pub struct CompiledAgent<'c, 's, 'p> {
+    /// The compiled reasoning cycle.
+    pub compiled: &'c Compiled<'s, 'p>,
+    /// The symmetry reduction, if on.
+    pub symmetry: Option<&'c Symmetry>,
+}
+
+impl<'c> CompiledAgent<'c, '_, '_> {
+    /// The first renaming at which `s`'s successors are not its renaming's successors
+    /// renamed, if any (see [`Symmetry::equivariance_violation`]); `None` without symmetry.
+    pub fn equivariance_violation(&self, s: &Packed<'c>) -> Option<String> {
+        let c = self.compiled;
+        self.symmetry?
+            .equivariance_violation_with(&c.unpack(s), |st| {
+                c.successors(&c.pack(st))
+                    .iter()
+                    .map(|(_, next)| c.unpack(next))
+                    .collect()
+            })
+    }
+}
+
+impl<'c> Model for CompiledAgent<'c, '_, '_> {
     type State = Packed<'c>;
     type Label = Notes<'c>;
 
     fn init_states(&self) -> Vec<Packed<'c>> {
-        (*self).initial_states()
+        self.compiled.initial_states()
     }
 
     fn next_states(&self, s: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {
-        (*self).successors(s)
+        self.compiled.successors(s)
+    }
+
+    fn fingerprint(&self, s: &Packed<'c>) -> u64 {
+        match self.symmetry {
+            // Renaming works on whole states; the canonical member is the reference one's.
+            Some(sym) => sym.fingerprint(&self.compiled.unpack(s)),
+            None => fingerprint(s),
+        }
     }
 }
 

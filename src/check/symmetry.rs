@@ -646,12 +646,20 @@ impl Symmetry {
     /// order, so `cup1` before `cup2`). `None` when it holds, otherwise the renaming that
     /// breaks it, as object names.
     pub fn equivariance_violation(&self, sem: &Semantics, s: &State) -> Option<String> {
+        self.equivariance_violation_with(s, |st| {
+            sem.successors(st).into_iter().map(|t| t.next).collect()
+        })
+    }
+
+    /// [`Symmetry::equivariance_violation`], with the successor states computed by
+    /// `successors` (the compiled reasoning cycle's, say).
+    pub fn equivariance_violation_with(
+        &self,
+        s: &State,
+        successors: impl Fn(&State) -> Vec<State>,
+    ) -> Option<String> {
         let classes = |st: &State| {
-            let mut v: Vec<u64> = sem
-                .successors(st)
-                .iter()
-                .map(|t| self.fingerprint(&t.next))
-                .collect();
+            let mut v: Vec<u64> = successors(st).iter().map(|t| self.fingerprint(t)).collect();
             v.sort_unstable();
             v
         };
