@@ -251,8 +251,14 @@ fn main() {
     );
     let exe = std::env::current_exe().expect("the bench binary");
     for cups in 1..=max {
-        // Without symmetry, 5 and 6 cups take too long to be worth a bench run.
-        let modes: &[&str] = if cups <= 4 { &["on", "off"] } else { &["on"] };
+        // Without symmetry, 6 cups (about a minute, 2 GiB), and 5 cups with the users'
+        // searches, take too long to be worth a bench run.
+        let exact = if explain { 4 } else { 5 };
+        let modes: &[&str] = if cups <= exact {
+            &["on", "off"]
+        } else {
+            &["on"]
+        };
         for mode in modes {
             let mut cmd = Command::new(&exe);
             cmd.args(["--row", &cups.to_string(), mode]);

@@ -87,7 +87,7 @@
 //! * [`model`]: the formal model `M = <S, B, G, Pi>`: terms and unification, types and
 //!   objects, type checking, ground atoms and states, ground actions, plans;
 //! * [`smt`]: the static checks of `lint`, decided with z3;
-//! * [`semantics`]: Jason's reasoning cycle as a transition function;
+//! * [`semantics`]: Jason's reasoning cycle as a transition function, and compiled for search;
 //! * [`explain`]: the paper's two explanation algorithms (when to explain, what to say),
 //!   as pure functions a robot can call at run time;
 //! * [`check`]: exhaustive exploration and the dynamic checks;

@@ -6,7 +6,7 @@
 //! the reasoning cycle runs otherwise. At each executed environment action, Algorithm 1
 //! decides, per user, whether the action surprises them ([`crate::explain::demand`]); when it
 //! does, Algorithm 2 builds the explanation from the running intention's stack
-//! ([`crate::explain::content`]) and it is rendered as one sentence. Each user's view of the
+//! ([`crate::explain::content()`]) and it is rendered as one sentence. Each user's view of the
 //! run is [`Explained`], the model whose explanations `verify` checks: what `explain` prints
 //! is what was verified.
 

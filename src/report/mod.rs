@@ -1,7 +1,7 @@
 //! What the commands print: the JSON report of SPEC §3 and its human rendering.
 //!
 //! Every command builds a [`Report`]; `--format` decides how it is written. Exit codes
-//! follow SPEC §2 and are derived from the report alone ([`Report::exit_code`]), so a
+//! follow SPEC §2 and are derived from the report alone ([`Verdict::exit_code`]), so a
 //! verdict and its exit code can never disagree.
 
 pub mod domain;

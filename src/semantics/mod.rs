@@ -3,7 +3,9 @@
 //! [`Semantics`] is the transition function: [`Semantics::initial_states`] and
 //! [`Semantics::successors`], each successor with the [`Note`]s that say what happened (the
 //! material of counterexample traces and of the dynamic checks). [`query`] answers plan
-//! contexts and test goals against the beliefs.
+//! contexts and test goals against the beliefs. [`Compiled`] is the same transition
+//! function for search: states made of shared parts, each phase of a cycle computed once per
+//! part and per value of the beliefs it reads.
 
 pub mod compiled;
 pub mod cycle;
