@@ -126,6 +126,9 @@ type Batch<S> = Vec<(u32, S)>;
 /// A batch and, in its order, what expanding each state produced.
 type Expansion<S, T, L> = (Batch<S>, Vec<Expanded<T, L, S>>);
 
+/// Jobs smaller than this are expanded by the merging thread itself.
+const SMALL_JOB: usize = 64;
+
 /// How many jobs may be out (being expanded, or expanded and waiting for the merge) per
 /// worker: enough to keep the workers busy while the merge catches up.
 const AHEAD: usize = 4;
@@ -175,8 +178,10 @@ type Done<S, T, L> = std::thread::Result<Expansion<S, T, L>>;
 type Job<S> = (u64, Batch<S>, bool);
 
 /// Expands jobs on worker threads; results are put back in submission order.
-struct Workers<S, T, L> {
+struct Workers<S, T, L, F> {
     threads: usize,
+    /// Expands a job in this thread: small jobs are not worth a hand-over.
+    local: F,
     jobs: Option<std::sync::mpsc::Sender<Job<S>>>,
     done: std::sync::mpsc::Receiver<(u64, Done<S, T, L>)>,
     submitted: u64,
@@ -184,12 +189,22 @@ struct Workers<S, T, L> {
     early: std::collections::BTreeMap<u64, Done<S, T, L>>,
 }
 
-impl<S, T, L> Expander<S, T, L> for Workers<S, T, L> {
+impl<S, T, L, F> Expander<S, T, L> for Workers<S, T, L, F>
+where
+    F: FnMut(Batch<S>, bool) -> Expansion<S, T, L>,
+{
     fn ahead(&self) -> usize {
         AHEAD * self.threads
     }
 
     fn submit(&mut self, states: Batch<S>, expand: bool) {
+        if states.len() < SMALL_JOB {
+            // Narrow levels (a deep, thin graph) would otherwise wait on a hand-over each.
+            let r = (self.local)(states, expand);
+            self.early.insert(self.submitted, Ok(r));
+            self.submitted += 1;
+            return;
+        }
         let jobs = self
             .jobs
             .as_ref()
@@ -305,6 +320,13 @@ where
         drop(results);
         let mut workers = Workers {
             threads,
+            local: |states: Batch<M::State>, expand| {
+                let out = states
+                    .iter()
+                    .map(|(_, s)| expand_one(model, s, expand, &summarize))
+                    .collect();
+                (states, out)
+            },
             jobs: Some(jobs),
             done,
             submitted: 0,
@@ -468,7 +490,8 @@ fn search<M: Model, T>(
                 if job.is_empty() {
                     break;
                 }
-                expander.submit(job, expand);
+                // After a stop, only summaries: the merge drops successors anyway.
+                expander.submit(job, expand && !stopped);
                 out += 1;
             }
             if out == 0 {
@@ -824,12 +847,81 @@ mod tests {
         let g = explore(&Counter(10), limits, |_, _, _| {}, |_, _, _| {});
         assert_eq!(g.len(), 3);
         assert_eq!(g.bound, Some(Bound::Depth));
+        for threads in [1, 2] {
+            let opts = Options {
+                max_memory: Some(1),
+                threads,
+                ..Options::default()
+            };
+            let g = explore_with(
+                &Counter(10),
+                unbounded(),
+                &opts,
+                |_| (),
+                |_, ()| {},
+                |_, _, _, _| {},
+                |_, _, _| {},
+            );
+            if resident_memory().is_some() {
+                assert_eq!(g.bound, Some(Bound::Memory));
+                assert!(!g.complete());
+                // Stopped before the first merge: the initial state is stored, unexpanded.
+                assert_eq!((g.len(), g.successors(0)), (1, None));
+            }
+        }
+        // A state bound cuts the same graph whatever the thread count.
+        let cut = |threads| {
+            let opts = Options {
+                threads,
+                ..Options::default()
+            };
+            let limits = Limits {
+                max_states: 5_000,
+                ..unbounded()
+            };
+            let g = explore_with(
+                &Counter(50_000),
+                limits,
+                &opts,
+                |_| (),
+                |_, ()| {},
+                |_, _, _, _| {},
+                |_, _, _| {},
+            );
+            assert_eq!(g.bound, Some(Bound::States));
+            let expanded = (0..g.len() as u32)
+                .filter(|&i| g.successors(i).is_some())
+                .count();
+            let fps: Vec<u64> = (0..g.len() as u32).map(|i| g.fingerprint(i)).collect();
+            (fps, expanded)
+        };
+        assert_eq!(cut(1), cut(2));
+    }
+
+    /// Panics when it expands `self.0`.
+    struct Faulty(u32);
+
+    impl Model for Faulty {
+        type State = u32;
+        type Label = ();
+        fn init_states(&self) -> Vec<u32> {
+            vec![0]
+        }
+        fn next_states(&self, s: &u32) -> Vec<((), u32)> {
+            assert_ne!(*s, self.0, "the faulty state");
+            vec![((), s + 1), ((), s + 2)]
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "the faulty state")]
+    fn a_panicking_worker_fails_the_search_instead_of_hanging_it() {
         let opts = Options {
-            max_memory: Some(1),
+            threads: 2,
             ..Options::default()
         };
-        let g = explore_with(
-            &Counter(10),
+        explore_with(
+            &Faulty(5_000),
             unbounded(),
             &opts,
             |_| (),
@@ -837,9 +929,5 @@ mod tests {
             |_, _, _, _| {},
             |_, _, _| {},
         );
-        if resident_memory().is_some() {
-            assert_eq!(g.bound, Some(Bound::Memory));
-            assert!(!g.complete());
-        }
     }
 }
