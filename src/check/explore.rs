@@ -776,6 +776,24 @@ mod tests {
         }
     }
 
+    /// A search with no checks.
+    fn bare<M>(m: &M, limits: Limits, opts: Options) -> Graph<M::State>
+    where
+        M: Model + Sync,
+        M::State: Send + Sync,
+        M::Label: Send,
+    {
+        explore_with(
+            m,
+            limits,
+            &opts,
+            |_| (),
+            |_, ()| {},
+            |_, _, _, _| {},
+            |_, _, _| {},
+        )
+    }
+
     fn unbounded() -> Limits {
         Limits {
             max_states: u64::MAX,
@@ -853,15 +871,7 @@ mod tests {
                 threads,
                 ..Options::default()
             };
-            let g = explore_with(
-                &Counter(10),
-                unbounded(),
-                &opts,
-                |_| (),
-                |_, ()| {},
-                |_, _, _, _| {},
-                |_, _, _| {},
-            );
+            let g = bare(&Counter(10), unbounded(), opts);
             if resident_memory().is_some() {
                 assert_eq!(g.bound, Some(Bound::Memory));
                 assert!(!g.complete());
@@ -879,15 +889,7 @@ mod tests {
                 max_states: 5_000,
                 ..unbounded()
             };
-            let g = explore_with(
-                &Counter(50_000),
-                limits,
-                &opts,
-                |_| (),
-                |_, ()| {},
-                |_, _, _, _| {},
-                |_, _, _| {},
-            );
+            let g = bare(&Counter(50_000), limits, opts);
             assert_eq!(g.bound, Some(Bound::States));
             let expanded = (0..g.len() as u32)
                 .filter(|&i| g.successors(i).is_some())
@@ -920,14 +922,6 @@ mod tests {
             threads: 2,
             ..Options::default()
         };
-        explore_with(
-            &Faulty(5_000),
-            unbounded(),
-            &opts,
-            |_| (),
-            |_, ()| {},
-            |_, _, _, _| {},
-            |_, _, _| {},
-        );
+        bare(&Faulty(5_000), unbounded(), opts);
     }
 }
