@@ -22,7 +22,7 @@
 //! threads).
 
 use super::cycle::{Note, Semantics};
-use super::state::{hash_parts, part_hash, Event, Intention, Origin, State};
+use super::state::{hash_parts, part_hash, requests_of, Event, Intention, State};
 use crate::model::atoms::AtomSet;
 use smallvec::SmallVec;
 use std::collections::{HashMap, HashSet};
@@ -284,15 +284,12 @@ impl Packed<'_> {
 
     /// The requests still being served (see [`State::pending_requests`]).
     pub fn pending_requests(&self) -> u64 {
-        let origins = self
-            .intentions
-            .iter()
-            .map(|i| i.origin)
-            .chain(self.events.iter().map(|e| e.origin));
-        origins.fold(0, |bits, o| match o {
-            Origin::Request(r) => bits | 1 << r,
-            _ => bits,
-        })
+        requests_of(
+            self.intentions
+                .iter()
+                .map(|i| i.origin)
+                .chain(self.events.iter().map(|e| e.origin)),
+        )
     }
 }
 

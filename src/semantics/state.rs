@@ -177,17 +177,19 @@ impl State {
 
     /// The requests still being served: the origin of some intention or event.
     pub fn pending_requests(&self) -> u64 {
-        let mut bits = 0u64;
-        let origins = self
-            .intentions
-            .iter()
-            .map(|i| i.origin)
-            .chain(self.events.iter().map(|e| e.origin));
-        for o in origins {
-            if let Origin::Request(r) = o {
-                bits |= 1 << r;
-            }
-        }
-        bits
+        requests_of(
+            self.intentions
+                .iter()
+                .map(|i| i.origin)
+                .chain(self.events.iter().map(|e| e.origin)),
+        )
     }
+}
+
+/// The requests among some origins, one bit each.
+pub fn requests_of(origins: impl Iterator<Item = Origin>) -> u64 {
+    origins.fold(0, |bits, o| match o {
+        Origin::Request(r) => bits | 1 << r,
+        _ => bits,
+    })
 }
