@@ -135,3 +135,19 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
     }
     assert!(compared >= 5, "projects compared: {compared}");
 }
+
+#[test]
+fn libraries_that_touch_other_intentions_are_not_compiled() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let local = |dir: &str| {
+        let p = load_project(&root.join(dir)).expect("the project loads");
+        let sem = Semantics::new(&p).expect("the semantics");
+        assert_eq!(sem.is_local(), Compiled::new(&sem).is_some(), "{dir}");
+        sem.is_local()
+    };
+    // `.intend`, `.succeed_goal`, `.fail_goal` and `.drop_desire` read or change the
+    // other intentions: a phase then depends on more than its own part of the state.
+    assert!(!local("tests/verify/control"));
+    assert!(local("tests/compiled/control"));
+    assert!(local("specs/kitchen"));
+}
