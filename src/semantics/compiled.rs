@@ -285,10 +285,8 @@ impl Packed<'_> {
     /// The requests still being served (see [`State::pending_requests`]).
     pub fn pending_requests(&self) -> u64 {
         requests_of(
-            self.intentions
-                .iter()
-                .map(|i| i.origin)
-                .chain(self.events.iter().map(|e| e.origin)),
+            self.intentions.iter().map(|i| &i.value),
+            self.events.iter().map(|e| &e.value),
         )
     }
 }

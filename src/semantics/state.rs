@@ -177,17 +177,19 @@ impl State {
 
     /// The requests still being served: the origin of some intention or event.
     pub fn pending_requests(&self) -> u64 {
-        requests_of(
-            self.intentions
-                .iter()
-                .map(|i| i.origin)
-                .chain(self.events.iter().map(|e| e.origin)),
-        )
+        requests_of(&self.intentions, &self.events)
     }
 }
 
-/// The requests among some origins, one bit each.
-pub fn requests_of(origins: impl Iterator<Item = Origin>) -> u64 {
+/// The requests that some intention or event serves, one bit each.
+pub fn requests_of<'a>(
+    intentions: impl IntoIterator<Item = &'a Intention>,
+    events: impl IntoIterator<Item = &'a Event>,
+) -> u64 {
+    let origins = intentions
+        .into_iter()
+        .map(|i| i.origin)
+        .chain(events.into_iter().map(|e| e.origin));
     origins.fold(0, |bits, o| match o {
         Origin::Request(r) => bits | 1 << r,
         _ => bits,
