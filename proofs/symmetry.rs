@@ -12,7 +12,9 @@ use crate::check::symmetry::Symmetry;
 use crate::model::atoms::AtomSet;
 use crate::model::project::{load_project, Project};
 use crate::model::{ObjectId, Substitution, Term};
-use crate::semantics::state::{Cursor, CursorKind, Event, EventTrigger, Frame, Intention};
+use crate::semantics::state::{
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending,
+};
 use crate::semantics::{Origin, Semantics, State};
 use std::path::Path;
 
@@ -173,11 +175,17 @@ impl Fixture {
                                     rest: rest.iter().map(|s| self.rename_subst(s, perm)).collect(),
                                     base: self.rename_subst(base, perm),
                                 },
-                                other => other.clone(),
+                                CursorKind::While { outer, at, base } => CursorKind::While {
+                                    outer: *outer,
+                                    at: *at,
+                                    base: self.rename_subst(base, perm),
+                                },
+                                CursorKind::Seq => CursorKind::Seq,
                             },
                         })
                         .collect(),
                     trigger: self.rename_trigger(&f.trigger, perm),
+                    calling: f.calling.as_ref().map(|t| self.rename_term(t, perm)),
                 })
                 .collect(),
             origin: self.rename_origin(i.origin, perm),
@@ -211,6 +219,13 @@ impl Fixture {
                 .iter()
                 .map(|i| self.rename_intention(i, perm))
                 .collect(),
+            pending: s.pending.as_ref().map(|p| Pending {
+                intention: self.rename_intention(&p.intention, perm),
+                failure: p.failure.as_ref().map(|f| ActionFailure {
+                    action: self.rename_term(&f.action, perm),
+                    ..f.clone()
+                }),
+            }),
             requested,
         }
     }

@@ -567,6 +567,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 beliefs: AtomSet::empty(s.beliefs.words().len() * 64),
                 events: Vec::new(),
                 intentions: Vec::new(),
+                pending: None,
                 requested: 0,
             };
             (fp(&c), Some(c))

@@ -15,6 +15,7 @@
 pub mod explanation;
 pub mod explore;
 pub mod model;
+pub mod run;
 pub mod store;
 pub mod symmetry;
 pub mod trace;

@@ -176,6 +176,7 @@ impl AgentState for Packed<'_> {
             beliefs: self.beliefs().clone(),
             events: Vec::new(),
             intentions: Vec::new(),
+            pending: None,
             requested: 0,
         };
         sem.applicable(&beliefs, trigger, false)

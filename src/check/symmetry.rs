@@ -30,7 +30,9 @@ use crate::model::project::Project;
 use crate::model::term::Term;
 use crate::model::universe::ObjectId;
 use crate::model::Substitution;
-use crate::semantics::state::{Cursor, CursorKind, Event, EventTrigger, Frame, Intention};
+use crate::semantics::state::{
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending,
+};
 use crate::semantics::{Origin, Semantics, State};
 use crate::syntax::{Diagnostic, Span};
 use std::collections::{HashMap, HashSet};
@@ -412,11 +414,17 @@ impl Symmetry {
                                     rest: rest.iter().map(|s| self.subst(s, perm)).collect(),
                                     base: self.subst(base, perm),
                                 },
-                                k => k.clone(),
+                                CursorKind::While { outer, at, base } => CursorKind::While {
+                                    outer: *outer,
+                                    at: *at,
+                                    base: self.subst(base, perm),
+                                },
+                                CursorKind::Seq => CursorKind::Seq,
                             },
                         })
                         .collect(),
                     trigger: self.trigger(&f.trigger, perm),
+                    calling: f.calling.as_ref().map(|t| self.term(t, perm)),
                 })
                 .collect(),
             origin: self.origin(i.origin, perm),
@@ -452,6 +460,13 @@ impl Symmetry {
                 .iter()
                 .map(|i| self.intention(i, perm))
                 .collect(),
+            pending: s.pending.as_ref().map(|p| Pending {
+                intention: self.intention(&p.intention, perm),
+                failure: p.failure.as_ref().map(|f| ActionFailure {
+                    action: self.term(&f.action, perm),
+                    ..f.clone()
+                }),
+            }),
             requested,
         }
     }
@@ -466,7 +481,11 @@ impl Symmetry {
                 self.intention_objects(i, &mut out);
             }
         }
-        for i in &s.intentions {
+        for i in s
+            .intentions
+            .iter()
+            .chain(s.pending.iter().map(|p| &p.intention))
+        {
             self.intention_objects(i, &mut out);
         }
         out
@@ -486,11 +505,16 @@ impl Symmetry {
                 self.collect_objects(t, out);
             }
             for c in &f.cursors {
-                if let CursorKind::For { rest, base } = &c.kind {
-                    for sub in rest.iter().chain(std::iter::once(base)) {
-                        for (_, t) in sub.iter() {
-                            self.collect_objects(t, out);
-                        }
+                let subs: Vec<&Substitution> = match &c.kind {
+                    CursorKind::For { rest, base } => {
+                        rest.iter().chain(std::iter::once(base)).collect()
+                    }
+                    CursorKind::While { base, .. } => vec![base],
+                    CursorKind::Seq => Vec::new(),
+                };
+                for sub in subs {
+                    for (_, t) in sub.iter() {
+                        self.collect_objects(t, out);
                     }
                 }
             }

@@ -229,7 +229,7 @@ impl<'a> Builder<'a> {
                     };
                     self.step(StepKindTag::Event, text, Some(i), place)
                 }
-                Note::Finished(_) | Note::NoApplicablePlan(_) => continue,
+                Note::Finished(_) | Note::NoApplicablePlan(_) | Note::Printed(_) => continue,
             };
             self.steps.push(step);
         }

@@ -206,32 +206,17 @@ impl Converter {
             ExprKind::Unary(UnaryOp::Plus, x) => self.eval(x),
             ExprKind::Arith(op, x, y) => {
                 let (x, y) = (self.eval(x)?, self.eval(y)?);
-                let v = match op {
-                    ArithOp::Add => x + y,
-                    ArithOp::Sub => x - y,
-                    ArithOp::Mul => x * y,
-                    ArithOp::Div if y == 0.0 => return Err(arith_error("division by zero")),
-                    ArithOp::Div => x / y,
-                    ArithOp::IntDiv => {
-                        // Java's `(int) x / (int) y`: casts saturate (as Rust's `as` does),
-                        // division truncates and wraps on `MIN / -1`.
-                        let (xi, yi) = (x as i32, y as i32);
-                        if yi == 0 {
-                            return Err(arith_error("division by zero"));
-                        }
-                        f64::from(xi.wrapping_div(yi))
+                match crate::model::arith::apply(op.symbol(), &[x, y]) {
+                    Some(Ok(v)) => Ok(v),
+                    Some(Err(crate::model::arith::ArithError::DivisionByZero)) => {
+                        Err(arith_error(match op {
+                            ArithOp::Mod => "modulo by zero",
+                            _ => "division by zero",
+                        }))
                     }
-                    ArithOp::Mod if y == 0.0 => return Err(arith_error("modulo by zero")),
-                    // Java's `%` on doubles, which Rust's `%` is.
-                    ArithOp::Mod => x % y,
-                    ArithOp::Pow => x.powf(y),
-                };
-                if v.is_finite() {
-                    Ok(v)
-                } else {
-                    Err(arith_error(
+                    _ => Err(arith_error(
                         "this arithmetic expression has no finite value",
-                    ))
+                    )),
                 }
             }
             ExprKind::Var(_) => Err(ConvertError::new(

@@ -13,6 +13,7 @@
 //! * [`from_ast`]: conversion from AST expressions, with fresh anonymous variables and
 //!   evaluation of ground arithmetic.
 
+pub mod arith;
 pub mod atoms;
 pub mod cond;
 pub mod formula;

@@ -149,11 +149,24 @@ impl Plan {
     }
 }
 
+/// A rule `head :- body.` of the belief base.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rule {
+    /// The head literal.
+    pub head: Term,
+    /// The body.
+    pub body: Formula,
+    /// Where it is written.
+    pub span: Span,
+}
+
 /// The plan library, in source order (includes expanded where they stand).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PlanLibrary {
     /// Every plan.
     pub plans: Vec<Plan>,
+    /// The rules of the belief base, in source order.
+    pub rules: Vec<Rule>,
     /// The agent's initial goals `!g.`, in order.
     pub initial_goals: Vec<(Term, Span)>,
 }
@@ -170,6 +183,19 @@ impl PlanLibrary {
                     Ok(plan) => lib.plans.push(plan),
                     Err(d) => errors.push(d),
                 },
+                Item::Rule(r) => {
+                    let mut conv = Converter::new();
+                    let head = conv.literal(&r.head).map_err(convert_error);
+                    let body = formula(&mut conv, &r.body);
+                    match (head, body) {
+                        (Ok(head), Ok(body)) => lib.rules.push(Rule {
+                            head,
+                            body,
+                            span: r.span,
+                        }),
+                        (Err(d), _) | (_, Err(d)) => errors.push(d),
+                    }
+                }
                 Item::InitialGoal(g) => {
                     let mut conv = Converter::new();
                     match conv.literal(&g.literal) {
@@ -230,7 +256,8 @@ fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
         Some(e) => formula(&mut c, e)?,
         None => Formula::True,
     };
-    let body = match &p.body {
+    // `<- true` is the empty body (see `ast::Plan::jason_body`).
+    let body = match &p.jason_body() {
         Some(b) => steps(&mut c, &b.steps)?,
         None => Vec::new(),
     };

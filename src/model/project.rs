@@ -24,6 +24,8 @@ pub struct InitialStates {
     pub facts: AtomSet,
     /// Atoms that may start either way.
     pub vary: Vec<AtomId>,
+    /// The agent's initial beliefs, in source order (part of `facts`).
+    pub agent_beliefs: Vec<AtomId>,
     /// Every initial state, sorted.
     pub states: Vec<AtomSet>,
 }
@@ -146,10 +148,16 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         }
     }
     // The agent's initial beliefs hold at the start of every run, as in Jason.
+    let mut agent_beliefs = Vec::new();
     for item in agent.items() {
         if let Item::Belief(b) = item {
             match ground_atom(&b.literal, &atoms, &universe) {
-                Ok(a) => facts.insert(a),
+                Ok(a) => {
+                    facts.insert(a);
+                    if !agent_beliefs.contains(&a) {
+                        agent_beliefs.push(a);
+                    }
+                }
                 Err(d) => errors.push(d),
             }
         }
@@ -208,6 +216,7 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         initial: InitialStates {
             facts,
             vary,
+            agent_beliefs,
             states,
         },
     })

@@ -629,7 +629,7 @@ impl<'a> Checker<'a> {
                 TriggerKind::Belief => {}
             }
         }
-        if let Some(b) = &p.body {
+        if let Some(b) = &p.jason_body() {
             self.declare_body(b);
         }
         for sp in &p.sub_plans {
@@ -832,7 +832,7 @@ impl<'a> Checker<'a> {
         if let Some(c) = &p.goal_condition {
             self.formula(&mut cl, c, Scope::Agent, Usage::Query);
         }
-        if let Some(b) = &p.body {
+        if let Some(b) = &p.jason_body() {
             self.body(&mut cl, b);
         }
         self.clauses.push(cl);

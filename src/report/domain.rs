@@ -1,5 +1,6 @@
 //! `bdi-check parse` on a PDDL domain or a whole project: what the finite model holds.
 
+use crate::model::atoms::AtomId;
 use crate::model::project::Project;
 use crate::syntax::pddl::Domain;
 use crate::syntax::{Location, SourceMap};
@@ -91,6 +92,70 @@ pub struct ProjectOutline {
     pub actions: Vec<String>,
     /// The initial states.
     pub initial: InitialOutline,
+    /// The environment as data: every ground atom and every ground action with its
+    /// precondition and effects, for tools that run the same environment (a recorder
+    /// that drives real Jason against it, a simulator).
+    pub ground: GroundModel,
+}
+
+/// The ground environment model of a project.
+#[derive(Clone, Debug, Serialize)]
+pub struct GroundModel {
+    /// Every ground atom, in id order.
+    pub atoms: Vec<String>,
+    /// Every ground action.
+    pub actions: Vec<ActionModel>,
+}
+
+/// One ground action as data. A condition is `true`, `false`, `{"atom": a}`,
+/// `{"not": c}`, `{"and": [c...]}`, `{"or": [c...]}` or `{"count": [a...], "cmp": op,
+/// "n": k}` (how many of the atoms hold, compared with `k`).
+#[derive(Clone, Debug, Serialize)]
+pub struct ActionModel {
+    /// `navigateTo(table)`.
+    pub action: String,
+    /// When it may run.
+    pub pre: serde_json::Value,
+    /// Its conditional effects, each `when` read in the state before the action; all
+    /// deletions apply before all additions.
+    pub effects: Vec<EffectModel>,
+}
+
+/// One conditional effect.
+#[derive(Clone, Debug, Serialize)]
+pub struct EffectModel {
+    /// The condition, read before the action.
+    pub when: serde_json::Value,
+    /// Atoms made true.
+    pub add: Vec<String>,
+    /// Atoms made false.
+    pub del: Vec<String>,
+}
+
+fn cond_json(c: &crate::model::cond::Cond, show: &dyn Fn(AtomId) -> String) -> serde_json::Value {
+    use crate::model::cond::{Cond, CountCmp};
+    use serde_json::json;
+    match c {
+        Cond::True => json!(true),
+        Cond::False => json!(false),
+        Cond::Atom(a) => json!({ "atom": show(*a) }),
+        Cond::Not(c) => json!({ "not": cond_json(c, show) }),
+        Cond::And(cs) => {
+            json!({ "and": cs.iter().map(|c| cond_json(c, show)).collect::<Vec<_>>() })
+        }
+        Cond::Or(cs) => json!({ "or": cs.iter().map(|c| cond_json(c, show)).collect::<Vec<_>>() }),
+        Cond::Count { atoms, cmp, n } => {
+            let op = match cmp {
+                CountCmp::Eq => "==",
+                CountCmp::Lt => "<",
+                CountCmp::Le => "<=",
+                CountCmp::Gt => ">",
+                CountCmp::Ge => ">=",
+                CountCmp::Ne => "!=",
+            };
+            json!({ "count": atoms.iter().map(|a| show(*a)).collect::<Vec<_>>(), "cmp": op, "n": n })
+        }
+    }
 }
 
 /// The objects of one type.
@@ -119,7 +184,7 @@ pub struct InitialOutline {
 /// Outlines a loaded project.
 pub fn project_outline(file: &str, p: &Project) -> ProjectOutline {
     let u = &p.universe;
-    let show = |a| p.atoms.display(a, u);
+    let show = |a: AtomId| p.atoms.display(a, u);
     ProjectOutline {
         file: file.to_string(),
         objects: (0..u.type_count() as u16)
@@ -134,10 +199,29 @@ pub fn project_outline(file: &str, p: &Project) -> ProjectOutline {
                     .collect(),
             })
             .collect(),
-        atoms: (0..p.atoms.len() as u32)
-            .map(|a| show(crate::model::atoms::AtomId(a)))
-            .collect(),
+        atoms: (0..p.atoms.len() as u32).map(|a| show(AtomId(a))).collect(),
         actions: p.actions.all().iter().map(|a| a.display(u)).collect(),
+        ground: GroundModel {
+            atoms: (0..p.atoms.len() as u32).map(|a| show(AtomId(a))).collect(),
+            actions: p
+                .actions
+                .all()
+                .iter()
+                .map(|a| ActionModel {
+                    action: a.display(u),
+                    pre: cond_json(&a.pre, &show),
+                    effects: a
+                        .effects
+                        .iter()
+                        .map(|e| EffectModel {
+                            when: cond_json(&e.when, &show),
+                            add: e.add.iter().map(|x| show(*x)).collect(),
+                            del: e.del.iter().map(|x| show(*x)).collect(),
+                        })
+                        .collect(),
+                })
+                .collect(),
+        },
         initial: InitialOutline {
             count: p.initial.states.len(),
             facts: p.initial.facts.iter().map(show).collect(),

@@ -13,14 +13,13 @@
 use crate::check::explanation::{Explained, ExplainedState, Step};
 use crate::check::explore::fingerprint;
 use crate::check::model::Model;
+use crate::check::run::resolve_scenario;
 use crate::check::trace::Builder;
 use crate::explain::agent::{self, Explainer, User};
-use crate::model::atoms::{AtomId, AtomSet};
+use crate::model::atoms::AtomSet;
 use crate::model::project::{load_project, Project};
-use crate::model::Converter;
 use crate::report::{Report, StepKindTag, TraceStep};
 use crate::semantics::{Note, Semantics, State};
-use crate::syntax::ast::ExprKind;
 use crate::syntax::manifest::load_scenario;
 use crate::syntax::{Diagnostic, SourceMap};
 use serde::Serialize;
@@ -93,37 +92,10 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
         Ok(s) => s,
         Err(d) => return fail(p.map.clone(), d),
     };
-    let mut errors = Vec::new();
-    let mut beliefs = AtomSet::empty(p.atoms.len());
-    for f in &sc.initial {
-        match ground(&p, &f.expr) {
-            Some(a) => beliefs.insert(a),
-            None => errors.push(
-                Diagnostic::error(
-                    "input",
-                    format!("`{}` is not a ground atom of this project", f.text),
-                )
-                .with_label(f.span, "unknown atom"),
-            ),
-        }
-    }
-    let mut requests = Vec::new();
-    for f in &sc.requests {
-        let term = match &f.expr.kind {
-            ExprKind::Literal(l) => Converter::new().literal(l).ok(),
-            _ => None,
-        };
-        match term.as_ref().and_then(|t| sem.request_index(t)) {
-            Some(i) => requests.push(i),
-            None => errors.push(
-                Diagnostic::error(
-                    "input",
-                    format!("`{}` is not a request the manifest allows", f.text),
-                )
-                .with_label(f.span, "not in `[requests] goals`"),
-            ),
-        }
-    }
+    let (beliefs, requests, mut errors) = match resolve_scenario(&p, &sem, &sc) {
+        Ok((b, r)) => (b, r, Vec::new()),
+        Err(d) => (AtomSet::empty(p.atoms.len()), Vec::new(), d),
+    };
     let users = match agent::users(&p, only) {
         Ok(u) => u,
         Err(d) => {
@@ -147,22 +119,6 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
         map: p.map.clone(),
         diagnostics: Vec::new(),
     }
-}
-
-fn ground(p: &Project, e: &crate::syntax::ast::Expr) -> Option<AtomId> {
-    let ExprKind::Literal(l) = &e.kind else {
-        return None;
-    };
-    let pred = p.atoms.pred(&l.functor)?;
-    let args = l
-        .args
-        .iter()
-        .map(|a| match &a.kind {
-            ExprKind::Literal(o) if o.args.is_empty() => p.universe.object(&o.functor),
-            _ => None,
-        })
-        .collect::<Option<Vec<_>>>()?;
-    p.atoms.id(pred, &args)
 }
 
 fn execute(

@@ -22,7 +22,7 @@
 //! threads).
 
 use super::cycle::{Note, Semantics};
-use super::state::{hash_parts, part_hash, requests_of, Event, Intention, State};
+use super::state::{hash_parts, part_hash, requests_of, Event, Intention, Pending, State};
 use crate::model::atoms::AtomSet;
 use smallvec::SmallVec;
 use std::collections::{HashMap, HashSet};
@@ -240,6 +240,7 @@ pub struct Packed<'c> {
     beliefs: &'c Part<AtomSet>,
     events: SmallVec<[&'c Part<Event>; 4]>,
     intentions: SmallVec<[&'c Part<Intention>; 4]>,
+    pending: Option<&'c Part<Pending>>,
     requested: u64,
 }
 
@@ -249,6 +250,7 @@ impl PartialEq for Packed<'_> {
             && self.beliefs == o.beliefs
             && self.events == o.events
             && self.intentions == o.intentions
+            && self.pending == o.pending
     }
 }
 
@@ -261,6 +263,7 @@ impl Hash for Packed<'_> {
             self.beliefs.hash,
             self.events.iter().map(|e| e.hash),
             self.intentions.iter().map(|i| i.hash),
+            self.pending.map(|p| p.hash),
             self.requested,
         );
     }
@@ -279,13 +282,16 @@ impl Packed<'_> {
 
     /// Whether the agent has nothing to do (see [`State::is_idle`]).
     pub fn is_idle(&self) -> bool {
-        self.events.is_empty() && self.intentions.is_empty()
+        self.events.is_empty() && self.intentions.is_empty() && self.pending.is_none()
     }
 
     /// The requests still being served (see [`State::pending_requests`]).
     pub fn pending_requests(&self) -> u64 {
         requests_of(
-            self.intentions.iter().map(|i| &i.value),
+            self.intentions
+                .iter()
+                .map(|i| &i.value)
+                .chain(self.pending.map(|p| &p.value.intention)),
             self.events.iter().map(|e| &e.value),
         )
     }
@@ -316,14 +322,16 @@ struct Chosen {
     notes: Box<[Note]>,
 }
 
-/// One act phase: the atoms it adds and removes, the events it queues, the intention that
-/// goes to the back of the queue (none when it finished, failed or was suspended), its
-/// notes.
+/// One act phase (or its `ProcAct` stage): the atoms it adds and removes, the events it
+/// queues, the intention that goes to the back of the queue (none when it finished,
+/// failed, was suspended or waits for its action's feedback), the intention that waits
+/// for its action's feedback, its notes.
 struct Acted {
     added: AtomSet,
     removed: AtomSet,
     events: SmallVec<[Held<Part<Event>>; 2]>,
     back: Option<Held<Part<Intention>>>,
+    pending: Option<Held<Part<Pending>>>,
     notes: Box<[Note]>,
 }
 
@@ -333,8 +341,10 @@ pub struct Compiled<'s, 'p> {
     beliefs: Interner<AtomSet>,
     events: Interner<Event>,
     intentions: Interner<Intention>,
+    pendings: Interner<Pending>,
     deliberations: Memo<Vec<Chosen>>,
     acts: Memo<Acted>,
+    proc_acts: Memo<Acted>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
 }
@@ -366,8 +376,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
             beliefs: Interner::new(),
             events: Interner::new(),
             intentions: Interner::new(),
+            pendings: Interner::new(),
             deliberations: Memo::new(),
             acts: Memo::new(),
+            proc_acts: Memo::new(),
             requests: Vec::new(),
         };
         c.requests = (0..sem.requests.len())
@@ -396,6 +408,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
         self.intentions.intern(i, |i| self.sem.intention_reads(i))
     }
 
+    fn pending(&self, p: Pending) -> Held<Part<Pending>> {
+        // `ProcAct` reads no belief: it clears finished plans or looks for a failure plan.
+        self.pendings.intern(p, |_| AtomSet::default())
+    }
+
     /// The packed form of a state.
     pub fn pack<'c>(&'c self, s: &State) -> Packed<'c> {
         // SAFETY: every `Held` here comes from this compiled system's tables.
@@ -412,6 +429,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     .iter()
                     .map(|i| self.intention(i.clone()).get(self))
                     .collect(),
+                pending: s
+                    .pending
+                    .as_ref()
+                    .map(|p| self.pending(p.clone()).get(self)),
                 requested: s.requested,
             }
         }
@@ -423,6 +444,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             beliefs: p.beliefs.value.clone(),
             events: p.events.iter().map(|e| e.value.clone()).collect(),
             intentions: p.intentions.iter().map(|i| i.value.clone()).collect(),
+            pending: p.pending.map(|x| x.value.clone()),
             requested: p.requested,
         }
     }
@@ -468,6 +490,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let Some(event) = p.events.first() else {
             let mut next = p.clone();
             let mut notes = Notes::default();
+            self.proc_act(&mut next, &mut notes);
             self.act(&mut next, &mut notes);
             out.push((notes, next));
             return out;
@@ -484,6 +507,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
                 beliefs: p.beliefs,
                 events: p.events[1..].iter().copied().collect(),
                 intentions: p.intentions.clone(),
+                pending: p.pending,
                 requested: p.requested,
             };
             // SAFETY: as above.
@@ -492,10 +516,43 @@ impl<'s, 'p> Compiled<'s, 'p> {
                 next.intentions.extend(c.intention.map(|i| i.get(self)));
             }
             let mut notes = Notes(smallvec::smallvec![&c.notes[..]]);
+            self.proc_act(&mut next, &mut notes);
             self.act(&mut next, &mut notes);
             out.push((notes, next));
         }
         out
+    }
+
+    /// The `ProcAct` stage on `p`, memoized on the pending intention.
+    fn proc_act<'c>(&'c self, p: &mut Packed<'c>, notes: &mut Notes<'c>) {
+        let Some(pending) = p.pending.take() else {
+            return;
+        };
+        let key = Key::new(pending, &p.beliefs.value);
+        // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
+        unsafe {
+            let done = self
+                .proc_acts
+                .get(key, || {
+                    let mut s = Self::alone(&AtomSet::default(), &AtomSet::default(), None);
+                    s.pending = Some(pending.value.clone());
+                    let mut notes = Vec::new();
+                    self.sem.proc_act(&mut s, &mut notes);
+                    debug_assert!(s.pending.is_none() && s.intentions.len() <= 1);
+                    Acted {
+                        added: AtomSet::default(),
+                        removed: AtomSet::default(),
+                        events: s.events.into_iter().map(|e| self.event(e)).collect(),
+                        back: s.intentions.pop().map(|i| self.intention(i)),
+                        pending: None,
+                        notes: notes.into(),
+                    }
+                })
+                .get(self);
+            p.events.extend(done.events.iter().map(|e| e.get(self)));
+            p.intentions.extend(done.back.map(|i| i.get(self)));
+            notes.0.push(&done.notes[..]);
+        }
     }
 
     /// The act phase on `p`, memoized.
@@ -519,6 +576,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
             }
             p.events.extend(acted.events.iter().map(|e| e.get(self)));
             p.intentions.extend(acted.back.map(|i| i.get(self)));
+            if let Some(pending) = acted.pending {
+                p.pending = Some(pending.get(self));
+            }
             notes.0.push(&acted.notes[..]);
         }
     }
@@ -530,6 +590,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             beliefs: beliefs.intersection(reads),
             events: Vec::new(),
             intentions: intention.into_iter().cloned().collect(),
+            pending: None,
             requested: 0,
         }
     }
@@ -563,6 +624,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             removed: before.difference(&s.beliefs),
             events: s.events.into_iter().map(|e| self.event(e)).collect(),
             back: s.intentions.pop().map(|i| self.intention(i)),
+            pending: s.pending.map(|p| self.pending(p)),
             notes: notes.into(),
         }
     }

@@ -22,7 +22,10 @@
 //! goal the intention is dropped and the failure is reported.
 
 use super::query::{eval, relation, Beliefs};
-use super::state::{Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, State};
+use super::state::{
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
+    State,
+};
 use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::{BodyStep, Formula, Step};
 use crate::model::project::Project;
@@ -128,6 +131,9 @@ pub enum Note {
     Finished(Origin),
     /// A goal event had no applicable plan (whether or not a failure plan then handles it).
     NoApplicablePlan(EventTrigger),
+    /// What `.print`/`.println` printed (stdlib `println.argsToString`: strings without
+    /// quotes, other terms as Jason writes them, unbound variables as `X<no-value>`).
+    Printed(String),
 }
 
 /// A frame of the running intention as an action saw it: the plan, its bindings, and (for
@@ -200,6 +206,8 @@ pub struct Semantics<'p> {
     emitted_by: Option<String>,
     /// No plan reads or changes other intentions (see [`Semantics::is_local`]).
     local: bool,
+    /// Per rule head (functor, arity): every atom proving it may read.
+    rule_reads: HashMap<(String, usize), AtomSet>,
 }
 
 fn op_key(op: TriggerOp) -> u8 {
@@ -217,6 +225,12 @@ fn kind_key(k: TriggerKind) -> u8 {
         TriggerKind::Test => 2,
     }
 }
+
+/// Most plans an intention's stack may hold. Jason has no bound: a failure plan that fails
+/// at the bottom of its stack has its `-!g` posted again, one plan deeper each time
+/// (`Intention.findEventForFailure`), and recursion without end grows the stack too; such
+/// a run is reported (a goal failure whose reason says so) instead of explored forever.
+pub const MAX_STACK: usize = 64;
 
 /// Most requests a run can track (one bit each in [`State::requested`]).
 pub const MAX_REQUESTS: usize = 64;
@@ -255,7 +269,7 @@ impl<'p> Semantics<'p> {
         }
         let requests = ground_requests(project)?;
         let m = &project.manifest;
-        Ok(Semantics {
+        let mut sem = Semantics {
             project,
             requests,
             environment,
@@ -274,7 +288,41 @@ impl<'p> Semantics<'p> {
                 .plans
                 .iter()
                 .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
-        })
+            rule_reads: HashMap::new(),
+        };
+        sem.rule_reads = sem.compute_rule_reads();
+        Ok(sem)
+    }
+
+    /// The atoms each rule head's proof may read: those its bodies query, and those of
+    /// the rules they call, to a fixed point (bindings are not followed).
+    fn compute_rule_reads(&self) -> HashMap<(String, usize), AtomSet> {
+        let rules = &self.project.plans.rules;
+        let key = |t: &Term| (t.functor().unwrap_or("").to_string(), t.arity());
+        let mut reads: HashMap<(String, usize), AtomSet> = rules
+            .iter()
+            .map(|r| (key(&r.head), AtomSet::empty(self.project.atoms.len())))
+            .collect();
+        let empty = Substitution::new();
+        loop {
+            let mut changed = false;
+            for r in rules {
+                let mut out = AtomSet::empty(self.project.atoms.len());
+                self.formula_reads_with(&r.body, &empty, &mut out, &reads);
+                let k = key(&r.head);
+                let mut now = reads[&k].clone();
+                for a in out.iter() {
+                    if !now.contains(a) {
+                        now.insert(a);
+                        changed = true;
+                    }
+                }
+                reads.insert(k, now);
+            }
+            if !changed {
+                return reads;
+            }
+        }
     }
 
     /// Whether one reasoning cycle's phases depend only on their own part of the state:
@@ -303,46 +351,34 @@ impl<'p> Semantics<'p> {
         out
     }
 
-    /// Every belief the act phase may read when `int` runs: its next step's queries, the
-    /// atoms of its action (precondition, conditions and effects), and the `while`
-    /// conditions that leaving blocks may test again, in every frame (a finished plan
-    /// hands over to the one below in the same cycle).
+    /// Every belief the act phase may read when `int` runs: its next step's queries and
+    /// the atoms of its action (precondition, conditions and effects), or, at the end of
+    /// a `while` body, the loop's condition.
     pub(super) fn intention_reads(&self, int: &Intention) -> AtomSet {
         let mut out = AtomSet::empty(self.project.atoms.len());
-        let empty = Substitution::new();
-        for f in &int.frames {
-            let blocks = &self.blocks[f.plan as usize];
-            // A `for` moves to its next answer when its body ends, rebinding its
-            // variables: a `while` around it is then tested with bindings not known here.
-            let rebinds = f
-                .cursors
-                .iter()
-                .any(|c| matches!(c.kind, CursorKind::For { .. }));
-            let subst = if rebinds { &empty } else { &f.subst };
-            for c in &f.cursors {
-                if let CursorKind::While { outer, at } = c.kind {
-                    if let BodyStep::While(cond, _) =
-                        &blocks.blocks[outer as usize][at as usize].kind
-                    {
-                        self.formula_reads(cond, subst, &mut out);
-                    }
-                }
-            }
-        }
         let Some(f) = int.frames.last() else {
             return out;
         };
         let Some(c) = f.cursors.last() else {
             return out;
         };
-        let Some(step) = self.blocks[f.plan as usize].blocks[c.block as usize].get(c.pos as usize)
-        else {
+        let blocks = &self.blocks[f.plan as usize];
+        let Some(step) = blocks.blocks[c.block as usize].get(c.pos as usize) else {
+            if let CursorKind::While { outer, at, base } = &c.kind {
+                if let BodyStep::While(cond, _) = &blocks.blocks[*outer as usize][*at as usize].kind
+                {
+                    self.formula_reads(cond, base, &mut out);
+                }
+            }
             return out;
         };
         match &step.kind {
             BodyStep::Action(t) if self.is_emission(t) => {}
             BodyStep::Action(t) => {
-                if let Ok(ga) = self.ground_action(&eval(t, &f.subst)) {
+                if let Some(ga) = eval(t, &f.subst)
+                    .ok()
+                    .and_then(|t| self.ground_action(&t).ok())
+                {
                     let conds = std::iter::once(&ga.pre).chain(ga.effects.iter().map(|e| &e.when));
                     conds.flat_map(|c| c.atoms()).for_each(|a| out.insert(a));
                     for e in &ga.effects {
@@ -362,7 +398,7 @@ impl<'p> Semantics<'p> {
                 }
             }
             BodyStep::AddBel(t) | BodyStep::DelBel(t) | BodyStep::DelAddBel(t) => {
-                let lit = f.subst.apply(t);
+                let lit = eval(t, &f.subst).unwrap_or_else(|_| f.subst.apply(t));
                 if matches!(step.kind, BodyStep::DelAddBel(_)) {
                     // `-+b` removes any belief of the predicate.
                     let p = lit.functor().and_then(|f| self.project.atoms.pred(f));
@@ -384,18 +420,34 @@ impl<'p> Semantics<'p> {
     /// The atoms a formula's answers may depend on under `s` (bindings made inside the
     /// formula are not followed: their variables count as unbound).
     fn formula_reads(&self, f: &Formula, s: &Substitution, out: &mut AtomSet) {
+        self.formula_reads_with(f, s, out, &self.rule_reads)
+    }
+
+    fn formula_reads_with(
+        &self,
+        f: &Formula,
+        s: &Substitution,
+        out: &mut AtomSet,
+        rules: &HashMap<(String, usize), AtomSet>,
+    ) {
+        let literal = |t: &Term, out: &mut AtomSet| {
+            let t = s.apply(t);
+            self.literal_reads(&t, out);
+            let k = (t.functor().unwrap_or("").to_string(), t.arity());
+            if let Some(r) = rules.get(&k) {
+                r.iter().for_each(|a| out.insert(a));
+            }
+        };
         match f {
             Formula::True | Formula::Rel(..) => {}
-            Formula::Literal(t) => self.literal_reads(&s.apply(t), out),
-            Formula::Not(g) => self.formula_reads(g, s, out),
+            Formula::Literal(t) => literal(t, out),
+            Formula::Not(g) => self.formula_reads_with(g, s, out, rules),
             Formula::And(a, b) | Formula::Or(a, b) => {
-                self.formula_reads(a, s, out);
-                self.formula_reads(b, s, out);
+                self.formula_reads_with(a, s, out, rules);
+                self.formula_reads_with(b, s, out, rules);
             }
             Formula::Call(t) => match (t.functor(), t.args()) {
-                (Some(".count"), [q, _]) | (Some(".findall"), [_, q, _]) => {
-                    self.literal_reads(&s.apply(q), out)
-                }
+                (Some(".count"), [q, _]) | (Some(".findall"), [_, q, _]) => literal(q, out),
                 _ => {}
             },
         }
@@ -444,7 +496,7 @@ impl<'p> Semantics<'p> {
     }
 
     /// The event of request `r`.
-    pub(super) fn request_event(&self, r: usize) -> Event {
+    pub fn request_event(&self, r: usize) -> Event {
         Event {
             trigger: EventTrigger {
                 op: TriggerOp::Add,
@@ -464,6 +516,8 @@ impl<'p> Semantics<'p> {
             environment: &self.environment,
             state,
             selected: None,
+            rules: &self.project.plans.rules,
+            depth: std::cell::Cell::new(0),
         }
     }
 
@@ -489,16 +543,21 @@ impl<'p> Semantics<'p> {
             .collect()
     }
 
-    /// The state a run starts in when the environment is `beliefs`.
+    /// The state a run starts in when the environment is `beliefs`. Events are queued
+    /// as Jason queues them before and in the first cycle: the agent's initial beliefs
+    /// (`Agent.addInitialBelsInBB` adds them last first), its initial goals, then the
+    /// first perception of the environment (`Agent.buf` in the first `sense`).
     pub fn initial_state(&self, beliefs: &AtomSet) -> State {
         let mut s = State {
             beliefs: beliefs.clone(),
             events: Vec::new(),
             intentions: Vec::new(),
+            pending: None,
             requested: 0,
         };
-        let added: Vec<AtomId> = beliefs.iter().collect();
-        self.perceive(&mut s, &added, &[]);
+        let notes = &self.project.initial.agent_beliefs;
+        let noted: Vec<AtomId> = notes.iter().rev().copied().collect();
+        self.perceive(&mut s, &noted, &[]);
         for (k, (goal, _)) in self.project.plans.initial_goals.iter().enumerate() {
             s.events.push(Event {
                 trigger: EventTrigger {
@@ -511,6 +570,8 @@ impl<'p> Semantics<'p> {
                 posted_at: None,
             });
         }
+        let perceived: Vec<AtomId> = beliefs.iter().filter(|a| !notes.contains(a)).collect();
+        self.perceive(&mut s, &perceived, &[]);
         s
     }
 
@@ -587,6 +648,7 @@ impl<'p> Semantics<'p> {
         options
             .into_iter()
             .map(|(mut s, mut notes)| {
+                self.proc_act(&mut s, &mut notes);
                 self.act(&mut s, &mut notes);
                 Transition { notes, next: s }
             })
@@ -600,20 +662,26 @@ impl<'p> Semantics<'p> {
         let applicable = self.applicable_for(&s, &ev, !self.select_any);
         if applicable.is_empty() {
             let mut s = s;
-            if ev.trigger.kind == TriggerKind::Achieve {
+            if ev.trigger.kind != TriggerKind::Belief {
                 notes.push(Note::NoApplicablePlan(ev.trigger.clone()));
             }
-            if ev.trigger.op == TriggerOp::Add && ev.trigger.kind == TriggerKind::Achieve {
+            if ev.trigger.op == TriggerOp::Add && ev.trigger.kind != TriggerKind::Belief {
                 let reason = if self.relevant_plans(&ev.trigger).is_empty() {
                     "no relevant plan"
                 } else {
                     "no applicable plan"
                 };
                 self.goal_failed_from_event(&mut s, ev, reason, &mut notes);
-            } else if ev.trigger.op == TriggerOp::Del && ev.trigger.kind == TriggerKind::Achieve {
-                // A failure event nothing can handle: the intention is dropped.
+            } else if ev.trigger.op == TriggerOp::Del && ev.trigger.kind != TriggerKind::Belief {
+                // A failure event nothing can handle: Jason's "Could not finish
+                // intention"; the intention is gone.
+                let goal = ev
+                    .intention
+                    .as_ref()
+                    .and_then(|i| i.frames.first())
+                    .map_or_else(|| ev.trigger.clone(), |f| f.trigger.clone());
                 notes.push(Note::GoalFailed {
-                    goal: ev.trigger.clone(),
+                    goal,
                     cause: ev.trigger.clone(),
                     plan: ev.posted_at.map(|(p, _)| p),
                     span: ev.posted_at.map(|(_, sp)| sp),
@@ -643,6 +711,7 @@ impl<'p> Semantics<'p> {
                         }]
                     },
                     trigger: ev.trigger.clone(),
+                    calling: None,
                 };
                 self.normalize(&mut frame, &s);
                 let origin = match &ev.intention {
@@ -658,6 +727,20 @@ impl<'p> Semantics<'p> {
                         });
                         0
                     }
+                    Some(int) if int.frames.len() >= MAX_STACK => {
+                        let goal = int.frames.first().map(|f| f.trigger.clone());
+                        notes.push(Note::GoalFailed {
+                            goal: goal.unwrap_or_else(|| ev.trigger.clone()),
+                            cause: ev.trigger.clone(),
+                            plan: Some(pi),
+                            span: Some(plan.span),
+                            reason: format!(
+                                "its intention would hold more than {MAX_STACK} plans (Jason grows it without bound)"
+                            ),
+                            origin,
+                        });
+                        return (s, notes);
+                    }
                     Some(mut int) => {
                         let is_goal_add = ev.trigger.op == TriggerOp::Add
                             && ev.trigger.kind == TriggerKind::Achieve;
@@ -665,6 +748,7 @@ impl<'p> Semantics<'p> {
                             // Jason's TRO: a recursive subgoal that is the last step of its plan.
                             if is_goal_add
                                 && top.cursors.is_empty()
+                                && top.calling.is_some()
                                 && top.trigger.op == TriggerOp::Add
                                 && top.trigger.kind == TriggerKind::Achieve
                                 && top.trigger.literal.functor() == ev.trigger.literal.functor()
@@ -731,7 +815,10 @@ impl<'p> Semantics<'p> {
         out
     }
 
-    /// No plan for `+!g`: Jason's `generateGoalDeletionFromEvent`.
+    /// No applicable plan for the goal addition `ev` (`+!g` or `+?g`): Jason's
+    /// `generateGoalDeletionFromEvent`. The failure event is looked for from the event's
+    /// own goal down the intention that waits for it; with none, that intention is
+    /// dropped (an external event just fails).
     fn goal_failed_from_event(
         &self,
         s: &mut State,
@@ -739,25 +826,22 @@ impl<'p> Semantics<'p> {
         reason: &str,
         notes: &mut Vec<Note>,
     ) {
-        let fail = EventTrigger {
-            op: TriggerOp::Del,
-            kind: TriggerKind::Achieve,
-            literal: ev.trigger.literal.clone(),
-        };
-        if !self.relevant_plans(&fail).is_empty() {
-            s.events.push(Event {
+        let fail = ev
+            .intention
+            .as_ref()
+            .and_then(|int| self.find_event_for_failure(int, &ev.trigger));
+        match (fail, ev.intention) {
+            (Some(fail), Some(int)) => s.events.push(Event {
                 trigger: fail,
-                intention: ev.intention,
+                intention: Some(int),
                 origin: ev.origin,
                 posted_at: ev.posted_at,
-            });
-            return;
-        }
-        match ev.intention {
-            // A subgoal: the goals below it may have failure plans.
-            Some(int) => self.fail_intention(s, int, &ev.trigger, ev.posted_at, reason, notes),
-            None => notes.push(Note::GoalFailed {
-                goal: ev.trigger.clone(),
+            }),
+            (_, int) => notes.push(Note::GoalFailed {
+                goal: int
+                    .as_ref()
+                    .and_then(|i| i.frames.first())
+                    .map_or_else(|| ev.trigger.clone(), |f| f.trigger.clone()),
                 cause: ev.trigger,
                 plan: ev.posted_at.map(|(p, _)| p),
                 span: ev.posted_at.map(|(_, sp)| sp),
@@ -767,8 +851,56 @@ impl<'p> Semantics<'p> {
         }
     }
 
-    /// The top plan of `int` failed: Jason's `generateGoalDeletion`. The highest goal with a
-    /// relevant `-!g` plan gets the failure event; with none, the intention is dropped.
+    /// Jason's `Intention.findEventForFailure`: the failure event for `tevent`, the
+    /// trigger that failed (the top plan's, or a subgoal event's that had no applicable
+    /// plan). From the top of the stack down, the first goal with a relevant `-` plan gets
+    /// it. When a failure plan itself failed (`tevent` is `-!g`), the search starts below
+    /// the frames of `g`; if `g` is the bottom of the stack, `-!g` is posted again.
+    fn find_event_for_failure(
+        &self,
+        int: &Intention,
+        tevent: &EventTrigger,
+    ) -> Option<EventTrigger> {
+        let frames = &int.frames;
+        // Jason's iterator over the stack, top first: `next` frames remain.
+        let mut next = frames.len();
+        let mut tevent = tevent.clone();
+        let unifies = |f: &Frame, t: &EventTrigger| {
+            crate::model::unifier(&f.trigger.literal, &t.literal).is_some()
+        };
+        if tevent.kind != TriggerKind::Belief && tevent.op == TriggerOp::Del && next > 0 {
+            next -= 1; // the failed failure plan
+            let mut im = next;
+            let mut found = false;
+            while next > 0 && !found {
+                next -= 1;
+                im = next;
+                while next > 0 && unifies(&frames[im], &tevent) {
+                    next -= 1;
+                    im = next;
+                    found = true;
+                }
+            }
+            tevent = frames[im].trigger.clone();
+        }
+        let del = |t: &EventTrigger| EventTrigger {
+            op: TriggerOp::Del,
+            kind: t.kind,
+            literal: t.literal.clone(),
+        };
+        let mut fail = del(&tevent);
+        while self.relevant_plans(&fail).is_empty() && next > 0 {
+            next -= 1;
+            tevent = frames[next].trigger.clone();
+            fail = del(&tevent);
+        }
+        (tevent.kind != TriggerKind::Belief && !self.relevant_plans(&fail).is_empty())
+            .then_some(fail)
+    }
+
+    /// A step of the top plan of `int` failed: Jason's `generateGoalDeletion`. The stack
+    /// stays as it is (the failed plan marked failed, its step not done) and the failure
+    /// event carries it; with no failure event, the intention is dropped.
     fn fail_intention(
         &self,
         s: &mut State,
@@ -778,32 +910,22 @@ impl<'p> Semantics<'p> {
         reason: &str,
         notes: &mut Vec<Note>,
     ) {
-        // Jason's `Intention.findEventForFailure`: from the top, the first frame whose
-        // trigger has a relevant `-` plan decides; only an achievement-goal addition gets a
-        // failure event (a failing failure plan drops the intention, it is not retried).
-        while let Some(top) = int.frames.last() {
-            let fail = EventTrigger {
-                op: TriggerOp::Del,
-                kind: top.trigger.kind,
-                literal: top.trigger.literal.clone(),
-            };
-            if !self.relevant_plans(&fail).is_empty() {
-                if top.trigger.op == TriggerOp::Add && top.trigger.kind == TriggerKind::Achieve {
-                    let origin = int.origin;
-                    s.events.push(Event {
-                        trigger: fail,
-                        intention: Some(int),
-                        origin,
-                        posted_at: step,
-                    });
-                    return;
-                }
-                break;
-            }
-            if int.frames.len() == 1 {
-                break;
-            }
-            int.frames.pop();
+        if let Some(top) = int.frames.last_mut() {
+            top.calling = None;
+        }
+        let tevent = int
+            .frames
+            .last()
+            .map_or_else(|| failed.clone(), |f| f.trigger.clone());
+        if let Some(fail) = self.find_event_for_failure(&int, &tevent) {
+            let origin = int.origin;
+            s.events.push(Event {
+                trigger: fail,
+                intention: Some(int),
+                origin,
+                posted_at: step,
+            });
+            return;
         }
         let goal = int
             .frames
@@ -820,58 +942,86 @@ impl<'p> Semantics<'p> {
         });
     }
 
-    /// Moves a frame's cursors to the next step to execute, leaving loops and blocks that
-    /// have ended; `cursors` is empty when the body is done.
-    fn normalize(&self, f: &mut Frame, s: &State) {
+    /// Moves a frame's cursors to the next step to execute, leaving blocks that have
+    /// ended; a loop's body that has ended stays, its cursor past the end, until the loop
+    /// is tested again ([`Semantics::loop_again`]). `cursors` is empty when the body is done.
+    fn normalize(&self, f: &mut Frame, _s: &State) {
         let blocks = &self.blocks[f.plan as usize];
-        // Each round either returns or pops/restarts one cursor; an empty `while` body
-        // whose condition keeps holding stops here and is retried next cycle.
-        for _ in 0..256 {
-            let Some(c) = f.cursors.last_mut() else {
-                return;
-            };
-            let block = blocks.blocks[c.block as usize];
-            if (c.pos as usize) < block.len() {
+        while let Some(c) = f.cursors.last() {
+            if (c.pos as usize) < blocks.blocks[c.block as usize].len()
+                || !matches!(c.kind, CursorKind::Seq)
+            {
                 return;
             }
-            match c.kind.clone() {
-                CursorKind::Seq => {
-                    f.cursors.pop();
-                }
-                CursorKind::While { outer, at } => {
-                    let cond = match &blocks.blocks[outer as usize][at as usize].kind {
-                        BodyStep::While(cond, _) => cond,
-                        _ => unreachable!("a while cursor points at a while step"),
-                    };
-                    match self.beliefs(s).answers(cond, &f.subst).into_iter().next() {
-                        Some(a) => {
-                            f.subst = a;
-                            if let Some(c) = f.cursors.last_mut() {
-                                c.pos = 0;
-                            }
-                            if block.is_empty() {
-                                return;
-                            }
-                        }
-                        None => {
-                            f.cursors.pop();
-                        }
+            f.cursors.pop();
+        }
+    }
+
+    /// Tests a loop again once its body has ended: `while` restores the bindings it had
+    /// when it first ran and asks its condition again (stdlib `loop`: `un.clear();
+    /// un.compose(ubak)`), so variables bound in the body are free on the next pass and
+    /// after the loop; `for` takes its next answer, and restores the bindings from before
+    /// the loop when there is none (stdlib `foreach`). The answers of `for` are computed
+    /// when it first runs.
+    fn loop_again(&self, f: &mut Frame, s: &State) {
+        let blocks = &self.blocks[f.plan as usize];
+        let Some(c) = f.cursors.last_mut() else {
+            return;
+        };
+        match &mut c.kind {
+            CursorKind::Seq => {}
+            CursorKind::While { outer, at, base } => {
+                let cond = match &blocks.blocks[*outer as usize][*at as usize].kind {
+                    BodyStep::While(cond, _) => cond,
+                    _ => unreachable!("a while cursor points at a while step"),
+                };
+                let base = base.clone();
+                match self.beliefs(s).answers(cond, &base).into_iter().next() {
+                    Some(a) => {
+                        f.subst = a;
+                        c.pos = 0;
                     }
-                }
-                CursorKind::For { mut rest, base } => {
-                    if rest.is_empty() {
+                    None => {
                         f.subst = base;
                         f.cursors.pop();
-                    } else {
-                        f.subst = rest.remove(0);
-                        if let Some(c) = f.cursors.last_mut() {
-                            c.pos = 0;
-                            c.kind = CursorKind::For { rest, base };
-                        }
-                        if block.is_empty() {
-                            return;
-                        }
                     }
+                }
+            }
+            CursorKind::For { rest, base } => {
+                if rest.is_empty() {
+                    f.subst = base.clone();
+                    f.cursors.pop();
+                } else {
+                    f.subst = rest.remove(0);
+                    c.pos = 0;
+                }
+            }
+        }
+        self.normalize(f, s);
+    }
+
+    /// Jason's `applyProcAct`, the act phase's first stage: the feedback of the action
+    /// sent in the previous cycle. A done action's intention goes to the back of the
+    /// queue (after any the deliberation of this cycle started) and its finished plans are
+    /// cleared; a failed one's plan fails (`generateGoalDeletion`).
+    pub(super) fn proc_act(&self, s: &mut State, notes: &mut Vec<Note>) {
+        let Some(p) = s.pending.take() else {
+            return;
+        };
+        let mut int = p.intention;
+        match p.failure {
+            Some(f) => {
+                let failed = int
+                    .frames
+                    .last()
+                    .map(|f| f.trigger.clone())
+                    .expect("a frame");
+                let reason = format!("{}: {}", f.action, f.why);
+                self.fail_intention(s, int, &failed, Some((f.plan, f.span)), &reason, notes);
+            }
+            None => {
+                if self.clear_finished(s, &mut int, notes) {
+                    s.intentions.push(int);
                 }
             }
         }
@@ -895,25 +1045,55 @@ impl<'p> Semantics<'p> {
         }
     }
 
-    /// Pops finished plans; returns whether the intention is still alive.
+    /// Pops finished plans, as Jason's `applyClrInt`; returns whether the intention is
+    /// still alive. A finished subgoal's bindings flow back into the plan that posted it,
+    /// which goes on after its `!g`. A finished failure plan `-!g` takes with it the
+    /// plans above the one it handled, down to the plan of `g` itself or to the plan whose
+    /// step posted `g`, and the plan below goes on after its current step (the `!g`, or
+    /// the step that failed, when a failure plan failed at the bottom of the stack).
     fn clear_finished(&self, s: &State, int: &mut Intention, notes: &mut Vec<Note>) -> bool {
-        while let Some(top) = int.frames.last() {
+        loop {
+            let Some(top) = int.frames.last() else {
+                notes.push(Note::Finished(int.origin));
+                return false;
+            };
             if !top.cursors.is_empty() {
                 return true;
             }
-            let Some(done) = int.frames.pop() else { break };
-            let depth = int.frames.len();
-            // A finished failure plan also ends the goal it handled.
-            if done.trigger.op == TriggerOp::Del && done.trigger.kind == TriggerKind::Achieve {
-                if let Some(below) = int.frames.last() {
-                    if below.trigger.op == TriggerOp::Add
-                        && below.trigger.kind == TriggerKind::Achieve
-                        && below.trigger.literal == done.trigger.literal
-                    {
-                        int.frames.pop();
+            let depth = int.frames.len() - 1;
+            let done = int.frames.pop().expect("a top frame");
+            let top_literal = &done.trigger.literal;
+            let unifies = |t: &Term| crate::model::unifier(t, top_literal).is_some();
+            // Whether a frame's current step is `!L` for the goal just finished.
+            let calls_top = |f: &Frame| f.calling.as_ref().is_some_and(|g| unifies(g));
+            let handled_failure =
+                done.trigger.kind != TriggerKind::Belief && done.trigger.op == TriggerOp::Del;
+            if handled_failure && !int.frames.is_empty() {
+                // `im` is the frame just popped; `None` when the top frame, peeked, is the
+                // one whose `!g` step posted the goal.
+                let top = int.frames.last().expect("a frame");
+                let mut im = if calls_top(top) {
+                    None
+                } else {
+                    int.frames.pop()
+                };
+                while !int.frames.is_empty() {
+                    let Some(popped) = im.take() else { break };
+                    let goal_frame = popped.trigger.kind != TriggerKind::Belief
+                        && unifies(&popped.trigger.literal);
+                    if goal_frame || calls_top(&popped) {
+                        break;
                     }
+                    im = int.frames.pop();
                 }
-            } else if let Some(parent) = int.frames.last_mut() {
+                // The frame now on top goes on after its current step.
+                if let Some(parent) = int.frames.last_mut() {
+                    parent.calling = None;
+                    self.normalize(parent, s);
+                }
+                continue;
+            }
+            if let Some(parent) = int.frames.last_mut() {
                 // The subgoal's bindings flow back into the plan that posted it.
                 let result = done.subst.apply(&done.trigger.literal).map_vars(&mut |v| {
                     if v.generation() == 0 {
@@ -933,13 +1113,10 @@ impl<'p> Semantics<'p> {
                 if unify(&asked, &result, &mut u) {
                     parent.subst = u;
                 }
-            }
-            if let Some(parent) = int.frames.last_mut() {
+                parent.calling = None;
                 self.normalize(parent, s);
             }
         }
-        notes.push(Note::Finished(int.origin));
-        false
     }
 
     /// Executes the next step of the top frame.
@@ -954,7 +1131,10 @@ impl<'p> Semantics<'p> {
         };
         let own_drop = int.frames.last().and_then(|f| {
             let c = f.cursors.last()?;
-            match &self.blocks[f.plan as usize].blocks[c.block as usize][c.pos as usize].kind {
+            match &self.blocks[f.plan as usize].blocks[c.block as usize]
+                .get(c.pos as usize)?
+                .kind
+            {
                 BodyStep::Internal(t)
                     if matches!(t.functor(), Some(".drop_desire" | ".drop_intention")) =>
                 {
@@ -967,8 +1147,10 @@ impl<'p> Semantics<'p> {
         let acts = int.frames.last().is_some_and(|f| {
             f.cursors.last().is_some_and(|c| {
                 matches!(
-                    self.blocks[f.plan as usize].blocks[c.block as usize][c.pos as usize].kind,
-                    BodyStep::Action(_)
+                    self.blocks[f.plan as usize].blocks[c.block as usize]
+                        .get(c.pos as usize)
+                        .map(|s| &s.kind),
+                    Some(BodyStep::Action(_))
                 )
             })
         });
@@ -991,7 +1173,12 @@ impl<'p> Semantics<'p> {
             return Flow::Continue;
         };
         let (block, pos) = (cursor.block, cursor.pos);
-        let step = &blocks.blocks[block as usize][pos as usize];
+        let Some(step) = blocks.blocks[block as usize].get(pos as usize) else {
+            // The end of a loop's body: testing the loop again is a step of its own, as
+            // Jason's `.while`/`.foreach` internal actions run again after the body.
+            self.loop_again(frame, s);
+            return Flow::Continue;
+        };
         cursor.pos += 1;
         let origin = int.origin;
         let fail = |sem: &Self,
@@ -1011,10 +1198,23 @@ impl<'p> Semantics<'p> {
             );
             Flow::Gone
         };
+        // A step whose arithmetic has no value fails, as Jason's exception fails the plan.
+        macro_rules! value {
+            ($t:expr) => {
+                match eval($t, &frame.subst) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        let text = frame.subst.apply($t).to_string();
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(self, s, int, &text, e.to_string(), notes);
+                    }
+                }
+            };
+        }
         match &step.kind {
             BodyStep::Action(t) if self.is_emission(t) => {
                 // The agent's own explanation: said, not done; the world does not change.
-                let term = eval(t, &frame.subst);
+                let term = value!(t);
                 notes.push(Note::Action {
                     text: term.to_string(),
                     term,
@@ -1025,33 +1225,48 @@ impl<'p> Semantics<'p> {
                     removed: Vec::new(),
                     origin,
                 });
+                self.normalize(frame, s);
+                let int = std::mem::replace(int, empty_intention(origin));
+                s.pending = Some(Pending {
+                    intention: int,
+                    failure: None,
+                });
+                return Flow::Gone;
             }
             BodyStep::Action(t) => {
-                let term = eval(t, &frame.subst);
+                let term = value!(t);
                 let text = term.to_string();
-                match self.ground_action(&term) {
-                    Err(reason) => {
-                        notes.push(Note::ActionFailed {
-                            text: text.clone(),
+                // The environment runs the action now; the intention waits for the
+                // feedback, which the next cycle's `ProcAct` takes (Jason's pending action).
+                let failure = match self.ground_action(&term) {
+                    Err(reason) => Some(reason),
+                    Ok(ga) if !ga.applicable(&s.beliefs) => {
+                        Some("its precondition does not hold".to_string())
+                    }
+                    Ok(_) => None,
+                };
+                if let Some(reason) = failure {
+                    notes.push(Note::ActionFailed {
+                        text: text.clone(),
+                        plan,
+                        span: step.span,
+                        reason: reason.clone(),
+                    });
+                    let int = std::mem::replace(int, empty_intention(origin));
+                    s.pending = Some(Pending {
+                        intention: int,
+                        failure: Some(ActionFailure {
                             plan,
                             span: step.span,
-                            reason: reason.clone(),
-                        });
-                        let int = std::mem::replace(int, empty_intention(origin));
-                        return fail(self, s, int, &text, reason, notes);
-                    }
+                            action: term,
+                            why: reason,
+                        }),
+                    });
+                    return Flow::Gone;
+                }
+                match self.ground_action(&term) {
+                    Err(_) => unreachable!("checked above"),
                     Ok(ga) => {
-                        if !ga.applicable(&s.beliefs) {
-                            let reason = "its precondition does not hold".to_string();
-                            notes.push(Note::ActionFailed {
-                                text: text.clone(),
-                                plan,
-                                span: step.span,
-                                reason: reason.clone(),
-                            });
-                            let int = std::mem::replace(int, empty_intention(origin));
-                            return fail(self, s, int, &text, reason, notes);
-                        }
                         let before = s.beliefs.clone();
                         s.beliefs = ga.apply(&before);
                         let (added, removed) = diff(&before, &s.beliefs);
@@ -1066,26 +1281,39 @@ impl<'p> Semantics<'p> {
                             removed,
                             origin,
                         });
+                        self.normalize(frame, s);
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        s.pending = Some(Pending {
+                            intention: int,
+                            failure: None,
+                        });
+                        return Flow::Gone;
                     }
                 }
             }
             BodyStep::Internal(t) => {
-                let term = eval(t, &frame.subst);
+                let term = value!(t);
                 let text = term.to_string();
                 match term.functor().unwrap_or("") {
-                    ".print" | ".println" => {}
+                    ".print" | ".println" => {
+                        let out: String = term
+                            .args()
+                            .iter()
+                            .map(|a| match a {
+                                Term::Str(s) => s.to_string(),
+                                Term::Var(_) => format!("{a}<no-value>"),
+                                _ => a.to_string(),
+                            })
+                            .collect();
+                        notes.push(Note::Printed(out));
+                    }
                     f @ (".succeed_goal" | ".fail_goal") => {
                         let g = term.args().first().cloned().unwrap_or_else(Term::nil);
                         notes.push(Note::Internal { text, plan, origin });
-                        let mut current = std::mem::replace(int, empty_intention(origin));
-                        self.normalize_top(&mut current, s);
-                        s.intentions.insert(0, current);
-                        // The running intention is handled with the others; if it goes on, it
-                        // goes to the back of the queue like any intention that ran a step.
-                        if self.goal_directive(s, &g, f == ".fail_goal", (plan, step.span), notes) {
-                            let i = s.intentions.remove(0);
-                            s.intentions.push(i);
-                        }
+                        self.normalize(frame, s);
+                        let current = std::mem::replace(int, empty_intention(origin));
+                        let fail = f == ".fail_goal";
+                        self.goal_directive(s, current, &g, fail, (plan, step.span), notes);
                         return Flow::Gone;
                     }
                     ".drop_desire" | ".drop_intention" => {
@@ -1126,7 +1354,7 @@ impl<'p> Semantics<'p> {
                 notes.push(Note::Internal { text, plan, origin });
             }
             BodyStep::Achieve { goal, new_focus } => {
-                let literal = frame.subst.apply(goal).map_vars(&mut |v| {
+                let literal = value!(goal).map_vars(&mut |v| {
                     if v.generation() == 0 {
                         Term::from(v.with_generation(depth as u32 + 1))
                     } else {
@@ -1146,6 +1374,7 @@ impl<'p> Semantics<'p> {
                         posted_at: Some((plan, step.span)),
                     });
                 } else {
+                    frame.calling = Some(trigger.literal.clone());
                     self.normalize(frame, s);
                     let suspended = std::mem::replace(int, empty_intention(origin));
                     s.events.push(Event {
@@ -1167,7 +1396,7 @@ impl<'p> Semantics<'p> {
                 }
             }
             BodyStep::AddBel(t) | BodyStep::DelBel(t) | BodyStep::DelAddBel(t) => {
-                let lit = frame.subst.apply(t);
+                let lit = value!(t);
                 let mut removed = Vec::new();
                 let mut added = Vec::new();
                 if matches!(step.kind, BodyStep::DelBel(_) | BodyStep::DelAddBel(_)) {
@@ -1230,7 +1459,7 @@ impl<'p> Semantics<'p> {
                 });
             }
             BodyStep::Constraint(op, a, b) => {
-                let (x, y) = (eval(a, &frame.subst), eval(b, &frame.subst));
+                let (x, y) = (value!(a), value!(b));
                 let text = format!("{x} {} {y}", op.symbol());
                 match relation(*op, &x, &y, &frame.subst) {
                     Some(u) => frame.subst = u,
@@ -1268,12 +1497,8 @@ impl<'p> Semantics<'p> {
             }
             BodyStep::While(cond, _) => {
                 let child = blocks.children[&(block, pos)][0];
-                if let Some(a) = self
-                    .beliefs(s)
-                    .answers(cond, &frame.subst)
-                    .into_iter()
-                    .next()
-                {
+                let base = frame.subst.clone();
+                if let Some(a) = self.beliefs(s).answers(cond, &base).into_iter().next() {
                     frame.subst = a;
                     frame.cursors.push(Cursor {
                         block: child,
@@ -1281,6 +1506,7 @@ impl<'p> Semantics<'p> {
                         kind: CursorKind::While {
                             outer: block,
                             at: pos,
+                            base,
                         },
                     });
                 }
@@ -1305,66 +1531,54 @@ impl<'p> Semantics<'p> {
         Flow::Continue
     }
 
-    fn normalize_top(&self, int: &mut Intention, s: &State) {
-        if let Some(top) = int.frames.last_mut() {
-            self.normalize(top, s);
-        }
-    }
-
-    /// `.succeed_goal(g)` / `.fail_goal(g)`, as Jason's: every intention pursuing a goal
-    /// that unifies with `g` drops the plans from that goal's up (succeed: the plan that
-    /// posted it goes on; fail: the goal fails there, with Jason's failure handling), and a
-    /// pending `+!g` event is dropped (succeed: the intention waiting for it goes on) or
-    /// fails. Returns whether the first running intention is still running (it is then the
-    /// first of `s.intentions`).
+    /// `.succeed_goal(g)` / `.fail_goal(g)` run by `current`, as Jason's
+    /// `succeed_goal.drop`: in the events, then in the running intentions, then in the
+    /// running one, then in the one waiting for its action, every intention pursuing `g`
+    /// drops its plans down to and including `g`'s ([`Semantics::drop_goal_in`]); an event
+    /// `+!g` is dropped (succeed: the intention that posted it goes on) or becomes `-!g`
+    /// (fail). The running intention then goes on after its current step
+    /// (`removeActionReQueue`), which, when its own `g` was dropped, is the `!g` of the plan
+    /// below.
     fn goal_directive(
         &self,
         s: &mut State,
+        current: Intention,
         g: &Term,
         fail: bool,
         at: (u32, Span),
         notes: &mut Vec<Note>,
-    ) -> bool {
+    ) {
         let is_goal = |t: &EventTrigger| {
             t.op == TriggerOp::Add
                 && t.kind == TriggerKind::Achieve
                 && crate::model::unifier(g, &t.literal).is_some()
         };
-        let running = std::mem::take(&mut s.intentions);
-        let mut first_kept = false;
-        for (k, mut int) in running.into_iter().enumerate() {
-            let Some(j) = int.frames.iter().rposition(|f| is_goal(&f.trigger)) else {
-                first_kept |= k == 0;
-                s.intentions.push(int);
-                continue;
-            };
-            if fail {
-                int.frames.truncate(j + 1);
-                let failed = int.frames[j].trigger.clone();
-                self.fail_intention(s, int, &failed, Some(at), "failed by .fail_goal", notes);
-            } else {
-                int.frames.truncate(j);
-                if int.frames.is_empty() {
-                    notes.push(Note::Finished(int.origin));
-                } else {
-                    self.normalize_top(&mut int, s);
-                    if self.clear_finished(s, &mut int, notes) {
-                        first_kept |= k == 0 && s.intentions.is_empty();
+        for ev in std::mem::take(&mut s.events) {
+            if let Some(int) = &ev.intention {
+                if int.frames.iter().any(|f| is_goal(&f.trigger)) {
+                    let int = ev.intention.expect("checked");
+                    if let Some(int) = self.drop_goal_in(s, int, g, fail, false, at, notes) {
                         s.intentions.push(int);
                     }
+                    continue;
                 }
             }
-        }
-        let events = std::mem::take(&mut s.events);
-        for ev in events {
             if !is_goal(&ev.trigger) {
                 s.events.push(ev);
-                continue;
-            }
-            if fail {
-                self.goal_failed_from_event(s, ev, "failed by .fail_goal", notes);
+            } else if fail {
+                // `fail_goal.dropInEvent`: the event turns into `-!g`, in its place.
+                s.events.push(Event {
+                    trigger: EventTrigger {
+                        op: TriggerOp::Del,
+                        ..ev.trigger
+                    },
+                    ..ev
+                });
             } else if let Some(mut int) = ev.intention {
-                self.normalize_top(&mut int, s);
+                if let Some(top) = int.frames.last_mut() {
+                    top.calling = None;
+                    self.normalize(top, s);
+                }
                 if self.clear_finished(s, &mut int, notes) {
                     s.intentions.push(int);
                 }
@@ -1372,7 +1586,124 @@ impl<'p> Semantics<'p> {
                 notes.push(Note::Finished(ev.origin));
             }
         }
-        first_kept
+        for int in std::mem::take(&mut s.intentions) {
+            if int.frames.iter().any(|f| is_goal(&f.trigger)) {
+                if let Some(int) = self.drop_goal_in(s, int, g, fail, false, at, notes) {
+                    s.intentions.push(int);
+                }
+            } else {
+                s.intentions.push(int);
+            }
+        }
+        let mut current = Some(current);
+        if let Some(int) = current.take_if(|i| i.frames.iter().any(|f| is_goal(&f.trigger))) {
+            current = self.drop_goal_in(s, int, g, fail, true, at, notes);
+        }
+        if let Some(mut int) = current {
+            // `removeActionReQueue`: the step just run is done (for a plan below a dropped
+            // goal, that is its `!g`).
+            if let Some(top) = int.frames.last_mut() {
+                top.calling = None;
+                self.normalize(top, s);
+            }
+            if self.clear_finished(s, &mut int, notes) {
+                s.intentions.push(int);
+            }
+        }
+        if let Some(p) = s.pending.take() {
+            if p.intention.frames.iter().any(|f| is_goal(&f.trigger)) {
+                if let Some(int) = self.drop_goal_in(s, p.intention, g, fail, false, at, notes) {
+                    s.intentions.push(int);
+                }
+            } else {
+                s.pending = Some(p);
+            }
+        }
+    }
+
+    /// Jason's `dropIntention` of `succeed_goal` and `fail_goal` on an intention pursuing
+    /// `g` (`Intention.dropGoal` pops its plans down to and including the lowest plan for
+    /// `g`). Succeed: the plan below goes on after its `!g` (for the running intention,
+    /// the caller does that); the intention is returned to run on. Fail: the failure event
+    /// for `+!g` is looked for from the plan below (`findEventForFailure`); with one, the
+    /// intention waits in it (the running one with its current step done, as Jason's
+    /// `removeActionReQueue` then removes it); with none, the running intention goes on
+    /// and any other is dropped. Returns the intention when it runs on.
+    #[allow(clippy::too_many_arguments)]
+    fn drop_goal_in(
+        &self,
+        s: &mut State,
+        mut int: Intention,
+        g: &Term,
+        fail: bool,
+        current: bool,
+        at: (u32, Span),
+        notes: &mut Vec<Note>,
+    ) -> Option<Intention> {
+        let j = int
+            .frames
+            .iter()
+            .position(|f| {
+                f.trigger.op == TriggerOp::Add
+                    && f.trigger.kind == TriggerKind::Achieve
+                    && crate::model::unifier(g, &f.trigger.literal).is_some()
+            })
+            .expect("the intention pursues g");
+        let dropped = int.frames[j].trigger.clone();
+        int.frames.truncate(j);
+        if !fail {
+            if int.frames.is_empty() {
+                notes.push(Note::Finished(int.origin));
+                return None;
+            }
+            if current {
+                return Some(int);
+            }
+            if let Some(top) = int.frames.last_mut() {
+                top.calling = None;
+                self.normalize(top, s);
+            }
+            return self.clear_finished(s, &mut int, notes).then_some(int);
+        }
+        let tevent = EventTrigger {
+            op: TriggerOp::Add,
+            kind: TriggerKind::Achieve,
+            literal: g.clone(),
+        };
+        match self.find_event_for_failure(&int, &tevent) {
+            Some(fail) => {
+                if current {
+                    if let Some(top) = int.frames.last_mut() {
+                        top.calling = None;
+                        self.normalize(top, s);
+                    }
+                }
+                let origin = int.origin;
+                s.events.push(Event {
+                    trigger: fail,
+                    intention: Some(int),
+                    origin,
+                    posted_at: Some(at),
+                });
+                None
+            }
+            None if current => Some(int),
+            None => {
+                let goal = int
+                    .frames
+                    .first()
+                    .map_or(dropped.clone(), |f| f.trigger.clone());
+                notes.push(Note::GoalFailed {
+                    goal,
+                    cause: dropped,
+                    plan: Some(at.0),
+                    span: Some(at.1),
+                    reason: "failed by .fail_goal".into(),
+                    origin: int.origin,
+                });
+                None
+            }
+        }
     }
 
     /// The ground action a term names, or why there is none.

@@ -8,8 +8,9 @@
 //! mental notes `source(self)`, as in Jason, so `p[source(percept)]` matches percepts only.
 
 use super::state::{Intention, State};
+use crate::model::arith::{self, ArithError, OPERATORS};
 use crate::model::atoms::{AtomId, AtomTable};
-use crate::model::plans::Formula;
+use crate::model::plans::{Formula, Rule};
 use crate::model::term::Term;
 use crate::model::universe::Universe;
 use crate::model::{unify, Substitution};
@@ -28,40 +29,64 @@ pub struct Beliefs<'a> {
     /// The event being deliberated on, already out of the queue: Jason's `.intend` and
     /// `.desire` see its intention (and its goal) too.
     pub selected: Option<&'a super::state::Event>,
+    /// The rules of the belief base.
+    pub rules: &'a [Rule],
+    /// How deep in rule calls the query being answered is (rules' variables are renamed
+    /// apart by depth).
+    pub depth: std::cell::Cell<u32>,
 }
 
-/// Arithmetic operators kept as structures by the plan compiler.
-const ARITH: [&str; 7] = ["+", "-", "*", "/", "div", "mod", "**"];
+/// Variables of a rule called at depth `d` have generation `RULE_GENERATION + d`.
+const RULE_GENERATION: u32 = 2_000_000;
 
-/// Evaluates the arithmetic in a term under `s` (numbers only); other terms are returned
-/// with `s` applied.
-pub fn eval(t: &Term, s: &Substitution) -> Term {
-    let t = s.apply(t);
-    eval_ground(&t).unwrap_or(t)
+/// Deeper rule calls than this have no answer (Jason would overflow its stack).
+const MAX_RULE_DEPTH: u32 = 256;
+
+/// Applies `s` to `t` and evaluates every arithmetic subterm whose operands are numbers,
+/// as Jason's `capply` does (`ArithExpr.capply`); an operator with an unbound operand
+/// stays a structure. Fails when some arithmetic has no value ([`ArithError`]).
+pub fn eval(t: &Term, s: &Substitution) -> Result<Term, ArithError> {
+    eval_ground(&s.apply(t))
 }
 
-fn eval_ground(t: &Term) -> Option<Term> {
-    let f = t.functor()?;
-    if !ARITH.contains(&f) || t.is_negated() {
-        return None;
+fn eval_ground(t: &Term) -> Result<Term, ArithError> {
+    match t {
+        Term::Struct(_) if !has_arith(t) => Ok(t.clone()),
+        Term::Struct(st) => {
+            let args = st
+                .args()
+                .iter()
+                .map(eval_ground)
+                .collect::<Result<Vec<_>, _>>()?;
+            let f = t.functor().unwrap_or("");
+            if OPERATORS.contains(&f) && !st.negated() && st.annots().is_empty() {
+                if let Some(nums) = args.iter().map(Term::as_f64).collect::<Option<Vec<_>>>() {
+                    if let Some(v) = arith::apply(f, &nums) {
+                        return v.map(Term::num);
+                    }
+                }
+            }
+            Ok(Term::literal(
+                st.functor(),
+                st.negated(),
+                args,
+                st.annots().to_vec(),
+            ))
+        }
+        Term::Cons(c) if has_arith(t) => {
+            Ok(Term::cons(eval_ground(c.head())?, eval_ground(c.tail())?))
+        }
+        _ => Ok(t.clone()),
     }
-    let args: Vec<f64> = t
-        .args()
-        .iter()
-        .map(|a| eval_ground(a).unwrap_or_else(|| a.clone()).as_f64())
-        .collect::<Option<Vec<_>>>()?;
-    let v = match (f, args.as_slice()) {
-        ("-", [x]) => -x,
-        ("+", [x, y]) => x + y,
-        ("-", [x, y]) => x - y,
-        ("*", [x, y]) => x * y,
-        ("/", [x, y]) if *y != 0.0 => x / y,
-        ("div", [x, y]) if *y as i64 != 0 => ((*x as i64) / (*y as i64)) as f64,
-        ("mod", [x, y]) if *y as i64 != 0 => ((*x as i64) % (*y as i64)) as f64,
-        ("**", [x, y]) => x.powf(*y),
-        _ => return None,
-    };
-    v.is_finite().then(|| Term::num(v))
+}
+
+/// Whether a term holds an arithmetic operator structure anywhere in its arguments.
+fn has_arith(t: &Term) -> bool {
+    match t {
+        Term::Struct(st) => OPERATORS.contains(&st.functor()) || st.args().iter().any(has_arith),
+        Term::Cons(c) => has_arith(c.head()) || has_arith(c.tail()),
+        _ => false,
+    }
 }
 
 impl Beliefs<'_> {
@@ -109,15 +134,62 @@ impl Beliefs<'_> {
         out
     }
 
+    /// The answers of a literal from the rules whose head it unifies with, in source order
+    /// (Jason's `Literal.logicalConsequence` on a `Rule`: its variables renamed apart,
+    /// the head unified, the body proved), each kept in the caller's variables.
+    fn rule_answers(&self, lit: &Term, s: &Substitution) -> Vec<Substitution> {
+        let lit = s.apply(lit);
+        let (f, n, neg) = (lit.functor(), lit.arity(), lit.is_negated());
+        let depth = self.depth.get() + 1;
+        if depth > MAX_RULE_DEPTH {
+            return Vec::new();
+        }
+        let gen = RULE_GENERATION + depth;
+        let mut out = Vec::new();
+        for r in self.rules {
+            if r.head.functor() != f || r.head.arity() != n || r.head.is_negated() != neg {
+                continue;
+            }
+            let rename = |t: &Term| t.map_vars(&mut |v| Term::from(v.with_generation(gen)));
+            let head = rename(&r.head);
+            let mut u = s.clone();
+            // The rule's annotations (none, for rules of the source) take the query's.
+            if !unify(&lit.without_annots(), &head, &mut u) {
+                continue;
+            }
+            let body = rename_formula(&r.body, &rename);
+            self.depth.set(depth);
+            let answers = self.answers(&body, &u);
+            self.depth.set(depth - 1);
+            for a in answers {
+                // Keep the answer in the caller's variables: drop the rule's own.
+                let mut kept = Substitution::new();
+                for (v, t) in a.iter() {
+                    if v.generation() < gen {
+                        kept.bind(v.clone(), a.apply(t));
+                    }
+                }
+                out.push(kept);
+            }
+        }
+        out
+    }
+
     /// Every answer of `f` extending `s`, in order.
     pub fn answers(&self, f: &Formula, s: &Substitution) -> Vec<Substitution> {
         match f {
             Formula::True => vec![s.clone()],
-            Formula::Literal(t) => self
-                .literal_answers(t, s)
-                .into_iter()
-                .map(|(_, s)| s)
-                .collect(),
+            Formula::Literal(t) => {
+                let mut out: Vec<Substitution> = self
+                    .literal_answers(t, s)
+                    .into_iter()
+                    .map(|(_, s)| s)
+                    .collect();
+                if !self.rules.is_empty() {
+                    out.extend(self.rule_answers(t, s));
+                }
+                out
+            }
             Formula::Not(g) => {
                 if self.answers(g, s).is_empty() {
                     vec![s.clone()]
@@ -135,9 +207,11 @@ impl Beliefs<'_> {
                 out.extend(self.answers(b, s));
                 out
             }
-            Formula::Rel(op, a, b) => relation(*op, &eval(a, s), &eval(b, s), s)
-                .into_iter()
-                .collect(),
+            Formula::Rel(op, a, b) => match (eval(a, s), eval(b, s)) {
+                (Ok(x), Ok(y)) => relation(*op, &x, &y, s).into_iter().collect(),
+                // Jason's exception fails the query.
+                _ => Vec::new(),
+            },
             Formula::Call(t) => self.call(t, s),
         }
     }
@@ -214,6 +288,25 @@ impl Beliefs<'_> {
             }
         }
         out
+    }
+}
+
+/// A formula with `rename` applied to every term in it.
+fn rename_formula(f: &Formula, rename: &impl Fn(&Term) -> Term) -> Formula {
+    match f {
+        Formula::True => Formula::True,
+        Formula::Literal(t) => Formula::Literal(rename(t)),
+        Formula::Not(g) => Formula::Not(Box::new(rename_formula(g, rename))),
+        Formula::And(a, b) => Formula::And(
+            Box::new(rename_formula(a, rename)),
+            Box::new(rename_formula(b, rename)),
+        ),
+        Formula::Or(a, b) => Formula::Or(
+            Box::new(rename_formula(a, rename)),
+            Box::new(rename_formula(b, rename)),
+        ),
+        Formula::Rel(op, a, b) => Formula::Rel(*op, rename(a), rename(b)),
+        Formula::Call(t) => Formula::Call(rename(t)),
     }
 }
 

@@ -75,6 +75,9 @@ pub enum CursorKind {
         outer: u16,
         /// The `while` step's position there.
         at: u16,
+        /// The bindings when the loop first ran, restored before each test (Jason's
+        /// stdlib `loop` keeps them as its backup unifier).
+        base: Substitution,
     },
     /// A `for` body: the next answer, with the bindings from before the loop.
     For {
@@ -96,6 +99,11 @@ pub struct Frame {
     pub cursors: Vec<Cursor>,
     /// The instantiated trigger the plan was chosen for.
     pub trigger: EventTrigger,
+    /// The goal of the `!g` step this plan is executing, while it waits for `g`: Jason's
+    /// current step of a plan below the top. `None` when its current step is another one
+    /// (the step that failed, when a failure plan runs above it: Jason keeps the failed
+    /// plan on the stack).
+    pub calling: Option<Term>,
 }
 
 /// A stack of frames: the top frame runs, the ones below wait for its goal.
@@ -105,6 +113,30 @@ pub struct Intention {
     pub frames: Vec<Frame>,
     /// Where it came from.
     pub origin: Origin,
+}
+
+/// An intention whose environment action waits for its feedback: Jason's pending action
+/// (`Circumstance.PA`). It returns to the queue, or fails, in the next cycle's `ProcAct`,
+/// after that cycle's deliberation.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Pending {
+    /// The intention, its action's step done.
+    pub intention: Intention,
+    /// When the action failed: why, and where.
+    pub failure: Option<ActionFailure>,
+}
+
+/// Why an environment action failed.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct ActionFailure {
+    /// The plan of the step.
+    pub plan: u32,
+    /// The step.
+    pub span: Span,
+    /// The action, as it was sent.
+    pub action: Term,
+    /// Why it failed (`its precondition does not hold`), naming no object.
+    pub why: String,
 }
 
 /// The whole agent state.
@@ -120,6 +152,8 @@ pub struct State {
     pub events: Vec<Event>,
     /// Running intentions, in round-robin order: the first runs next.
     pub intentions: Vec<Intention>,
+    /// The intention whose action awaits its feedback, if any.
+    pub pending: Option<Pending>,
     /// Bit `i`: request `i` has been made in this run.
     pub requested: u64,
 }
@@ -139,6 +173,7 @@ pub fn hash_parts<H: Hasher>(
     beliefs: u64,
     events: impl ExactSizeIterator<Item = u64>,
     intentions: impl ExactSizeIterator<Item = u64>,
+    pending: Option<u64>,
     requested: u64,
 ) {
     h.write_u64(beliefs);
@@ -146,6 +181,9 @@ pub fn hash_parts<H: Hasher>(
     events.for_each(|e| h.write_u64(e));
     h.write_usize(intentions.len());
     intentions.for_each(|i| h.write_u64(i));
+    if let Some(p) = pending {
+        h.write_u64(p);
+    }
     h.write_u64(requested);
 }
 
@@ -156,6 +194,7 @@ impl Hash for State {
             part_hash(&self.beliefs),
             self.events.iter().map(part_hash),
             self.intentions.iter().map(part_hash),
+            self.pending.as_ref().map(part_hash),
             self.requested,
         );
     }
@@ -165,19 +204,25 @@ impl State {
     /// Whether the agent has nothing to do: no event, no intention (suspended ones wait
     /// inside events).
     pub fn is_idle(&self) -> bool {
-        self.events.is_empty() && self.intentions.is_empty()
+        self.events.is_empty() && self.intentions.is_empty() && self.pending.is_none()
     }
 
     /// Every intention, running or suspended in an event.
     pub fn all_intentions(&self) -> impl Iterator<Item = &Intention> {
         self.intentions
             .iter()
+            .chain(self.pending.iter().map(|p| &p.intention))
             .chain(self.events.iter().filter_map(|e| e.intention.as_ref()))
     }
 
     /// The requests still being served: the origin of some intention or event.
     pub fn pending_requests(&self) -> u64 {
-        requests_of(&self.intentions, &self.events)
+        requests_of(
+            self.intentions
+                .iter()
+                .chain(self.pending.iter().map(|p| &p.intention)),
+            &self.events,
+        )
     }
 }
 

@@ -118,6 +118,24 @@ pub struct Plan {
     pub span: Span,
 }
 
+impl Plan {
+    /// The body as Jason's interpreter sees it: its parser drops a leading `true`
+    /// (AS2JavaParser.jj, rule `plan`), so `<- true` is the empty body.
+    pub fn jason_body(&self) -> Option<Body> {
+        let b = self.body.as_ref()?;
+        let leading_true = b.steps.first().is_some_and(|s| {
+            matches!(&s.kind, StepKind::Action(e) if matches!(&e.kind,
+                ExprKind::Literal(l) if l.functor == "true" && l.args.is_empty()
+                    && l.annots.is_none() && !l.negated && l.namespace.is_none()))
+        });
+        let mut b = b.clone();
+        if leading_true {
+            b.steps.remove(0);
+        }
+        Some(b)
+    }
+}
+
 /// A plan label `@name[annots]` or `@[annots]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Label {

@@ -1,0 +1,162 @@
+//! Conformance with real Jason: every scenario of every agent in `tests/jason/` is run by
+//! bdi-check and compared with the run real Jason 3 gave on it, recorded in the agent's
+//! `jason.json` (the Jason commit and how a run is driven are recorded there too): the
+//! actions attempted, in order, those that failed, the intentions dropped by a goal failure
+//! no plan handled (their bottom goal), what `.print` printed, and the final beliefs.
+//!
+//! A run is the one `check::run::run_scenario` gives: each request when the agent is
+//! idle, otherwise one reasoning cycle after another, for at most 1,000 cycles (the bound
+//! of the recordings).
+
+use bdi_check::check::run::{resolve_scenario, run_scenario, RunEnd};
+use bdi_check::model::project::load_project;
+use bdi_check::semantics::{Note, Semantics};
+use bdi_check::syntax::manifest::load_scenario;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+/// What one run did, in the terms of the recordings.
+#[derive(Debug, PartialEq)]
+struct Observed {
+    actions: Vec<String>,
+    failed_actions: Vec<String>,
+    dropped: Vec<String>,
+    printed: Vec<String>,
+    final_beliefs: Vec<String>,
+    outcome: String,
+}
+
+fn strings(v: &Value) -> Vec<String> {
+    v.as_array()
+        .map(|a| {
+            a.iter()
+                .map(|s| s.as_str().unwrap_or("").to_string())
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+fn recorded(run: &Value) -> Observed {
+    let mut final_beliefs = strings(&run["final_beliefs"]);
+    final_beliefs.sort();
+    Observed {
+        actions: strings(&run["actions"]),
+        failed_actions: strings(&run["failed_actions"]),
+        dropped: strings(&run["dropped"]),
+        printed: strings(&run["printed"]),
+        final_beliefs,
+        outcome: run["outcome"].as_str().unwrap_or("").to_string(),
+    }
+}
+
+/// bdi-check's run of one scenario, or why it could not run.
+fn observe(case: &Path, scenario: &Path) -> Result<Observed, String> {
+    let p = load_project(case).map_err(|e| {
+        let msgs: Vec<String> = e.diagnostics.iter().map(|d| d.message.clone()).collect();
+        format!("the project does not load: {}", msgs.join("; "))
+    })?;
+    let sem = Semantics::new(&p).map_err(|d| format!("no semantics: {:?}", d[0].message))?;
+    let mut map = p.map.clone();
+    let sc = load_scenario(scenario, &mut map).map_err(|d| d[0].message.clone())?;
+    let (initial, requests) = resolve_scenario(&p, &sem, &sc).map_err(|d| d[0].message.clone())?;
+    let run = run_scenario(&sem, &initial, &requests, 1000);
+    let mut o = Observed {
+        actions: Vec::new(),
+        failed_actions: Vec::new(),
+        dropped: Vec::new(),
+        printed: Vec::new(),
+        final_beliefs: run
+            .last
+            .beliefs
+            .iter()
+            .map(|a| p.atoms.display(a, &p.universe))
+            .collect(),
+        outcome: match run.end {
+            RunEnd::Done => "done".into(),
+            RunEnd::Bound => "bound".into(),
+            RunEnd::Refused => "refused".into(),
+        },
+    };
+    o.final_beliefs.sort();
+    for note in run.steps.iter().flatten() {
+        match note {
+            Note::Action { text, .. } => o.actions.push(text.clone()),
+            Note::ActionFailed { text, .. } => {
+                o.actions.push(text.clone());
+                o.failed_actions.push(text.clone());
+            }
+            Note::GoalFailed { goal, .. } => {
+                let (op, kind) = (goal.op.symbol(), goal.kind.symbol());
+                o.dropped
+                    .push(format!("{op}{kind}{}", goal.literal.without_annots()));
+            }
+            Note::Printed(s) => o.printed.push(s.clone()),
+            _ => {}
+        }
+    }
+    Ok(o)
+}
+
+fn cases() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/jason");
+    let mut out: Vec<PathBuf> = std::fs::read_dir(&root)
+        .expect("tests/jason exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.join("jason.json").is_file())
+        .collect();
+    out.sort();
+    out
+}
+
+/// Scenarios where bdi-check is known to differ from Jason, each with why; the test fails
+/// when one of them starts to agree (so that this list only ever shrinks with the facts).
+const KNOWN: &[(&str, &str, &str)] = &[];
+
+#[test]
+fn every_recorded_jason_run_is_reproduced() {
+    let cases = cases();
+    assert!(cases.len() >= 40, "the suite has {} agents", cases.len());
+    let mut differ = Vec::new();
+    let mut agree = Vec::new();
+    let mut total = 0;
+    for case in &cases {
+        let name = case.file_name().unwrap().to_string_lossy().to_string();
+        let text = std::fs::read_to_string(case.join("jason.json")).unwrap();
+        let rec: Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(
+            rec["jason_commit"].as_str().map(str::len),
+            Some(40),
+            "{name}: the recording names the Jason commit"
+        );
+        let runs = rec["runs"].as_object().expect("runs");
+        for (scenario, run) in runs {
+            total += 1;
+            let file = case.join("scenarios").join(format!("{scenario}.toml"));
+            let want = recorded(run);
+            let got = observe(case, &file);
+            let known = KNOWN.iter().any(|(c, s, _)| *c == name && s == scenario);
+            match got {
+                Ok(got) if got == want => {
+                    if known {
+                        agree.push(format!("{name}/{scenario}"));
+                    }
+                }
+                got if !known => differ.push(format!(
+                    "{name}/{scenario}:\n  jason:     {want:?}\n  bdi-check: {got:?}"
+                )),
+                _ => {}
+            }
+        }
+    }
+    assert!(total >= 100, "{total} scenarios");
+    assert!(
+        differ.is_empty(),
+        "{} of {total} scenarios differ from Jason:\n{}",
+        differ.len(),
+        differ.join("\n")
+    );
+    assert!(
+        agree.is_empty(),
+        "listed as known differences but now agree with Jason: {agree:?}"
+    );
+}
