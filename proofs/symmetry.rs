@@ -204,6 +204,7 @@ impl Fixture {
         }
         State {
             beliefs,
+            order: s.order.iter().map(|a| map[a.0 as usize]).collect(),
             events: s
                 .events
                 .iter()

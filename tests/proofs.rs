@@ -565,6 +565,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
         symmetry::canonical_form_is_invariant(fx, s, p, |s| {
             let c = State {
                 beliefs: AtomSet::empty(s.beliefs.words().len() * 64),
+                order: Vec::new(),
                 events: Vec::new(),
                 intentions: Vec::new(),
                 pending: None,

@@ -174,6 +174,7 @@ impl AgentState for Packed<'_> {
         // alone.
         let beliefs = State {
             beliefs: self.beliefs().clone(),
+            order: self.order().to_vec(),
             events: Vec::new(),
             intentions: Vec::new(),
             pending: None,

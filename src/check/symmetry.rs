@@ -443,8 +443,12 @@ impl Symmetry {
                 requested |= 1 << self.request_image(r, perm);
             }
         }
+        // Renamed atoms keep their age, and their predicate (so the groups stay as they
+        // are).
+        let order: Vec<AtomId> = s.order.iter().map(|a| self.atom_image(*a, perm)).collect();
         State {
             beliefs,
+            order,
             events: s
                 .events
                 .iter()

@@ -20,6 +20,7 @@ pub mod formula;
 pub mod from_ast;
 pub mod ground;
 pub mod initial;
+pub mod internal;
 pub mod plans;
 pub mod print;
 pub mod project;

@@ -231,7 +231,16 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".succeed_goal",
     ".fail_goal",
     ".findall",
+    ".println",
+    ".fail",
+    ".my_name",
 ];
+
+/// Whether the reasoning cycle models the internal action `name` (those above, and the
+/// pure ones of [`super::internal::PURE`]).
+fn modelled_action(name: &str) -> bool {
+    INTERNAL_ACTIONS.contains(&name) || super::internal::PURE.iter().any(|(n, _)| *n == name)
+}
 
 /// The arithmetic functions bdi-check models inside expressions (`X = math.abs(Y)`), besides
 /// `.count(Query)` and `.length(List)`.
@@ -1330,7 +1339,7 @@ impl<'a> Checker<'a> {
             );
             return;
         }
-        if !INTERNAL_ACTIONS.contains(&name) {
+        if !modelled_action(name) {
             self.diags.push(
                 Diagnostic::error(
                     "input",
@@ -1341,6 +1350,8 @@ impl<'a> Checker<'a> {
                     "bdi-check models {}",
                     INTERNAL_ACTIONS
                         .iter()
+                        .copied()
+                        .chain(super::internal::PURE.iter().map(|(n, _)| *n))
                         .map(|a| format!("`{a}`"))
                         .collect::<Vec<_>>()
                         .join(", ")
@@ -1363,11 +1374,14 @@ impl<'a> Checker<'a> {
                 return;
             }
         }
+        let pure = super::internal::PURE.iter().find(|(n, _)| *n == name);
         let arities: &[usize] = match name {
-            ".print" => &[],
-            ".count" | ".member" | ".length" => &[2],
+            ".print" | ".println" => &[],
+            ".count" => &[2],
             ".findall" => &[3],
             ".drop_intention" => &[0, 1],
+            ".fail" => &[0],
+            _ if pure.is_some() => pure.map_or(&[], |(_, a)| a),
             _ => &[1],
         };
         if !arities.is_empty() && !arities.contains(&n) {

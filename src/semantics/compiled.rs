@@ -23,7 +23,10 @@
 
 use super::cycle::{Note, Semantics};
 use super::state::{hash_parts, part_hash, requests_of, Event, Intention, Pending, State};
-use crate::model::atoms::AtomSet;
+use crate::model::atoms::{AtomId, AtomSet};
+
+/// The belief base of a state: its atoms and [`State::order`].
+pub type Base = (AtomSet, Vec<AtomId>);
 use smallvec::SmallVec;
 use std::collections::{HashMap, HashSet};
 use std::hash::{BuildHasherDefault, Hash, Hasher};
@@ -181,13 +184,24 @@ impl Hash for Key {
 }
 
 impl Key {
-    fn new<T>(part: &Part<T>, beliefs: &AtomSet) -> Key {
-        let read: SmallVec<[u64; 4]> = beliefs
+    /// The key of `part` in a state with belief base `base`; `extra` is anything else the
+    /// phase depends on.
+    fn new<T>(part: &Part<T>, base: &Base, extra: u64) -> Key {
+        let mut read: SmallVec<[u64; 4]> = base
+            .0
             .words()
             .iter()
             .zip(part.reads.words())
             .map(|(b, r)| b & r)
             .collect();
+        // The order of the read beliefs, where it is kept.
+        read.extend(
+            base.1
+                .iter()
+                .filter(|a| part.reads.contains(**a))
+                .map(|a| u64::from(a.0)),
+        );
+        read.push(extra);
         let mut h = part.hash;
         for w in &read {
             h = (h.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
@@ -237,7 +251,7 @@ impl<V> Memo<V> {
 /// [`State`] it stands for, so that its fingerprint is that state's.
 #[derive(Clone, Debug)]
 pub struct Packed<'c> {
-    beliefs: &'c Part<AtomSet>,
+    beliefs: &'c Part<Base>,
     events: SmallVec<[&'c Part<Event>; 4]>,
     intentions: SmallVec<[&'c Part<Intention>; 4]>,
     pending: Option<&'c Part<Pending>>,
@@ -272,7 +286,12 @@ impl Hash for Packed<'_> {
 impl Packed<'_> {
     /// The beliefs.
     pub fn beliefs(&self) -> &AtomSet {
-        &self.beliefs.value
+        &self.beliefs.value.0
+    }
+
+    /// Their order (see [`State::order`]).
+    pub fn order(&self) -> &[AtomId] {
+        &self.beliefs.value.1
     }
 
     /// The first event of the queue.
@@ -322,13 +341,14 @@ struct Chosen {
     notes: Box<[Note]>,
 }
 
-/// One act phase (or its `ProcAct` stage): the atoms it adds and removes, the events it
-/// queues, the intention that goes to the back of the queue (none when it finished,
-/// failed, was suspended or waits for its action's feedback), the intention that waits
-/// for its action's feedback, its notes.
+/// One act phase (or its `ProcAct` stage): the atoms it adds and removes (and those added
+/// whose order is kept, newest first), the events it queues, the intention that goes to
+/// the back of the queue (none when it finished, failed, was suspended or waits for its
+/// action's feedback), the intention that waits for its action's feedback, its notes.
 struct Acted {
     added: AtomSet,
     removed: AtomSet,
+    front: Vec<AtomId>,
     events: SmallVec<[Held<Part<Event>>; 2]>,
     back: Option<Held<Part<Intention>>>,
     pending: Option<Held<Part<Pending>>>,
@@ -338,7 +358,7 @@ struct Acted {
 /// The compiled transition system of a [`Semantics`] whose library is local.
 pub struct Compiled<'s, 'p> {
     sem: &'s Semantics<'p>,
-    beliefs: Interner<AtomSet>,
+    beliefs: Interner<Base>,
     events: Interner<Event>,
     intentions: Interner<Intention>,
     pendings: Interner<Pending>,
@@ -396,7 +416,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         self.sem
     }
 
-    fn belief_set(&self, b: AtomSet) -> Held<Part<AtomSet>> {
+    fn belief_set(&self, b: Base) -> Held<Part<Base>> {
         self.beliefs.intern(b, |_| AtomSet::default())
     }
 
@@ -418,7 +438,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
         // SAFETY: every `Held` here comes from this compiled system's tables.
         unsafe {
             Packed {
-                beliefs: self.belief_set(s.beliefs.clone()).get(self),
+                beliefs: self
+                    .belief_set((s.beliefs.clone(), s.order.clone()))
+                    .get(self),
                 events: s
                     .events
                     .iter()
@@ -441,7 +463,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// The state a packed one stands for.
     pub fn unpack(&self, p: &Packed) -> State {
         State {
-            beliefs: p.beliefs.value.clone(),
+            beliefs: p.beliefs.value.0.clone(),
+            order: p.beliefs.value.1.clone(),
             events: p.events.iter().map(|e| e.value.clone()).collect(),
             intentions: p.intentions.iter().map(|i| i.value.clone()).collect(),
             pending: p.pending.map(|x| x.value.clone()),
@@ -495,7 +518,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             out.push((notes, next));
             return out;
         };
-        let key = Key::new(event, &p.beliefs.value);
+        let key = Key::new(event, &p.beliefs.value, 0);
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         let chosen = unsafe {
             self.deliberations
@@ -528,13 +551,14 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let Some(pending) = p.pending.take() else {
             return;
         };
-        let key = Key::new(pending, &p.beliefs.value);
+        let key = Key::new(pending, &p.beliefs.value, 0);
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let done = self
                 .proc_acts
                 .get(key, || {
-                    let mut s = Self::alone(&AtomSet::default(), &AtomSet::default(), None);
+                    let none = (AtomSet::default(), Vec::new());
+                    let mut s = Self::alone(&none, &AtomSet::default(), None);
                     s.pending = Some(pending.value.clone());
                     let mut notes = Vec::new();
                     self.sem.proc_act(&mut s, &mut notes);
@@ -542,6 +566,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     Acted {
                         added: AtomSet::default(),
                         removed: AtomSet::default(),
+                        front: Vec::new(),
                         events: s.events.into_iter().map(|e| self.event(e)).collect(),
                         back: s.intentions.pop().map(|i| self.intention(i)),
                         pending: None,
@@ -561,18 +586,23 @@ impl<'s, 'p> Compiled<'s, 'p> {
             return;
         }
         let first = p.intentions.remove(0);
-        let held: &'c Part<AtomSet> = p.beliefs;
-        let beliefs = &held.value;
-        let key = Key::new(first, beliefs);
+        let held: &'c Part<Base> = p.beliefs;
+        let base = &held.value;
+        // How many environment atoms hold decides the order of perceived effects.
+        let env = self.sem.env_count(&base.0);
+        let key = Key::new(first, base, env as u64);
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let acted = self
                 .acts
-                .get(key, || self.compute_act(first, beliefs))
+                .get(key, || self.compute_act(first, base, env))
                 .get(self);
             if !acted.added.is_empty() || !acted.removed.is_empty() {
-                let next = beliefs.with_changes(&acted.added, &acted.removed);
-                p.beliefs = self.belief_set(next).get(self);
+                let next = base.0.with_changes(&acted.added, &acted.removed);
+                let mut order = base.1.clone();
+                self.sem
+                    .reorder_front(&mut order, &acted.front, &acted.removed, &acted.added);
+                p.beliefs = self.belief_set((next, order)).get(self);
             }
             p.events.extend(acted.events.iter().map(|e| e.get(self)));
             p.intentions.extend(acted.back.map(|i| i.get(self)));
@@ -585,9 +615,15 @@ impl<'s, 'p> Compiled<'s, 'p> {
 
     /// A state with only the beliefs `reads` selects and the given intention: what a phase
     /// that reads no more sees of a whole state.
-    fn alone(beliefs: &AtomSet, reads: &AtomSet, intention: Option<&Intention>) -> State {
+    fn alone(base: &Base, reads: &AtomSet, intention: Option<&Intention>) -> State {
         State {
-            beliefs: beliefs.intersection(reads),
+            beliefs: base.0.intersection(reads),
+            order: base
+                .1
+                .iter()
+                .copied()
+                .filter(|a| reads.contains(*a))
+                .collect(),
             events: Vec::new(),
             intentions: intention.into_iter().cloned().collect(),
             pending: None,
@@ -595,7 +631,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
     }
 
-    fn deliberate(&self, event: &Part<Event>, beliefs: &AtomSet) -> Vec<Chosen> {
+    fn deliberate(&self, event: &Part<Event>, beliefs: &Base) -> Vec<Chosen> {
         let read = Self::alone(beliefs, &event.reads, None);
         let before = read.beliefs.clone();
         self.sem
@@ -613,14 +649,21 @@ impl<'s, 'p> Compiled<'s, 'p> {
             .collect()
     }
 
-    fn compute_act(&self, intention: &Part<Intention>, beliefs: &AtomSet) -> Acted {
-        let mut s = Self::alone(beliefs, &intention.reads, Some(&intention.value));
+    fn compute_act(&self, intention: &Part<Intention>, base: &Base, env: usize) -> Acted {
+        let mut s = Self::alone(base, &intention.reads, Some(&intention.value));
         let before = s.beliefs.clone();
         let mut notes = Vec::new();
-        self.sem.act(&mut s, &mut notes);
+        self.sem.act_with(&mut s, &mut notes, env);
         debug_assert!(s.intentions.len() <= 1, "one intention at most");
+        let added = s.beliefs.difference(&before);
         Acted {
-            added: s.beliefs.difference(&before),
+            front: s
+                .order
+                .iter()
+                .copied()
+                .filter(|a| added.contains(*a))
+                .collect(),
+            added,
             removed: before.difference(&s.beliefs),
             events: s.events.into_iter().map(|e| self.event(e)).collect(),
             back: s.intentions.pop().map(|i| self.intention(i)),

@@ -21,6 +21,7 @@
 //! with a relevant `-!g` plan gets a `-!g` event, and the frames above it go; with no such
 //! goal the intention is dropped and the failure is reported.
 
+use super::java_hash::{literal_hash, JArg};
 use super::query::{eval, relation, Beliefs};
 use super::state::{
     ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
@@ -208,6 +209,17 @@ pub struct Semantics<'p> {
     local: bool,
     /// Per rule head (functor, arity): every atom proving it may read.
     rule_reads: HashMap<(String, usize), AtomSet>,
+    /// The agent's name: Jason names an agent run without a `.mas2j` after its source
+    /// file (`kitchen.asl` is `kitchen`).
+    agent_name: String,
+    /// Per predicate: whether the order of its beliefs can decide an answer (some query
+    /// asks it with a variable, or `-b`/`-+b` removes the first of several).
+    ordered: Vec<bool>,
+    /// Per atom: the `hashCode()` of the literal Jason builds for it, which places it in
+    /// `Agent.buf`'s set of percepts.
+    jhash: Vec<i32>,
+    /// The environment's atoms.
+    env_atoms: AtomSet,
 }
 
 fn op_key(op: TriggerOp) -> u8 {
@@ -289,9 +301,110 @@ impl<'p> Semantics<'p> {
                 .iter()
                 .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
             rule_reads: HashMap::new(),
+            ordered: Vec::new(),
+            jhash: Vec::new(),
+            env_atoms: AtomSet::empty(project.atoms.len()),
+            agent_name: m
+                .agent
+                .plans
+                .path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "agent".into()),
         };
         sem.rule_reads = sem.compute_rule_reads();
+        sem.ordered = ordered_predicates(project);
+        let atoms = &project.atoms;
+        for a in (0..atoms.len() as u32).map(AtomId) {
+            let (p, args) = atoms.decode(a);
+            let names: Vec<&str> = args
+                .iter()
+                .map(|o| project.universe.object_name(*o))
+                .collect();
+            let jargs: Vec<JArg> = names.iter().map(|n| JArg::Atom(n)).collect();
+            sem.jhash.push(literal_hash(atoms.pred_name(p), &jargs));
+            if sem.environment[p.0 as usize] {
+                sem.env_atoms.insert(a);
+            }
+        }
         Ok(sem)
+    }
+
+    /// Whether the order of predicate `p`'s beliefs is kept in [`State::order`].
+    pub fn is_ordered(&self, p: crate::model::atoms::PredId) -> bool {
+        self.ordered[p.0 as usize]
+    }
+
+    /// How many of the environment's atoms hold in `beliefs`.
+    pub fn env_count(&self, beliefs: &AtomSet) -> usize {
+        beliefs.intersection(&self.env_atoms).count()
+    }
+
+    /// Sorts percepts as Jason's belief update meets them: `Agent.buf` puts the perceived
+    /// literals (given in atom order) in a fresh `HashSet` and goes through it, so the
+    /// order is the set's bucket order for a set of `size` elements
+    /// (`java.util.HashMap`: 16 buckets, doubled past three quarters full; a bucket keeps
+    /// insertion order). Removed percepts are taken in the same bucket order (Jason goes
+    /// through its belief base's percept set, whose buckets may hold them in the order
+    /// they were first perceived: where two share a bucket, atom order is used).
+    fn java_order(&self, atoms: &mut [AtomId], size: usize) {
+        if atoms.len() < 2 {
+            return;
+        }
+        let mut cap: u32 = 16;
+        while size as u32 > cap / 4 * 3 {
+            cap *= 2;
+        }
+        let bucket = |a: &AtomId| {
+            let h = self.jhash[a.0 as usize] as u32;
+            (h ^ (h >> 16)) & (cap - 1)
+        };
+        atoms.sort_by_key(|a| (bucket(a), a.0));
+    }
+
+    /// Applies to a whole state's `order` what an act phase did to the order of the
+    /// beliefs it read: `removed` and `added` leave their places, and `front` (the added
+    /// ones whose order is kept, newest first) goes in front of their predicates' beliefs.
+    pub(super) fn reorder_front(
+        &self,
+        order: &mut Vec<AtomId>,
+        front: &[AtomId],
+        removed: &AtomSet,
+        added: &AtomSet,
+    ) {
+        order.retain(|a| !removed.contains(*a) && !added.contains(*a));
+        let pred = |a: AtomId| self.project.atoms.decode(a).0;
+        // Inserting the oldest first in front of its group leaves the newest in front.
+        for &a in front.iter().rev() {
+            let p = pred(a);
+            let at = order
+                .iter()
+                .position(|x| pred(*x) >= p)
+                .unwrap_or(order.len());
+            order.insert(at, a);
+        }
+    }
+
+    /// Keeps [`State::order`] for a belief added (in front of its predicate's beliefs)
+    /// or removed.
+    fn reorder(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
+        let pred = |a: AtomId| self.project.atoms.decode(a).0;
+        for &a in removed.iter().chain(added) {
+            if self.is_ordered(pred(a)) {
+                s.order.retain(|x| *x != a);
+            }
+        }
+        for &a in added {
+            let p = pred(a);
+            if self.is_ordered(p) {
+                let at = s
+                    .order
+                    .iter()
+                    .position(|x| pred(*x) >= p)
+                    .unwrap_or(s.order.len());
+                s.order.insert(at, a);
+            }
+        }
     }
 
     /// The atoms each rule head's proof may read: those its bodies query, and those of
@@ -518,6 +631,8 @@ impl<'p> Semantics<'p> {
             selected: None,
             rules: &self.project.plans.rules,
             depth: std::cell::Cell::new(0),
+            agent_name: &self.agent_name,
+            ordered: &self.ordered,
         }
     }
 
@@ -550,6 +665,7 @@ impl<'p> Semantics<'p> {
     pub fn initial_state(&self, beliefs: &AtomSet) -> State {
         let mut s = State {
             beliefs: beliefs.clone(),
+            order: Vec::new(),
             events: Vec::new(),
             intentions: Vec::new(),
             pending: None,
@@ -557,6 +673,8 @@ impl<'p> Semantics<'p> {
         };
         let notes = &self.project.initial.agent_beliefs;
         let noted: Vec<AtomId> = notes.iter().rev().copied().collect();
+        s.beliefs = AtomSet::empty(beliefs.words().len() * 64);
+        noted.iter().for_each(|a| s.beliefs.insert(*a));
         self.perceive(&mut s, &noted, &[]);
         for (k, (goal, _)) in self.project.plans.initial_goals.iter().enumerate() {
             s.events.push(Event {
@@ -570,7 +688,10 @@ impl<'p> Semantics<'p> {
                 posted_at: None,
             });
         }
-        let perceived: Vec<AtomId> = beliefs.iter().filter(|a| !notes.contains(a)).collect();
+        let mut perceived: Vec<AtomId> = beliefs.iter().filter(|a| !notes.contains(a)).collect();
+        let n = perceived.len();
+        self.java_order(&mut perceived, n);
+        s.beliefs = beliefs.clone();
         self.perceive(&mut s, &perceived, &[]);
         s
     }
@@ -588,8 +709,11 @@ impl<'p> Semantics<'p> {
             .map(|i| i as u8)
     }
 
-    /// Queues `+p`/`-p` for changed atoms that some plan is relevant for.
+    /// Records beliefs just added and removed, in the order Jason adds and removes them:
+    /// [`State::order`] is updated, and `+p`/`-p` queued for those some plan is relevant
+    /// for (deletions first, as `Agent.buf` does).
     fn perceive(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
+        self.reorder(s, added, removed);
         let b = self.beliefs(s);
         let mut new_events = Vec::new();
         for (atoms, op) in [(removed, TriggerOp::Del), (added, TriggerOp::Add)] {
@@ -830,9 +954,14 @@ impl<'p> Semantics<'p> {
             .intention
             .as_ref()
             .and_then(|int| self.find_event_for_failure(int, &ev.trigger));
+        let error = if self.relevant_plans(&ev.trigger).is_empty() {
+            "no_relevant"
+        } else {
+            "no_applicable"
+        };
         match (fail, ev.intention) {
             (Some(fail), Some(int)) => s.events.push(Event {
-                trigger: fail,
+                trigger: with_error(fail, error),
                 intention: Some(int),
                 origin: ev.origin,
                 posted_at: ev.posted_at,
@@ -901,6 +1030,7 @@ impl<'p> Semantics<'p> {
     /// A step of the top plan of `int` failed: Jason's `generateGoalDeletion`. The stack
     /// stays as it is (the failed plan marked failed, its step not done) and the failure
     /// event carries it; with no failure event, the intention is dropped.
+    #[allow(clippy::too_many_arguments)]
     fn fail_intention(
         &self,
         s: &mut State,
@@ -908,6 +1038,7 @@ impl<'p> Semantics<'p> {
         failed: &EventTrigger,
         step: Option<(u32, Span)>,
         reason: &str,
+        error: &str,
         notes: &mut Vec<Note>,
     ) {
         if let Some(top) = int.frames.last_mut() {
@@ -920,7 +1051,7 @@ impl<'p> Semantics<'p> {
         if let Some(fail) = self.find_event_for_failure(&int, &tevent) {
             let origin = int.origin;
             s.events.push(Event {
-                trigger: fail,
+                trigger: with_error(fail, error),
                 intention: Some(int),
                 origin,
                 posted_at: step,
@@ -1017,7 +1148,8 @@ impl<'p> Semantics<'p> {
                     .map(|f| f.trigger.clone())
                     .expect("a frame");
                 let reason = format!("{}: {}", f.action, f.why);
-                self.fail_intention(s, int, &failed, Some((f.plan, f.span)), &reason, notes);
+                let at = Some((f.plan, f.span));
+                self.fail_intention(s, int, &failed, at, &reason, "action_failed", notes);
             }
             None => {
                 if self.clear_finished(s, &mut int, notes) {
@@ -1029,13 +1161,21 @@ impl<'p> Semantics<'p> {
 
     /// The act phase: the first intention runs one step.
     pub(super) fn act(&self, s: &mut State, notes: &mut Vec<Note>) {
+        let env = self.env_count(&s.beliefs);
+        self.act_with(s, notes, env)
+    }
+
+    /// [`Semantics::act`] on a state that may hold only some of the beliefs, `env` of the
+    /// environment's atoms holding in the whole state (their number decides the order in
+    /// which Jason perceives an action's effects).
+    pub(super) fn act_with(&self, s: &mut State, notes: &mut Vec<Note>, env: usize) {
         if s.intentions.is_empty() {
             return;
         }
         let mut int = s.intentions.remove(0);
         let finished_top = int.frames.last().is_none_or(|f| f.cursors.is_empty());
         if !finished_top {
-            match self.step(s, &mut int, notes) {
+            match self.step(s, &mut int, notes, env) {
                 Flow::Continue => {}
                 Flow::Suspended | Flow::Gone => return,
             }
@@ -1120,7 +1260,13 @@ impl<'p> Semantics<'p> {
     }
 
     /// Executes the next step of the top frame.
-    fn step(&self, s: &mut State, int: &mut Intention, notes: &mut Vec<Note>) -> Flow {
+    fn step(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        notes: &mut Vec<Note>,
+        env_before: usize,
+    ) -> Flow {
         let depth = int.frames.len() - 1;
         // `.drop_intention(g)` may drop the very intention that runs it.
         let drops_itself = |g: &Term| {
@@ -1188,12 +1334,22 @@ impl<'p> Semantics<'p> {
                     reason: String,
                     notes: &mut Vec<Note>| {
             let failed = int.frames.last().map(|f| f.trigger.clone()).expect("frame");
+            // The `error(Id)` Jason's `createBasicErrorAnnots` gives the failure event.
+            let error = match step.kind {
+                BodyStep::Test(_) => "test_goal_failed",
+                BodyStep::Constraint(..) => "constraint_failed",
+                BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
+                    "belief_revision_failed"
+                }
+                _ => "ia_failed",
+            };
             sem.fail_intention(
                 s,
                 int,
                 &failed,
                 Some((plan, step.span)),
                 &format!("{text}: {reason}"),
+                error,
                 notes,
             );
             Flow::Gone
@@ -1269,7 +1425,10 @@ impl<'p> Semantics<'p> {
                     Ok(ga) => {
                         let before = s.beliefs.clone();
                         s.beliefs = ga.apply(&before);
-                        let (added, removed) = diff(&before, &s.beliefs);
+                        let (mut added, mut removed) = diff(&before, &s.beliefs);
+                        let after = env_before + added.len() - removed.len();
+                        self.java_order(&mut removed, env_before);
+                        self.java_order(&mut added, after);
                         self.perceive(s, &added, &removed);
                         notes.push(Note::Action {
                             text,
@@ -1745,6 +1904,80 @@ impl<'p> Semantics<'p> {
     }
 }
 
+/// The predicates whose belief order can decide something: those some formula of a plan
+/// or rule queries with a variable argument (outside `.count`), and those `-b` or `-+b`
+/// removes with a variable argument (the first belief that unifies goes). A predicate
+/// asked only with ground arguments has at most one answer, so its order never shows.
+fn ordered_predicates(p: &Project) -> Vec<bool> {
+    let mut out = vec![false; p.atoms.pred_count()];
+    let mark = |t: &Term, out: &mut Vec<bool>| {
+        if t.is_ground() {
+            return;
+        }
+        if let Some(q) = t.functor().and_then(|f| p.atoms.pred(f)) {
+            out[q.0 as usize] = true;
+        }
+    };
+    fn formula(f: &Formula, mark: &mut dyn FnMut(&Term)) {
+        match f {
+            Formula::True | Formula::Rel(..) => {}
+            Formula::Literal(t) => mark(t),
+            Formula::Not(g) => formula(g, mark),
+            Formula::And(a, b) | Formula::Or(a, b) => {
+                formula(a, mark);
+                formula(b, mark);
+            }
+            Formula::Call(t) => match (t.functor(), t.args()) {
+                (Some(".count"), _) => {}
+                (_, args) => args.iter().for_each(|a| {
+                    if a.is_literal() {
+                        mark(a)
+                    }
+                }),
+            },
+        }
+    }
+    fn steps(body: &[Step], mark: &mut dyn FnMut(&Term)) {
+        for st in body {
+            match &st.kind {
+                BodyStep::Test(f) => formula(f, mark),
+                BodyStep::Internal(t) => formula(&Formula::Call(t.clone()), mark),
+                BodyStep::DelBel(t) => mark(t),
+                BodyStep::DelAddBel(t) => {
+                    let vars = (0..t.arity())
+                        .map(|i| Term::var(&format!("_V{i}")))
+                        .collect();
+                    mark(&Term::structure(t.functor().unwrap_or(""), vars));
+                }
+                BodyStep::If {
+                    branches,
+                    else_body,
+                } => {
+                    for (c, b) in branches {
+                        formula(c, mark);
+                        steps(b, mark);
+                    }
+                    steps(else_body, mark);
+                }
+                BodyStep::While(c, b) | BodyStep::For(c, b) => {
+                    formula(c, mark);
+                    steps(b, mark);
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut m = |t: &Term| mark(t, &mut out);
+    for plan in &p.plans.plans {
+        formula(&plan.context, &mut m);
+        steps(&plan.body, &mut m);
+    }
+    for r in &p.plans.rules {
+        formula(&r.body, &mut m);
+    }
+    out
+}
+
 /// Internal actions that read or change intentions other than the one running them.
 const GLOBAL_ACTIONS: [&str; 6] = [
     ".desire",
@@ -1787,6 +2020,16 @@ fn step_is_local(s: &Step) -> bool {
         | BodyStep::DelAddBel(_)
         | BodyStep::Constraint(..) => true,
     }
+}
+
+/// A failure event's trigger with Jason's `error(Id)` annotation (the rest of Jason's
+/// failure annotations, `error_msg`, `code`, `code_src` and `code_line`, are not given).
+fn with_error(mut t: EventTrigger, error: &str) -> EventTrigger {
+    let annot = Term::structure("error", vec![Term::atom(error)]);
+    if let Some(l) = t.literal.add_annots([annot]) {
+        t.literal = l;
+    }
+    t
 }
 
 /// What became of the intention after a step.

@@ -9,7 +9,6 @@
 
 pub mod compiled;
 pub mod cycle;
-pub mod internal;
 pub mod java_hash;
 pub mod query;
 pub mod state;

@@ -10,6 +10,7 @@
 use super::state::{Intention, State};
 use crate::model::arith::{self, ArithError, OPERATORS};
 use crate::model::atoms::{AtomId, AtomTable};
+use crate::model::internal;
 use crate::model::plans::{Formula, Rule};
 use crate::model::term::Term;
 use crate::model::universe::Universe;
@@ -34,6 +35,10 @@ pub struct Beliefs<'a> {
     /// How deep in rule calls the query being answered is (rules' variables are renamed
     /// apart by depth).
     pub depth: std::cell::Cell<u32>,
+    /// The agent's name, for `.my_name`.
+    pub agent_name: &'a str,
+    /// Per predicate: whether answers follow [`State::order`] (else atom order).
+    pub ordered: &'a [bool],
 }
 
 /// Variables of a rule called at depth `d` have generation `RULE_GENERATION + d`.
@@ -66,6 +71,12 @@ fn eval_ground(t: &Term) -> Result<Term, ArithError> {
                     }
                 }
             }
+            // Arithmetic functions (`math.abs(X)`), once their arguments are ground.
+            if args.iter().all(Term::is_ground) {
+                if let Some(v) = internal::function(f, &args) {
+                    return v.map_err(|_| ArithError::NotFinite);
+                }
+            }
             Ok(Term::literal(
                 st.functor(),
                 st.negated(),
@@ -83,7 +94,11 @@ fn eval_ground(t: &Term) -> Result<Term, ArithError> {
 /// Whether a term holds an arithmetic operator structure anywhere in its arguments.
 fn has_arith(t: &Term) -> bool {
     match t {
-        Term::Struct(st) => OPERATORS.contains(&st.functor()) || st.args().iter().any(has_arith),
+        Term::Struct(st) => {
+            OPERATORS.contains(&st.functor())
+                || internal::FUNCTIONS.iter().any(|(f, _)| *f == st.functor())
+                || st.args().iter().any(has_arith)
+        }
         Term::Cons(c) => has_arith(c.head()) || has_arith(c.tail()),
         _ => false,
     }
@@ -122,7 +137,21 @@ impl Beliefs<'_> {
             return Vec::new();
         }
         let mut out = Vec::new();
-        for a in self.atoms.atoms_of(p) {
+        // Jason's belief-base order: newest first, where the order can show.
+        let ordered: Vec<AtomId>;
+        let candidates: &mut dyn Iterator<Item = AtomId> = if self.ordered[p.0 as usize] {
+            ordered = self
+                .state
+                .order
+                .iter()
+                .copied()
+                .filter(|a| self.atoms.decode(*a).0 == p)
+                .collect();
+            &mut ordered.iter().copied()
+        } else {
+            &mut self.atoms.atoms_of(p)
+        };
+        for a in candidates {
             if !self.state.beliefs.contains(a) {
                 continue;
             }
@@ -252,7 +281,21 @@ impl Beliefs<'_> {
             }
             (".desire", [g]) => self.goals(g, s, true),
             (".intend", [g]) => self.goals(g, s, false),
-            _ => Vec::new(),
+            (".fail", []) => Vec::new(),
+            (".my_name", [n]) => unify_with(n, Term::atom(self.agent_name))
+                .into_iter()
+                .collect(),
+            (name, args) => {
+                // Jason evaluates the arguments first (`prepareArguments`).
+                let Ok(args) = args
+                    .iter()
+                    .map(|a| eval(a, s))
+                    .collect::<Result<Vec<_>, _>>()
+                else {
+                    return Vec::new();
+                };
+                internal::call(name, &args, s).unwrap_or_default()
+            }
         }
     }
 

@@ -1,7 +1,7 @@
 //! The agent's state in the transition system: beliefs, the event queue, the intentions,
 //! and which requests the user has made.
 
-use crate::model::atoms::AtomSet;
+use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::term::Term;
 use crate::model::Substitution;
 use crate::syntax::ast::{TriggerKind, TriggerOp};
@@ -148,6 +148,11 @@ pub struct ActionFailure {
 pub struct State {
     /// Beliefs: the environment's atoms as perceived (exactly) and the mental notes.
     pub beliefs: AtomSet,
+    /// Jason's belief-base order where it can matter: the believed atoms of the
+    /// predicates some query asks with variables ([`super::Semantics::is_ordered`]),
+    /// grouped by predicate (in predicate order), newest first in each group, as
+    /// `DefaultBeliefBase` keeps a predicate's beliefs (each added one goes in front).
+    pub order: Vec<AtomId>,
     /// Pending events, first in first out.
     pub events: Vec<Event>,
     /// Running intentions, in round-robin order: the first runs next.
@@ -191,7 +196,7 @@ impl Hash for State {
     fn hash<H: Hasher>(&self, h: &mut H) {
         hash_parts(
             h,
-            part_hash(&self.beliefs),
+            part_hash(&(&self.beliefs, &self.order)),
             self.events.iter().map(part_hash),
             self.intentions.iter().map(part_hash),
             self.pending.as_ref().map(part_hash),
