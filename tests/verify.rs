@@ -256,15 +256,17 @@ fn lint_warnings_no_run_reaches_become_notes() {
 #[test]
 fn exploration_counts_equal_a_count_by_hand() {
     // Two initial states (door open or closed). From each: idle -> (request) -> event
-    // queued -> (cycle: plan chosen, navigateTo(dishwasher)) -> (cycle: navigateTo(table),
-    // intention done) -> idle with the request made: 4 states and 3 transitions each.
+    // queued -> (cycle: plan chosen, navigateTo(dishwasher) sent, the intention waits for
+    // its feedback) -> (cycle: feedback, back in the queue, navigateTo(table) sent) ->
+    // (cycle: feedback, intention done) -> idle with the request made: 5 states and 4
+    // transitions each.
     let (code, r, _) = verify_json("tests/verify/tiny", "tiny");
     assert_eq!(code, 0, "{r:#}");
     let s = &r["stats"];
     assert_eq!(s["initial_states"], 2);
-    assert_eq!(s["states"], 8);
-    assert_eq!(s["transitions"], 6);
-    assert_eq!(s["depth"], 3);
+    assert_eq!(s["states"], 10);
+    assert_eq!(s["transitions"], 8);
+    assert_eq!(s["depth"], 4);
 }
 
 #[test]
@@ -358,11 +360,11 @@ fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
         "{dot}"
     );
     assert_eq!(dot.matches(" -> ").count(), 3, "{dot}");
-    // The paper's state graph is small enough to draw whole: 13 states, 11 transitions.
+    // The paper's state graph is small enough to draw whole: 14 states, 12 transitions.
     let o = bdi_check(&["graph", "specs/paper", "--states"]);
     let dot = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(dot.matches("[ label = \"s").count(), 13, "{dot}");
-    assert_eq!(dot.matches(" -> ").count(), 11, "{dot}");
+    assert_eq!(dot.matches("[ label = \"s").count(), 14, "{dot}");
+    assert_eq!(dot.matches(" -> ").count(), 12, "{dot}");
     assert!(dot.contains("navigateTo(dishwasher)"));
     // The kitchen's is not, and the tool says so.
     let o = bdi_check(&["graph", "specs/kitchen", "--states"]);

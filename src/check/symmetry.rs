@@ -492,6 +492,15 @@ impl Symmetry {
         {
             self.intention_objects(i, &mut out);
         }
+        // The belief-base order tells interchangeable objects apart too: `cupAt(cup2, _)`
+        // added after `cupAt(cup1, _)` is answered first.
+        for a in &s.order {
+            for &(_, _, o) in &self.atom_args[a.0 as usize] {
+                if !out.contains(&o) {
+                    out.push(o);
+                }
+            }
+        }
         out
     }
 

@@ -67,12 +67,24 @@ impl std::error::Error for ConvertError {}
 pub struct Converter {
     /// The number of anonymous variables created so far.
     anon: u32,
+    /// Whether arithmetic with variables is kept as an operator structure (`+(N, 1)`),
+    /// to be evaluated when the plan runs, instead of refused.
+    keep_arith: bool,
 }
 
 impl Converter {
     /// A converter whose first anonymous variable will be `_1`.
     pub fn new() -> Converter {
         Converter::default()
+    }
+
+    /// A converter for plan bodies: arithmetic with variables, anywhere in a term, is
+    /// kept as a structure whose functor is the operator (`!count(N - 1)`).
+    pub fn for_plans() -> Converter {
+        Converter {
+            keep_arith: true,
+            ..Converter::default()
+        }
     }
 
     /// A new anonymous variable, as for one `_` of the source.
@@ -99,7 +111,24 @@ impl Converter {
                 Ok(self.var(&v.name))
             }
             ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Unary(..) | ExprKind::Arith(..) => {
-                self.number(e).map(Term::Num)
+                match self.number(e) {
+                    Err(err)
+                        if self.keep_arith && err.kind == ConvertErrorKind::NonConstantArith =>
+                    {
+                        match &e.kind {
+                            ExprKind::Arith(op, a, b) => Ok(Term::structure(
+                                op.symbol(),
+                                vec![self.term(a)?, self.term(b)?],
+                            )),
+                            ExprKind::Unary(crate::syntax::ast::UnaryOp::Neg, a) => {
+                                Ok(Term::structure("-", vec![self.term(a)?]))
+                            }
+                            ExprKind::Unary(_, a) => self.term(a),
+                            _ => Err(err),
+                        }
+                    }
+                    r => r.map(Term::Num),
+                }
             }
             ExprKind::Str(s) => Ok(Term::string(s)),
             ExprKind::List(l) => self.list(l),

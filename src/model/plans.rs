@@ -247,7 +247,7 @@ fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
     if !p.sub_plans.is_empty() {
         return Err(unsupported(p.span, "sub-plans"));
     }
-    let mut c = Converter::new();
+    let mut c = Converter::for_plans();
     let literal = match &p.trigger.literal.kind {
         ExprKind::Literal(l) => c.literal(l).map_err(convert_error)?,
         _ => return Err(unsupported(p.trigger.span, "variables as triggers")),
@@ -353,6 +353,16 @@ fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnos
                 new_focus: true,
             },
             StepKind::Test(e) => BodyStep::Test(formula(c, e)?),
+            StepKind::AddBel(e)
+            | StepKind::AddBelEnd(e)
+            | StepKind::AddBelNewFocus(e)
+            | StepKind::DelBel(e)
+            | StepKind::DelBelNewFocus(e)
+            | StepKind::DelAddBel(e)
+                if matches!(&e.kind, ExprKind::Literal(l) if l.negated) =>
+            {
+                return Err(super::project::strong_negation(e.span));
+            }
             StepKind::AddBel(e) | StepKind::AddBelEnd(e) | StepKind::AddBelNewFocus(e) => {
                 if matches!(e.kind, ExprKind::PlanTerm(_)) {
                     return Err(unsupported(s.span, "plans added at run time"));

@@ -12,7 +12,7 @@ use super::vocabulary::{self, Vocabulary};
 use crate::syntax::ast::{ExprKind, Item, Literal};
 use crate::syntax::manifest::{load_manifest, Manifest};
 use crate::syntax::pddl::{parse_domain, Domain};
-use crate::syntax::{load_agent, Diagnostic, LoadedAgent, SourceMap, Span};
+use crate::syntax::{Diagnostic, LoadedAgent, SourceMap, Span};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -78,7 +78,12 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         Err(d) => return fail(map, d),
     };
     let mut errors = Vec::new();
-    let agent = load_agent(&manifest.agent.plans.path, &mut map).map_err(|d| errors.extend(d));
+    let agent = crate::syntax::loader::load_agent_with(
+        &manifest.agent.plans.path,
+        &mut map,
+        &manifest.agent.source_path,
+    )
+    .map_err(|d| errors.extend(d));
     let domain = load_domain(&manifest, &mut map).map_err(|d| errors.extend(d));
     let (Ok(agent), Ok(domain)) = (agent, domain) else {
         return fail(map, errors);
@@ -245,8 +250,21 @@ fn load_domain(manifest: &Manifest, map: &mut SourceMap) -> Result<Domain, Vec<D
 }
 
 /// The atom a ground literal names.
+/// The refusal of a strongly negated belief (`~p`), which the model's atoms cannot hold.
+pub fn strong_negation(span: Span) -> Diagnostic {
+    Diagnostic::error(
+        "input",
+        "strongly negated beliefs (`~p`) are not modelled by bdi-check yet",
+    )
+    .with_label(span, "a belief `~p`, apart from `p`")
+    .with_help("Jason keeps `~p` as a belief of its own; write it as a mental note such as `not_p`")
+}
+
 fn ground_atom(l: &Literal, atoms: &AtomTable, universe: &Universe) -> Result<AtomId, Diagnostic> {
     let bad = |span: Span, msg: String| Diagnostic::error("input", msg).with_label(span, "here");
+    if l.negated {
+        return Err(strong_negation(l.span));
+    }
     let p = atoms
         .pred(&l.functor)
         .ok_or_else(|| bad(l.span, format!("`{}` is not a predicate", l.functor)))?;

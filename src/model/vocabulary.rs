@@ -85,6 +85,10 @@ pub struct Vocabulary {
     /// nor the `emitted_by` action, in source order (one entry per call). Not an error: the
     /// caller reports them as `undefined-action` findings.
     pub undefined_actions: Vec<UndefinedAction>,
+    /// Test goals `?p(...)` on a predicate nothing defines (no PDDL predicate, mental
+    /// note, rule or `+?p` plan): Jason just fails them, so they are lint findings
+    /// (`undefined-predicate`), not bad input.
+    pub undefined_tests: Vec<UndefinedAction>,
 }
 
 /// A predicate: its name and parameter types.
@@ -305,6 +309,7 @@ pub fn check(
         goals,
         rules,
         undefined,
+        undefined_tests,
         ..
     } = c;
     if !diags.is_empty() {
@@ -357,6 +362,7 @@ pub fn check(
             })
             .collect(),
         undefined_actions: undefined,
+        undefined_tests,
     })
 }
 
@@ -506,6 +512,7 @@ struct Checker<'a> {
     emitted_by: Option<String>,
     clauses: Vec<Clause>,
     undefined: Vec<UndefinedAction>,
+    undefined_tests: Vec<UndefinedAction>,
     diags: Vec<Diagnostic>,
 }
 
@@ -538,6 +545,7 @@ impl<'a> Checker<'a> {
                 .map(|e| e.value.clone()),
             clauses: Vec::new(),
             undefined: Vec::new(),
+            undefined_tests: Vec::new(),
             diags: Vec::new(),
         };
         for p in &domain.predicates {
@@ -1108,7 +1116,18 @@ impl<'a> Checker<'a> {
             }
             return;
         }
-        // Unknown.
+        // Unknown. A test goal on it just fails in Jason: a lint finding.
+        if usage == Usage::Test && scope == Scope::Agent {
+            self.undefined_tests.push(UndefinedAction {
+                name: name.to_string(),
+                arity,
+                span: l.span,
+            });
+            for a in &l.args {
+                self.term(cl, a, scope);
+            }
+            return;
+        }
         let mut names: Vec<&str> = self.preds.iter().map(|p| p.name.as_str()).collect();
         if usage != Usage::Fact {
             names.extend(self.rules.iter().map(|r| r.name.as_str()));

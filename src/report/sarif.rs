@@ -237,6 +237,7 @@ fn describe(check: &str) -> &'static str {
             "An action can lead from a state to one that breaks an invariant"
         }
         "undefined-action" => "A plan calls an action that nothing defines",
+        "undefined-predicate" => "A test goal asks a predicate that nothing defines",
         "unused-action" => "A PDDL action that no plan calls",
         "no-plan-for-goal" => "A goal is posted or requested that no plan handles",
         "invariant" => "An invariant fails in a reachable state",

@@ -610,11 +610,15 @@ impl<'p> Semantics<'p> {
 
     /// The event of request `r`.
     pub fn request_event(&self, r: usize) -> Event {
+        // Posted as Jason posts an initial goal (`source(self)`), or, when the manifest says
+        // who asks, as that agent's `achieve` message (`source(from)`).
+        let from = self.project.manifest.requests.from.as_ref();
+        let source = from.map_or("self", |f| f.value.as_str());
         Event {
             trigger: EventTrigger {
                 op: TriggerOp::Add,
                 kind: TriggerKind::Achieve,
-                literal: self.requests[r].clone(),
+                literal: with_source(&self.requests[r], source),
             },
             intention: None,
             origin: Origin::Request(r as u8),
@@ -681,7 +685,7 @@ impl<'p> Semantics<'p> {
                 trigger: EventTrigger {
                     op: TriggerOp::Add,
                     kind: TriggerKind::Achieve,
-                    literal: goal.clone(),
+                    literal: with_source(goal, "self"),
                 },
                 intention: None,
                 origin: Origin::InitialGoal(k as u8),
@@ -1513,7 +1517,8 @@ impl<'p> Semantics<'p> {
                 notes.push(Note::Internal { text, plan, origin });
             }
             BodyStep::Achieve { goal, new_focus } => {
-                let literal = value!(goal).map_vars(&mut |v| {
+                // Jason's `prepareBodyForEvent` gives the subgoal `source(self)`.
+                let literal = with_source(&value!(goal), "self").map_vars(&mut |v| {
                     if v.generation() == 0 {
                         Term::from(v.with_generation(depth as u32 + 1))
                     } else {
@@ -1549,6 +1554,34 @@ impl<'p> Semantics<'p> {
                 match self.beliefs(s).answers(f, &frame.subst).into_iter().next() {
                     Some(a) => frame.subst = a,
                     None => {
+                        // Jason's `applyExecInt` (test): with no answer, a literal whose
+                        // `+?g` some plan is relevant for becomes that event, as a subgoal.
+                        if let Formula::Literal(t) = f {
+                            let literal = with_source(&frame.subst.apply(t), "self");
+                            let trigger = EventTrigger {
+                                op: TriggerOp::Add,
+                                kind: TriggerKind::Test,
+                                literal: literal.map_vars(&mut |v| {
+                                    if v.generation() == 0 {
+                                        Term::from(v.with_generation(depth as u32 + 1))
+                                    } else {
+                                        Term::from(v.clone())
+                                    }
+                                }),
+                            };
+                            if !self.relevant_plans(&trigger).is_empty() {
+                                frame.calling = Some(trigger.literal.clone());
+                                self.normalize(frame, s);
+                                let suspended = std::mem::replace(int, empty_intention(origin));
+                                s.events.push(Event {
+                                    trigger,
+                                    intention: Some(suspended),
+                                    origin,
+                                    posted_at: Some((plan, step.span)),
+                                });
+                                return Flow::Suspended;
+                            }
+                        }
                         let int = std::mem::replace(int, empty_intention(origin));
                         return fail(self, s, int, "test goal", "it has no answer".into(), notes);
                     }
@@ -2020,6 +2053,16 @@ fn step_is_local(s: &Step) -> bool {
         | BodyStep::DelAddBel(_)
         | BodyStep::Constraint(..) => true,
     }
+}
+
+/// `t` annotated `source(who)`, unless it names a source already.
+fn with_source(t: &Term, who: &str) -> Term {
+    let has_source = t.annots().iter().any(|a| a.functor() == Some("source"));
+    if has_source {
+        return t.clone();
+    }
+    let annot = Term::structure("source", vec![Term::atom(who)]);
+    t.add_annots([annot]).unwrap_or_else(|| t.clone())
 }
 
 /// A failure event's trigger with Jason's `error(Id)` annotation (the rest of Jason's

@@ -261,16 +261,6 @@ impl Beliefs<'_> {
                 let k = self.answers(&Formula::Literal(q.clone()), s).len();
                 unify_with(n, Term::int(k as i64)).into_iter().collect()
             }
-            (".member", [x, l]) => match s.apply(l).list_elements() {
-                Some((elems, _)) => elems.into_iter().filter_map(|e| unify_with(x, e)).collect(),
-                None => Vec::new(),
-            },
-            (".length", [l, n]) => match s.apply(l).list_elements() {
-                Some((elems, None)) => unify_with(n, Term::int(elems.len() as i64))
-                    .into_iter()
-                    .collect(),
-                _ => Vec::new(),
-            },
             (".findall", [x, q, l]) => {
                 let items: Vec<Term> = self
                     .answers(&Formula::Literal(q.clone()), s)

@@ -21,8 +21,24 @@ pub struct EventTrigger {
 }
 
 impl fmt::Display for EventTrigger {
+    /// Jason's text of the trigger, without the `source(self)` every goal of the agent's
+    /// own carries (other annotations are shown).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (op, kind) = (self.op.symbol(), self.kind.symbol());
+        let own = Term::structure("source", vec![Term::atom("self")]);
+        if self.literal.annots().contains(&own) {
+            let rest: Vec<Term> = self
+                .literal
+                .annots()
+                .iter()
+                .filter(|a| **a != own)
+                .cloned()
+                .collect();
+            let shown = self.literal.without_annots().add_annots(rest);
+            if let Some(shown) = shown {
+                return write!(f, "{op}{kind}{shown}");
+            }
+        }
         write!(f, "{op}{kind}{}", self.literal)
     }
 }

@@ -83,6 +83,7 @@ pub const CHECKS: &[&str] = &[
     "effect-conflict",
     "action-breaks-invariant",
     "undefined-action",
+    "undefined-predicate",
     "unused-action",
     "no-plan-for-goal",
 ];
@@ -90,7 +91,11 @@ pub const CHECKS: &[&str] = &[
 /// The severity of a lint check (see the module documentation).
 pub fn severity(check: &str) -> Severity {
     match check {
-        "coverage-gap" | "plan-overlap" | "precondition" | "effect-conflict" => Severity::Warning,
+        "coverage-gap"
+        | "plan-overlap"
+        | "precondition"
+        | "effect-conflict"
+        | "undefined-predicate" => Severity::Warning,
         "unused-action" => Severity::Note,
         _ => Severity::Error,
     }
@@ -433,6 +438,7 @@ impl<'p> Linter<'p> {
         self.effect_conflicts(&base);
         self.invariant_breaks(&base);
         self.undefined_actions();
+        self.undefined_tests();
         self.unused_actions();
         self.goals_without_plans();
         self.out
@@ -1320,6 +1326,24 @@ impl<'p> Linter<'p> {
     }
 
     // ----- undefined-action, unused-action, no-plan-for-goal -----------------------------
+
+    fn undefined_tests(&mut self) {
+        for u in self.p.vocabulary.undefined_tests.clone() {
+            let msg = format!(
+                "the test goal asks `{}/{}`, which no PDDL predicate, mental note, rule or `+?` plan defines: it always fails",
+                u.name, u.arity
+            );
+            self.push(
+                "undefined-predicate",
+                Status::Fail,
+                msg,
+                u.span,
+                "undefined predicate",
+                None,
+                vec![],
+            );
+        }
+    }
 
     fn undefined_actions(&mut self) {
         let names: Vec<String> = self

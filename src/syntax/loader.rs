@@ -81,6 +81,17 @@ impl LoadedAgent {
 /// Reads `path`, parses it and every file it includes. Returns the agent, or every
 /// diagnostic met (syntax errors in any file, missing or cyclic includes).
 pub fn load_agent(path: &Path, map: &mut SourceMap) -> Result<LoadedAgent, Vec<Diagnostic>> {
+    load_agent_with(path, map, &[])
+}
+
+/// [`load_agent`] with a source path: an `include` that names no file beside the file
+/// that includes it is looked for in these folders, in order (Jason's `aslSourcePath`,
+/// `SourcePath.fixPath`).
+pub fn load_agent_with(
+    path: &Path,
+    map: &mut SourceMap,
+    source_path: &[PathBuf],
+) -> Result<LoadedAgent, Vec<Diagnostic>> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) => {
@@ -97,6 +108,7 @@ pub fn load_agent(path: &Path, map: &mut SourceMap) -> Result<LoadedAgent, Vec<D
         files: Vec::new(),
         included: Vec::new(),
         errors: Vec::new(),
+        source_path,
     };
     loader.parse_file(root, &mut vec![canonical(path)]);
     if loader.errors.is_empty() {
@@ -115,6 +127,7 @@ struct Loader<'m> {
     files: Vec<(FileId, AgentFile)>,
     included: Vec<Include>,
     errors: Vec<Diagnostic>,
+    source_path: &'m [PathBuf],
 }
 
 fn canonical(p: &Path) -> PathBuf {
@@ -182,7 +195,57 @@ impl Loader<'_> {
                 return;
             }
         };
-        let path = dir.join(&name);
+        if name.starts_with("$jasonJar") || name.starts_with("$JASON") {
+            self.errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!("`{name}` names a file inside Jason's own jar, which bdi-check does not read"),
+                )
+                .with_label(d.span, "included here")
+                .with_help("copy the file into the project and include it from there, or put its folder in `[agent] source_path`"),
+            );
+            return;
+        }
+        // Jason's `SourcePath.fixPath`: beside the including file, else along the source
+        // path.
+        let beside = dir.join(&name);
+        let path = if beside.is_file() || Path::new(&name).is_absolute() {
+            beside
+        } else {
+            match self
+                .source_path
+                .iter()
+                .map(|p| p.join(&name))
+                .find(|p| p.is_file())
+            {
+                Some(p) => p,
+                None => {
+                    let tried: Vec<String> = std::iter::once(dir.to_path_buf())
+                        .chain(self.source_path.iter().cloned())
+                        .map(|p| format!("`{}`", p.display()))
+                        .collect();
+                    self.errors.push(
+                        Diagnostic::error("input", format!("cannot include `{name}`: no such file"))
+                            .with_label(d.span, "included here")
+                            .with_help(format!(
+                                "looked in {}; add its folder to `[agent] source_path` (or `parse -I DIR`)",
+                                tried.join(", ")
+                            )),
+                    );
+                    return;
+                }
+            }
+        };
+        if !path.is_file() {
+            self.errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!("cannot include `{name}`: not a regular file"),
+                )
+                .with_label(d.span, "included here"),
+            );
+            return;
+        }
         let canon = canonical(&path);
         if stack.contains(&canon) {
             self.errors.push(

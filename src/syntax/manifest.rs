@@ -89,6 +89,9 @@ pub struct AgentSection {
     pub plans: FileRef,
     /// `actions`: the PDDL domain of the environment actions.
     pub actions: FileRef,
+    /// `source_path`: folders (relative to the manifest) where `include` also looks, as
+    /// Jason's `aslSourcePath`. Default: none.
+    pub source_path: Vec<PathBuf>,
 }
 
 /// One entry of `[objects]`: a PDDL type and its objects.
@@ -131,6 +134,9 @@ pub struct RequestsSection {
     pub max: u32,
     /// `arrival`. Default [`Arrival::Idle`].
     pub arrival: Arrival,
+    /// `from`: who asks. A request is then the `achieve` message of that agent, and its
+    /// goal carries `source(from)`; without it, `source(self)`, as an initial goal.
+    pub from: Option<Located<String>>,
 }
 
 impl Default for RequestsSection {
@@ -139,6 +145,7 @@ impl Default for RequestsSection {
             goals: Vec::new(),
             max: DEFAULT_MAX_REQUESTS,
             arrival: Arrival::Idle,
+            from: None,
         }
     }
 }
@@ -1301,7 +1308,7 @@ impl<'a> Cx<'a> {
             );
             return None;
         }
-        let t = self.section(root, "agent", &["plans", "actions"])?;
+        let t = self.section(root, "agent", &["plans", "actions", "source_path"])?;
         let header = root.get("agent").map_or(0..0, |v| v.span());
         let file = |cx: &mut Self, key: &str, kind: &str| -> Option<FileRef> {
             let Some(v) = t.get(key) else {
@@ -1330,7 +1337,23 @@ impl<'a> Cx<'a> {
         };
         let plans = file(self, "plans", "plan library");
         let actions = file(self, "actions", "action model");
+        let mut source_path = Vec::new();
+        if let Some(v) = t.get("source_path") {
+            for (folder, span) in self.strings(v, "`agent.source_path`") {
+                let path = dir.join(&folder.value);
+                if path.is_dir() {
+                    source_path.push(path);
+                } else {
+                    self.err(
+                        span,
+                        format!("source path folder `{}` does not exist", folder.value),
+                        "no such folder",
+                    );
+                }
+            }
+        }
         Some(AgentSection {
+            source_path,
             plans: plans?,
             actions: actions?,
         })
@@ -1406,7 +1429,7 @@ impl<'a> Cx<'a> {
 
     fn requests(&mut self, root: &DeTable) -> RequestsSection {
         let mut out = RequestsSection::default();
-        let Some(t) = self.section(root, "requests", &["goals", "max", "arrival"]) else {
+        let Some(t) = self.section(root, "requests", &["goals", "max", "arrival", "from"]) else {
             return out;
         };
         if let Some(v) = t.get("goals") {
@@ -1422,6 +1445,28 @@ impl<'a> Cx<'a> {
                 Some(0) => out.arrival = Arrival::Idle,
                 Some(_) => out.arrival = Arrival::Any,
                 None => {}
+            }
+        }
+        if let Some(v) = t.get("from") {
+            if let Some(name) = self.string(v, "`requests.from`") {
+                let ok = name
+                    .value
+                    .chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_lowercase())
+                    && name
+                        .value
+                        .chars()
+                        .all(|c| c.is_ascii_alphanumeric() || c == '_');
+                if ok {
+                    out.from = Some(name);
+                } else {
+                    self.err(
+                        v.span(),
+                        format!("`{}` is not an agent name", name.value),
+                        "expected a Jason atom such as `owner`",
+                    );
+                }
             }
         }
         out
