@@ -276,6 +276,11 @@ fn ground_atom(l: &Literal, atoms: &AtomTable, universe: &Universe) -> Result<At
                     .object(&o.functor)
                     .ok_or_else(|| bad(a.span, format!("`{}` is not an object", o.functor)))?,
             ),
+            ExprKind::Int(i) => args.push(
+                universe
+                    .object_of(&crate::model::Term::int(*i))
+                    .ok_or_else(|| bad(a.span, format!("`{i}` is not among `[bounds] numbers`")))?,
+            ),
             _ => return Err(bad(a.span, "expected an object".into())),
         }
     }

@@ -65,7 +65,12 @@ pub struct Universe {
     objects: Vec<ObjectInfo>,
     type_ids: HashMap<Arc<str>, TypeId>,
     object_ids: HashMap<Arc<str>, ObjectId>,
+    /// The type `number` of `[bounds] numbers`, whose objects are integers.
+    number_type: Option<TypeId>,
 }
+
+/// The name of the type of `[bounds] numbers`.
+pub const NUMBER_TYPE: &str = "number";
 
 impl Universe {
     /// Builds the domain from the PDDL types and constants and the manifest's objects.
@@ -82,6 +87,7 @@ impl Universe {
             objects: Vec::new(),
             type_ids: HashMap::new(),
             object_ids: HashMap::new(),
+            number_type: None,
         };
         u.type_ids.insert("object".into(), TypeId::OBJECT);
         for t in &domain.types {
@@ -131,6 +137,27 @@ impl Universe {
             };
             for o in &group.objects {
                 u.add_object(&o.value, ty, Origin::Manifest(o.span), &mut errors);
+            }
+        }
+        if let Some(n) = &manifest.bounds.numbers {
+            // Integers as objects of their own type, so mental notes can hold counters.
+            let ty = match u.type_ids.get(NUMBER_TYPE) {
+                Some(&t) => t,
+                None => {
+                    let id = TypeId(u.types.len() as u16);
+                    u.types.push(TypeInfo {
+                        name: NUMBER_TYPE.into(),
+                        parent: Some(TypeId::OBJECT),
+                        objects: Vec::new(),
+                    });
+                    u.type_ids.insert(NUMBER_TYPE.into(), id);
+                    id
+                }
+            };
+            u.number_type = Some(ty);
+            let (lo, hi) = n.value;
+            for i in lo..=hi {
+                u.add_object(&i.to_string(), ty, Origin::Manifest(n.span), &mut errors);
             }
         }
         for (i, o) in u.objects.iter().enumerate() {
@@ -228,6 +255,31 @@ impl Universe {
     /// An object's name.
     pub fn object_name(&self, o: ObjectId) -> &str {
         &self.objects[o.0 as usize].name
+    }
+
+    /// The object a ground term stands for: an atom by its name, an integer among
+    /// `[bounds] numbers`.
+    pub fn object_of(&self, t: &crate::model::Term) -> Option<ObjectId> {
+        match t {
+            crate::model::Term::Atom(n) => self.object(n),
+            crate::model::Term::Num(n) if self.number_type.is_some() => {
+                let o = self.object(&n.as_i64()?.to_string())?;
+                (Some(self.objects[o.0 as usize].ty) == self.number_type).then_some(o)
+            }
+            _ => None,
+        }
+    }
+
+    /// The term an object stands for: a number for the objects of `[bounds] numbers`, else
+    /// the atom of its name.
+    pub fn object_term(&self, o: ObjectId) -> crate::model::Term {
+        let info = &self.objects[o.0 as usize];
+        if Some(info.ty) == self.number_type {
+            if let Ok(i) = info.name.parse::<i64>() {
+                return crate::model::Term::int(i);
+            }
+        }
+        crate::model::Term::atom(&info.name)
     }
 
     /// An object's name, shared.

@@ -509,6 +509,8 @@ struct Checker<'a> {
     test_goals: HashSet<String>,
     /// Names of the non-internal actions the plans call.
     called: HashSet<String>,
+    /// `[bounds] numbers` is declared: integers are objects.
+    numbers: bool,
     emitted_by: Option<String>,
     clauses: Vec<Clause>,
     undefined: Vec<UndefinedAction>,
@@ -538,6 +540,7 @@ impl<'a> Checker<'a> {
             rule_ids: HashMap::new(),
             test_goals: HashSet::new(),
             called: HashSet::new(),
+            numbers: manifest.bounds.numbers.is_some(),
             emitted_by: manifest
                 .explanation
                 .as_ref()
@@ -1169,8 +1172,34 @@ impl<'a> Checker<'a> {
         true
     }
 
-    /// An argument of a PDDL predicate, PDDL action or mental note: a variable or an object.
+    /// An argument of a PDDL predicate, PDDL action or mental note: a variable or an object
+    /// (an integer, with `[bounds] numbers`; arithmetic then too, untyped: it is checked
+    /// against the numbers when it runs).
     fn strict_arg(&mut self, cl: &mut Clause, a: &Expr, sig: Sig, index: usize, role: Role) {
+        if self.numbers {
+            let int = match &a.kind {
+                ExprKind::Int(i) => Some(i.to_string()),
+                ExprKind::Unary(crate::syntax::ast::UnaryOp::Neg, x) => match &x.kind {
+                    ExprKind::Int(i) => Some(format!("-{i}")),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Some(name) = int {
+                cl.occs.push(Occ {
+                    arg: Arg::Const(name),
+                    span: a.span,
+                    sig,
+                    index,
+                    role,
+                });
+                return;
+            }
+            if matches!(a.kind, ExprKind::Arith(..) | ExprKind::Unary(..)) {
+                self.term(cl, a, Scope::Agent);
+                return;
+            }
+        }
         if !Self::typed_arg(cl, a, sig, index, role) {
             let what = match &a.kind {
                 ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Unary(..) => "a number",
@@ -1187,7 +1216,11 @@ impl<'a> Checker<'a> {
                 ),
             )
             .with_label(a.span, format!("{what}, not an object"))
-            .with_help("numbers, strings, lists and structured terms are not supported as arguments of predicates, actions and mental notes");
+            .with_help(if what == "a number" || what == "an arithmetic expression" {
+                "declare the integers mental notes may hold, such as `[bounds] numbers = [0, 10]`"
+            } else {
+                "strings, lists and structured terms are not supported as arguments of predicates, actions and mental notes"
+            });
             self.diags.push(d);
         }
     }

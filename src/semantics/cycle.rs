@@ -582,10 +582,7 @@ impl<'p> Semantics<'p> {
         let fixed: Vec<Option<ObjectId>> = lit
             .args()
             .iter()
-            .map(|a| match a {
-                Term::Atom(n) => self.project.universe.object(n),
-                _ => None,
-            })
+            .map(|a| self.project.universe.object_of(a))
             .collect();
         let any_fixed = fixed.iter().any(Option::is_some);
         for a in atoms.atoms_of(p) {
@@ -1625,14 +1622,14 @@ impl<'p> Semantics<'p> {
                         None => {
                             let int = std::mem::replace(int, empty_intention(origin));
                             let text = format!("+{lit}");
-                            return fail(
-                                self,
-                                s,
-                                int,
-                                &text,
-                                "the belief is not a ground atom of the model".into(),
-                                notes,
-                            );
+                            let why = match &self.project.manifest.bounds.numbers {
+                                Some(n) => format!(
+                                    "the belief is not a ground atom of the model (its numbers are {} to {}, `[bounds] numbers`)",
+                                    n.value.0, n.value.1
+                                ),
+                                None => "the belief is not a ground atom of the model".into(),
+                            };
+                            return fail(self, s, int, &text, why, notes);
                         }
                     }
                 }
@@ -1920,10 +1917,7 @@ impl<'p> Semantics<'p> {
     fn objects(&self, t: &Term) -> Option<Vec<ObjectId>> {
         t.args()
             .iter()
-            .map(|a| match a {
-                Term::Atom(n) => self.project.universe.object(n),
-                _ => None,
-            })
+            .map(|a| self.project.universe.object_of(a))
             .collect()
     }
 

@@ -116,9 +116,7 @@ impl Beliefs<'_> {
         Term::literal(
             self.atoms.pred_name(p),
             false,
-            args.iter()
-                .map(|o| Term::atom(self.universe.object_name(*o)))
-                .collect(),
+            args.iter().map(|o| self.universe.object_term(*o)).collect(),
             vec![Term::structure("source", vec![Term::atom(source)])],
         )
     }

@@ -270,7 +270,13 @@ pub struct Bounds {
     pub symmetry: Vec<Located<String>>,
     /// `plan_selection`. Default [`PlanSelection::First`].
     pub plan_selection: PlanSelection,
+    /// `numbers = [lo, hi]`: the integers that may be arguments of mental notes (counters
+    /// and the like), as objects of the type `number`. Default: none.
+    pub numbers: Option<Located<(i64, i64)>>,
 }
+
+/// Most integers `[bounds] numbers` may span.
+pub const MAX_NUMBERS: i64 = 1024;
 
 impl Default for Bounds {
     fn default() -> Self {
@@ -279,6 +285,7 @@ impl Default for Bounds {
             max_depth: DEFAULT_MAX_DEPTH,
             symmetry: Vec::new(),
             plan_selection: PlanSelection::First,
+            numbers: None,
         }
     }
 }
@@ -1773,7 +1780,13 @@ impl<'a> Cx<'a> {
     }
 
     fn bounds(&mut self, root: &DeTable, objects: &[ObjectType]) -> Bounds {
-        const KEYS: &[&str] = &["max_states", "max_depth", "symmetry", "plan_selection"];
+        const KEYS: &[&str] = &[
+            "max_states",
+            "max_depth",
+            "symmetry",
+            "plan_selection",
+            "numbers",
+        ];
         let mut out = Bounds::default();
         let Some(t) = self.section(root, "bounds", KEYS) else {
             return out;
@@ -1811,6 +1824,33 @@ impl<'a> Cx<'a> {
                 Some(0) => out.plan_selection = PlanSelection::First,
                 Some(_) => out.plan_selection = PlanSelection::Any,
                 None => {}
+            }
+        }
+        if let Some(v) = t.get("numbers") {
+            let ints: Option<Vec<i64>> = match v.get_ref() {
+                DeValue::Array(a) => a
+                    .iter()
+                    .map(|x| match x.get_ref() {
+                        DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix()).ok(),
+                        _ => None,
+                    })
+                    .collect(),
+                _ => None,
+            };
+            match ints.as_deref() {
+                Some(&[lo, hi]) if lo <= hi && hi - lo < MAX_NUMBERS => {
+                    out.numbers = Some(Located {
+                        value: (lo, hi),
+                        span: self.span(v.span()),
+                    })
+                }
+                _ => self.err(
+                    v.span(),
+                    format!(
+                        "`bounds.numbers` must be `[lo, hi]`, two integers with lo <= hi and fewer than {MAX_NUMBERS} numbers"
+                    ),
+                    "expected `[lo, hi]`",
+                ),
             }
         }
         out
