@@ -238,6 +238,7 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".println",
     ".fail",
     ".my_name",
+    ".abolish",
 ];
 
 /// Whether the reasoning cycle models the internal action `name` (those above, and the
@@ -1475,6 +1476,16 @@ impl<'a> Checker<'a> {
                 self.formula(cl, &l.args[1], scope, Usage::Query);
                 self.term(cl, &l.args[2], scope);
             }
+            ".abolish" => match &l.args[0].kind {
+                // `.abolish(b)` deletes every belief that unifies with `b`.
+                ExprKind::Literal(b) if !b.is_internal_action() => {
+                    self.belief_literal(cl, b, Usage::Del, scope)
+                }
+                _ => self.diags.push(
+                    Diagnostic::error("input", "`.abolish` expects a belief such as `seen(_)`")
+                        .with_label(l.args[0].span, "not a belief literal"),
+                ),
+            },
             _ if GOAL_ACTIONS.contains(&name) => {
                 if let Some(g) = l.args.first() {
                     match &g.kind {

@@ -74,7 +74,7 @@ pub fn run_with(
                 report.verdict = Verdict::Incomplete;
             }
             report.stats = Some(v.stats);
-            report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (plan contexts answer in belief order): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
+            report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
             VerifyRun {
                 report,
                 map: project.map,

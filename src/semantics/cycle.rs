@@ -330,6 +330,11 @@ impl<'p> Semantics<'p> {
         Ok(sem)
     }
 
+    /// The line of a step, for failure annotations.
+    fn line_of(&self, at: Option<(u32, Span)>) -> Option<usize> {
+        at.map(|(_, span)| self.project.map.location(span).line)
+    }
+
     /// Whether the order of predicate `p`'s beliefs is kept in [`State::order`].
     pub fn is_ordered(&self, p: crate::model::atoms::PredId) -> bool {
         self.ordered[p.0 as usize]
@@ -560,7 +565,9 @@ impl<'p> Semantics<'p> {
                 self.formula_reads_with(b, s, out, rules);
             }
             Formula::Call(t) => match (t.functor(), t.args()) {
-                (Some(".count"), [q, _]) | (Some(".findall"), [_, q, _]) => literal(q, out),
+                (Some(".count"), [q, _])
+                | (Some(".findall"), [_, q, _])
+                | (Some(".abolish"), [q]) => literal(q, out),
                 _ => {}
             },
         }
@@ -962,7 +969,7 @@ impl<'p> Semantics<'p> {
         };
         match (fail, ev.intention) {
             (Some(fail), Some(int)) => s.events.push(Event {
-                trigger: with_error(fail, error),
+                trigger: with_error(fail, error, self.line_of(ev.posted_at)),
                 intention: Some(int),
                 origin: ev.origin,
                 posted_at: ev.posted_at,
@@ -1052,7 +1059,7 @@ impl<'p> Semantics<'p> {
         if let Some(fail) = self.find_event_for_failure(&int, &tevent) {
             let origin = int.origin;
             s.events.push(Event {
-                trigger: with_error(fail, error),
+                trigger: with_error(fail, error, self.line_of(step)),
                 intention: Some(int),
                 origin,
                 posted_at: step,
@@ -1475,6 +1482,26 @@ impl<'p> Semantics<'p> {
                         let fail = f == ".fail_goal";
                         self.goal_directive(s, current, &g, fail, (plan, step.span), notes);
                         return Flow::Gone;
+                    }
+                    ".abolish" => {
+                        // `Agent.abolish`: every belief that unifies goes, in belief-base
+                        // order, each with its `-b` event.
+                        let q = term.args().first().cloned().unwrap_or_else(Term::nil);
+                        let gone: Vec<AtomId> = self
+                            .beliefs(s)
+                            .literal_answers(&q, &Substitution::new())
+                            .into_iter()
+                            .map(|(a, _)| a)
+                            .collect();
+                        gone.iter().for_each(|a| s.beliefs.remove(*a));
+                        self.perceive(s, &[], &gone);
+                        notes.push(Note::Belief {
+                            text: text.clone(),
+                            plan,
+                            added: Vec::new(),
+                            removed: gone,
+                            origin,
+                        });
                     }
                     ".drop_desire" | ".drop_intention" => {
                         let g = term.args().first().cloned().unwrap_or_else(Term::nil);
@@ -2059,11 +2086,17 @@ fn with_source(t: &Term, who: &str) -> Term {
     t.add_annots([annot]).unwrap_or_else(|| t.clone())
 }
 
-/// A failure event's trigger with Jason's `error(Id)` annotation (the rest of Jason's
-/// failure annotations, `error_msg`, `code`, `code_src` and `code_line`, are not given).
-fn with_error(mut t: EventTrigger, error: &str) -> EventTrigger {
-    let annot = Term::structure("error", vec![Term::atom(error)]);
-    if let Some(l) = t.literal.add_annots([annot]) {
+/// A failure event's trigger with Jason's `error(Id)` and `code_line(Line)` annotations
+/// (`setDefaultFailureAnnots`; `error_msg`, `code` and `code_src` are not given). The line
+/// matters beyond plans that read it: when a failure plan ends, Jason drops the plans above
+/// down to one whose goal unifies with the handled one, annotations included, so two
+/// failures at different lines do not unify.
+fn with_error(mut t: EventTrigger, error: &str, line: Option<usize>) -> EventTrigger {
+    let mut annots = vec![Term::structure("error", vec![Term::atom(error)])];
+    if let Some(n) = line {
+        annots.push(Term::structure("code_line", vec![Term::int(n as i64)]));
+    }
+    if let Some(l) = t.literal.add_annots(annots) {
         t.literal = l;
     }
     t

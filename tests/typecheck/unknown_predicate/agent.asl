@@ -1,5 +1,5 @@
 // Unknown predicates: in contexts (with a near name, and with none), in a rule body, in a
-// test goal and in a belief-event trigger.
+// belief-event trigger (a test goal on an unknown predicate is a lint finding, not bad input).
 +!storeCup(C) : usd(C) & cupAt(C, table)
    <- pickUp(C).
 
