@@ -504,3 +504,24 @@ fn every_spec_has_its_expected_outcome() {
         ]
     );
 }
+
+#[test]
+fn an_invariant_that_is_not_inductive_is_settled_by_the_runs() {
+    // lint: `putDown` can break `cup_placed` from some state that satisfies the invariants,
+    // a warning. No run reaches such a state: a note, and the correct library passes.
+    let (code, r, _) = verify_json("tests/verify/non_inductive", "non-inductive");
+    assert_eq!(code, 0, "{r:#}");
+    let f = failing(&r, "action-breaks-invariant");
+    assert_eq!(f.len(), 1, "{f:#?}");
+    assert_eq!(f[0]["severity"], "note");
+    assert!(f[0]["message"]
+        .as_str()
+        .unwrap()
+        .ends_with("yet it holds in every reachable state"));
+    // A run that breaks the invariant makes it an error, with that run.
+    let (code, r, _) = verify_json("tests/verify/invariant", "breaks-invariant");
+    assert_eq!(code, 1);
+    let f = failing(&r, "action-breaks-invariant");
+    assert_eq!(f[0]["severity"], "error", "{f:#?}");
+    assert!(f[0]["counterexample"].is_object());
+}

@@ -320,6 +320,7 @@ pub fn verify_with(
         .map(|f| c.settle(f, &action_failures, &no_plan))
         .collect();
     c.safety(&mut findings, &props);
+    settle_non_inductive(&mut findings, project, graph.complete());
     c.failures(&mut findings, action_failures, goal_failures);
     c.liveness(&mut findings, &props);
     // The explanation properties: one more search per user, each state paired with the
@@ -443,6 +444,52 @@ where
         progress,
     );
     (graph.cast(), not_equivariant)
+}
+
+/// Settles lint's `action-breaks-invariant` warnings with the invariants the search
+/// checked: an action that can break an invariant from some state only matters when a
+/// run breaks it. Reached, the warning is an error with the run that breaks the
+/// invariant; never reached (a complete search), a note: the invariant is not inductive,
+/// but holds in every reachable state.
+fn settle_non_inductive(findings: &mut [Finding], project: &Project, complete: bool) {
+    let broken: Vec<(String, Option<Counterexample>)> = project
+        .invariants
+        .iter()
+        .filter_map(|(name, _)| {
+            let f = findings.iter().find(|f| {
+                f.check == "invariant"
+                    && f.status == Status::Fail
+                    && f.message.starts_with(&format!("invariant `{name}` "))
+            })?;
+            Some((name.clone(), f.counterexample.clone()))
+        })
+        .collect();
+    for f in findings.iter_mut() {
+        if f.check != "action-breaks-invariant"
+            || f.status != Status::Fail
+            || f.severity != Severity::Warning
+        {
+            continue;
+        }
+        let hit = broken
+            .iter()
+            .find(|(name, _)| f.message.contains(&format!("`{name}` (after")));
+        match hit {
+            Some((name, cx)) => {
+                f.severity = Severity::Error;
+                f.message = format!("{} — and a run breaks `{name}`", f.message);
+                f.counterexample = cx.clone();
+            }
+            None if complete => {
+                f.severity = Severity::Note;
+                f.message = format!(
+                    "{} — but no run breaks it: the invariant is not inductive, yet it holds in every reachable state",
+                    f.message
+                );
+            }
+            None => {}
+        }
+    }
 }
 
 /// Whether a lint finding is one that exploration settles.

@@ -1,11 +1,12 @@
 //! Answering formulas against the beliefs: Jason's logical consequence, as a list of
 //! answers (substitutions), in a fixed order.
 //!
-//! A literal's answers are the believed atoms that unify with it, in atom order (predicate,
-//! then arguments in object order). Jason walks its belief base instead, newest mental note
-//! first; the two orders differ only for contexts with several answers, and a fixed order
-//! keeps every run and report reproducible. Environment atoms carry `source(percept)` and
-//! mental notes `source(self)`, as in Jason, so `p[source(percept)]` matches percepts only.
+//! A literal's answers are the believed atoms that unify with it in Jason's belief-base
+//! order (`DefaultBeliefBase`: a predicate's beliefs newest first, kept in
+//! [`State::order`] for the predicates where it can show, atom order elsewhere), then the
+//! answers of the rules for it, in source order (`Literal.logicalConsequence`).
+//! Environment atoms carry `source(percept)` and mental notes `source(self)`, as in Jason,
+//! so `p[source(percept)]` matches percepts only.
 
 use super::state::{Intention, State};
 use crate::model::arith::{self, ArithError, OPERATORS};
@@ -241,11 +242,6 @@ impl Beliefs<'_> {
             },
             Formula::Call(t) => self.call(t, s),
         }
-    }
-
-    /// Whether `f` has an answer.
-    pub fn holds(&self, f: &Formula, s: &Substitution) -> bool {
-        !self.answers(f, s).is_empty()
     }
 
     fn call(&self, t: &Term, s: &Substitution) -> Vec<Substitution> {

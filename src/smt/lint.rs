@@ -9,8 +9,9 @@
 //! | `plan-overlap` | some state and event make two plans for the same trigger applicable | warning |
 //! | `precondition` | along the plan body, executed symbolically from its context, an action's precondition may not hold | warning |
 //! | `effect-conflict` | some binding of an action adds and deletes one atom, in a state where it can run | warning |
-//! | `action-breaks-invariant` | from some state satisfying the invariants and the precondition, the action leaves a state that does not | error |
+//! | `action-breaks-invariant` | from some state satisfying the invariants and the precondition, the action leaves a state that does not (the invariant is not inductive; `verify` settles whether a run breaks it) | warning |
 //! | `undefined-action` | a plan calls an action that nothing defines | error |
+//! | `undefined-predicate` | a test goal asks a predicate nothing defines (Jason just fails it) | warning |
 //! | `unused-action` | no plan calls a PDDL action | note |
 //! | `no-plan-for-goal` | a goal is posted (subgoal, initial goal, request) but no plan handles it | error |
 //!
@@ -95,7 +96,8 @@ pub fn severity(check: &str) -> Severity {
         | "plan-overlap"
         | "precondition"
         | "effect-conflict"
-        | "undefined-predicate" => Severity::Warning,
+        | "undefined-predicate"
+        | "action-breaks-invariant" => Severity::Warning,
         "unused-action" => Severity::Note,
         _ => Severity::Error,
     }
