@@ -102,6 +102,10 @@ enum Command {
         /// The files to parse.
         #[arg(required = true)]
         files: Vec<PathBuf>,
+        /// A folder where `include` looks after the including file's own (Jason's
+        /// `aslSourcePath`); may be given several times.
+        #[arg(short = 'I', value_name = "DIR")]
+        include: Vec<PathBuf>,
         #[command(flatten)]
         out: Output,
     },
@@ -208,11 +212,15 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
-        Command::Parse { files, out } => {
+        Command::Parse {
+            files,
+            include,
+            out,
+        } => {
             if let Some(code) = out.refuse_ci_format("parse") {
                 return code;
             }
-            let run = report::outline::parse_files(&files);
+            let run = report::outline::parse_files_with(&files, &include);
             let (mut text, err) = report::outline::render(&run, out.format(), out.color());
             if out.quiet && out.format() == Format::Human {
                 text = text

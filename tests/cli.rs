@@ -203,3 +203,37 @@ fn parse_a_broken_project_locates_the_error_in_the_manifest() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stdout(&o).contains("parsed 2 files: no errors"));
 }
+
+#[test]
+fn includes_look_along_the_source_path() {
+    // Jason's `aslSourcePath`: beside the including file first, then each folder given.
+    let agent = "tests/jason/47-include-source-path/agent.asl";
+    let o = bdi_check(&["parse", agent]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("cannot include `common.asl`: no such file"),
+        "{err}"
+    );
+    assert!(err.contains("source_path"), "{err}");
+    let o = bdi_check(&[
+        "parse",
+        agent,
+        "-I",
+        "tests/jason/47-include-source-path/lib",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // The manifest's `[agent] source_path` does the same for a project.
+    let o = bdi_check(&["parse", "tests/jason/47-include-source-path/bdi-check.toml"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

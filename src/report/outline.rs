@@ -10,9 +10,10 @@ use super::domain::{
 use super::{verdict_of, Finding, Format, Tool, Verdict};
 use crate::model::project::load_project;
 use crate::syntax::ast::{Item, Plan};
+use crate::syntax::loader::load_agent_with;
 use crate::syntax::pddl::parse_domain;
 use crate::syntax::printer::{print_expr, print_literal, print_step, print_trigger};
-use crate::syntax::{load_agent, Diagnostic, Location, SourceMap};
+use crate::syntax::{Diagnostic, Location, SourceMap};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -97,13 +98,18 @@ pub struct PlanOutline {
 /// Parses every file: `.asl` agents (with their includes), `.pddl` domains, and manifests
 /// (`.toml`: the whole project is loaded, checked and grounded). Other files are refused.
 pub fn parse_files(paths: &[PathBuf]) -> ParseRun {
+    parse_files_with(paths, &[])
+}
+
+/// [`parse_files`], with folders where an agent's `include` also looks (`-I DIR`).
+pub fn parse_files_with(paths: &[PathBuf], source_path: &[PathBuf]) -> ParseRun {
     let mut map = SourceMap::new();
     let mut diagnostics = Vec::new();
     let mut files = Vec::new();
     for path in paths {
         let name = path.display().to_string();
         match path.extension().and_then(|e| e.to_str()) {
-            Some("asl") => match load_agent(path, &mut map) {
+            Some("asl") => match load_agent_with(path, &mut map, source_path) {
                 Ok(agent) => files.push(FileReport::Agent(outline(path, &agent, &map))),
                 Err(errs) => diagnostics.extend(errs),
             },

@@ -1213,7 +1213,7 @@ impl<'p> Semantics<'p> {
             let top_literal = &done.trigger.literal;
             let unifies = |t: &Term| crate::model::unifier(t, top_literal).is_some();
             // Whether a frame's current step is `!L` for the goal just finished.
-            let calls_top = |f: &Frame| f.calling.as_ref().is_some_and(|g| unifies(g));
+            let calls_top = |f: &Frame| f.calling.as_ref().is_some_and(&unifies);
             let handled_failure =
                 done.trigger.kind != TriggerKind::Belief && done.trigger.op == TriggerOp::Del;
             if handled_failure && !int.frames.is_empty() {
