@@ -35,7 +35,7 @@
 //!
 //! // Every reachable state was visited...
 //! assert!(result.stats.complete);
-//! assert_eq!(result.stats.states, 13);
+//! assert_eq!(result.stats.states, 14);
 //!
 //! // ...and when the door is already open, no plan for +!openDishwasherIfNeed applies.
 //! let failure = result

@@ -1541,14 +1541,7 @@ impl<'p> Semantics<'p> {
                 notes.push(Note::Internal { text, plan, origin });
             }
             BodyStep::Achieve { goal, new_focus } => {
-                // Jason's `prepareBodyForEvent` gives the subgoal `source(self)`.
-                let literal = with_source(&value!(goal), "self").map_vars(&mut |v| {
-                    if v.generation() == 0 {
-                        Term::from(v.with_generation(depth as u32 + 1))
-                    } else {
-                        Term::from(v.clone())
-                    }
-                });
+                let literal = subgoal_literal(&value!(goal), depth);
                 let trigger = EventTrigger {
                     op: TriggerOp::Add,
                     kind: TriggerKind::Achieve,
@@ -1562,16 +1555,7 @@ impl<'p> Semantics<'p> {
                         posted_at: Some((plan, step.span)),
                     });
                 } else {
-                    frame.calling = Some(trigger.literal.clone());
-                    self.normalize(frame, s);
-                    let suspended = std::mem::replace(int, empty_intention(origin));
-                    s.events.push(Event {
-                        trigger,
-                        intention: Some(suspended),
-                        origin,
-                        posted_at: Some((plan, step.span)),
-                    });
-                    return Flow::Suspended;
+                    return self.post_subgoal(s, int, trigger, (plan, step.span));
                 }
             }
             BodyStep::Test(f) => {
@@ -1581,29 +1565,13 @@ impl<'p> Semantics<'p> {
                         // Jason's `applyExecInt` (test): with no answer, a literal whose
                         // `+?g` some plan is relevant for becomes that event, as a subgoal.
                         if let Formula::Literal(t) = f {
-                            let literal = with_source(&frame.subst.apply(t), "self");
                             let trigger = EventTrigger {
                                 op: TriggerOp::Add,
                                 kind: TriggerKind::Test,
-                                literal: literal.map_vars(&mut |v| {
-                                    if v.generation() == 0 {
-                                        Term::from(v.with_generation(depth as u32 + 1))
-                                    } else {
-                                        Term::from(v.clone())
-                                    }
-                                }),
+                                literal: subgoal_literal(&frame.subst.apply(t), depth),
                             };
                             if !self.relevant_plans(&trigger).is_empty() {
-                                frame.calling = Some(trigger.literal.clone());
-                                self.normalize(frame, s);
-                                let suspended = std::mem::replace(int, empty_intention(origin));
-                                s.events.push(Event {
-                                    trigger,
-                                    intention: Some(suspended),
-                                    origin,
-                                    posted_at: Some((plan, step.span)),
-                                });
-                                return Flow::Suspended;
+                                return self.post_subgoal(s, int, trigger, (plan, step.span));
                             }
                         }
                         let int = std::mem::replace(int, empty_intention(origin));
@@ -1745,6 +1713,30 @@ impl<'p> Semantics<'p> {
         }
         self.normalize(frame, s);
         Flow::Continue
+    }
+
+    /// Suspends `int` on the subgoal event `trigger` (`!g`, or `?g` handled by a `+?g`
+    /// plan): its top plan waits for `g` (its current step), in the event.
+    fn post_subgoal(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        trigger: EventTrigger,
+        at: (u32, Span),
+    ) -> Flow {
+        let origin = int.origin;
+        if let Some(top) = int.frames.last_mut() {
+            top.calling = Some(trigger.literal.clone());
+            self.normalize(top, s);
+        }
+        let suspended = std::mem::replace(int, empty_intention(origin));
+        s.events.push(Event {
+            trigger,
+            intention: Some(suspended),
+            origin,
+            posted_at: Some(at),
+        });
+        Flow::Suspended
     }
 
     /// `.succeed_goal(g)` / `.fail_goal(g)` run by `current`, as Jason's
@@ -2074,6 +2066,19 @@ fn step_is_local(s: &Step) -> bool {
         | BodyStep::DelAddBel(_)
         | BodyStep::Constraint(..) => true,
     }
+}
+
+/// The literal of a subgoal posted by the plan at `depth` of its stack: Jason's
+/// `prepareBodyForEvent` gives it `source(self)`, and its plan's variables are renamed to
+/// the next generation (the subgoal's plan has variables of its own).
+fn subgoal_literal(t: &Term, depth: usize) -> Term {
+    with_source(t, "self").map_vars(&mut |v| {
+        if v.generation() == 0 {
+            Term::from(v.with_generation(depth as u32 + 1))
+        } else {
+            Term::from(v.clone())
+        }
+    })
 }
 
 /// `t` annotated `source(who)`, unless it names a source already.
