@@ -237,3 +237,17 @@ fn includes_look_along_the_source_path() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+#[test]
+fn an_include_of_a_device_is_refused_not_read() {
+    let dir = common::temp_dir("include-device");
+    let agent = dir.join("a.asl");
+    std::fs::write(&agent, "{ include(\"/dev/zero\") }\n+!g <- true.\n").unwrap();
+    let o = bdi_check(&["parse", agent.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("cannot include `/dev/zero`: not a regular file"),
+        "{err}"
+    );
+}

@@ -151,6 +151,12 @@ impl AtomTable {
         Some(AtomId(e.offset + index))
     }
 
+    /// The predicate of an atom.
+    pub fn pred_of(&self, a: AtomId) -> PredId {
+        let i = self.preds.partition_point(|e| e.offset + e.count <= a.0);
+        PredId(i as u32)
+    }
+
     /// The predicate and arguments of an atom.
     pub fn decode(&self, a: AtomId) -> (PredId, SmallVec<[ObjectId; 4]>) {
         let p = match self.preds.binary_search_by(|e| {

@@ -590,7 +590,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let base = &held.value;
         // How many environment atoms hold decides the order of perceived effects.
         let env = self.sem.env_count(&base.0);
-        let key = Key::new(first, base, env as u64);
+        let key = Key::new(first, base, self.sem.env_class(env));
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let acted = self

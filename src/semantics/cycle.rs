@@ -220,6 +220,8 @@ pub struct Semantics<'p> {
     jhash: Vec<i32>,
     /// The environment's atoms.
     env_atoms: AtomSet,
+    /// The most environment atoms one action changes.
+    max_effect: usize,
 }
 
 fn op_key(op: TriggerOp) -> u8 {
@@ -304,6 +306,13 @@ impl<'p> Semantics<'p> {
             ordered: Vec::new(),
             jhash: Vec::new(),
             env_atoms: AtomSet::empty(project.atoms.len()),
+            max_effect: project
+                .actions
+                .all()
+                .iter()
+                .map(|a| a.touched().len())
+                .max()
+                .unwrap_or(0),
             agent_name: m
                 .agent
                 .plans
@@ -342,7 +351,27 @@ impl<'p> Semantics<'p> {
 
     /// How many of the environment's atoms hold in `beliefs`.
     pub fn env_count(&self, beliefs: &AtomSet) -> usize {
-        beliefs.intersection(&self.env_atoms).count()
+        let env = self.env_atoms.words();
+        beliefs
+            .words()
+            .iter()
+            .zip(env)
+            .map(|(b, e)| (b & e).count_ones() as usize)
+            .sum()
+    }
+
+    /// What of `env_count` an act phase depends on: the size of Jason's percept set
+    /// decides the order of perceived effects ([`Semantics::java_order`]) only through its
+    /// number of buckets, which is one value for every count an action can lead to, unless
+    /// the count is near a resize (then the count itself).
+    pub fn env_class(&self, env: usize) -> u64 {
+        let lo = java_capacity(env.saturating_sub(self.max_effect));
+        let hi = java_capacity(env + self.max_effect);
+        if lo == hi {
+            u64::from(lo)
+        } else {
+            1 << 40 | env as u64
+        }
     }
 
     /// Sorts percepts as Jason's belief update meets them: `Agent.buf` puts the perceived
@@ -356,10 +385,7 @@ impl<'p> Semantics<'p> {
         if atoms.len() < 2 {
             return;
         }
-        let mut cap: u32 = 16;
-        while size as u32 > cap / 4 * 3 {
-            cap *= 2;
-        }
+        let cap = java_capacity(size);
         let bucket = |a: &AtomId| {
             let h = self.jhash[a.0 as usize] as u32;
             (h ^ (h >> 16)) & (cap - 1)
@@ -378,7 +404,7 @@ impl<'p> Semantics<'p> {
         added: &AtomSet,
     ) {
         order.retain(|a| !removed.contains(*a) && !added.contains(*a));
-        let pred = |a: AtomId| self.project.atoms.decode(a).0;
+        let pred = |a: AtomId| self.project.atoms.pred_of(a);
         // Inserting the oldest first in front of its group leaves the newest in front.
         for &a in front.iter().rev() {
             let p = pred(a);
@@ -393,7 +419,7 @@ impl<'p> Semantics<'p> {
     /// Keeps [`State::order`] for a belief added (in front of its predicate's beliefs)
     /// or removed.
     fn reorder(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
-        let pred = |a: AtomId| self.project.atoms.decode(a).0;
+        let pred = |a: AtomId| self.project.atoms.pred_of(a);
         for &a in removed.iter().chain(added) {
             if self.is_ordered(pred(a)) {
                 s.order.retain(|x| *x != a);
@@ -2079,6 +2105,16 @@ fn subgoal_literal(t: &Term, depth: usize) -> Term {
             Term::from(v.clone())
         }
     })
+}
+
+/// The number of buckets of a `java.util.HashSet` after `size` insertions into a new one:
+/// 16, doubled whenever it is more than three quarters full (`HashMap.resize`).
+fn java_capacity(size: usize) -> u32 {
+    let mut cap: u32 = 16;
+    while size as u64 > u64::from(cap / 4 * 3) {
+        cap *= 2;
+    }
+    cap
 }
 
 /// `t` annotated `source(who)`, unless it names a source already.

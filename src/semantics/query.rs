@@ -144,7 +144,7 @@ impl Beliefs<'_> {
                 .order
                 .iter()
                 .copied()
-                .filter(|a| self.atoms.decode(*a).0 == p)
+                .filter(|a| self.atoms.pred_of(*a) == p)
                 .collect();
             &mut ordered.iter().copied()
         } else {
