@@ -195,22 +195,34 @@ impl Loader<'_> {
                 return;
             }
         };
-        if name.starts_with("$jasonJar") || name.starts_with("$JASON") {
-            self.errors.push(
-                Diagnostic::error(
-                    "input",
-                    format!("`{name}` names a file inside Jason's own jar, which bdi-check does not read"),
-                )
-                .with_label(d.span, "included here")
-                .with_help("copy the file into the project and include it from there, or put its folder in `[agent] source_path`"),
-            );
-            return;
-        }
-        // Jason's `SourcePath.fixPath`: beside the including file, else along the source
-        // path.
-        let beside = dir.join(&name);
-        let path = if beside.is_file() || Path::new(&name).is_absolute() {
+        // `$jasonJar/f` names `f` inside Jason's jar (`SourcePath.fixPath`): bdi-check
+        // reads no jar, so it looks for `f` along the source path only.
+        let in_jar = name.strip_prefix("$jasonJar/");
+        let beside = dir.join(in_jar.unwrap_or(&name));
+        let path = if in_jar.is_none() && (beside.is_file() || Path::new(&name).is_absolute()) {
             beside
+        } else if let Some(f) = in_jar {
+            match self
+                .source_path
+                .iter()
+                .map(|p| p.join(f))
+                .find(|p| p.is_file())
+            {
+                Some(p) => p,
+                None => {
+                    self.errors.push(
+                        Diagnostic::error(
+                            "input",
+                            format!("cannot include `{name}`: it is a file of Jason's jar, which bdi-check does not read"),
+                        )
+                        .with_label(d.span, "included here")
+                        .with_help(format!(
+                            "put the folder that holds `{f}` (Jason's `src/main/resources`, say) in `[agent] source_path` or `parse -I DIR`"
+                        )),
+                    );
+                    return;
+                }
+            }
         } else {
             match self
                 .source_path
