@@ -226,8 +226,6 @@ impl Vocabulary {
 pub const INTERNAL_ACTIONS: &[&str] = &[
     ".print",
     ".count",
-    ".member",
-    ".length",
     ".desire",
     ".intend",
     ".drop_desire",
@@ -512,6 +510,8 @@ struct Checker<'a> {
     called: HashSet<String>,
     /// `[bounds] numbers` is declared: integers are objects.
     numbers: bool,
+    /// Its range.
+    manifest_numbers: Option<(i64, i64)>,
     emitted_by: Option<String>,
     clauses: Vec<Clause>,
     undefined: Vec<UndefinedAction>,
@@ -542,6 +542,7 @@ impl<'a> Checker<'a> {
             test_goals: HashSet::new(),
             called: HashSet::new(),
             numbers: manifest.bounds.numbers.is_some(),
+            manifest_numbers: manifest.bounds.numbers.as_ref().map(|n| n.value),
             emitted_by: manifest
                 .explanation
                 .as_ref()
@@ -1290,6 +1291,21 @@ impl<'a> Checker<'a> {
     }
 
     fn not_an_object(&self, name: &str, span: Span) -> Diagnostic {
+        if name.parse::<i64>().is_ok() {
+            let (msg, help) = match &self.manifest_numbers {
+                Some((lo, hi)) => (
+                    format!("`{name}` is not among the model's numbers, {lo} to {hi}"),
+                    "widen `[bounds] numbers`",
+                ),
+                None => (
+                    format!("`{name}` is a number, and the model has none"),
+                    "declare the integers mental notes may hold, such as `[bounds] numbers = [0, 10]`",
+                ),
+            };
+            return Diagnostic::error("input", msg)
+                .with_label(span, "number outside the model")
+                .with_help(help);
+        }
         let hint = suggest(
             name,
             self.universe
