@@ -525,3 +525,23 @@ fn an_invariant_that_is_not_inductive_is_settled_by_the_runs() {
     assert_eq!(f[0]["severity"], "error", "{f:#?}");
     assert!(f[0]["counterexample"].is_object());
 }
+
+#[test]
+fn plan_checks_lint_cannot_decide_are_decided_by_the_runs() {
+    // `N < 3` over `[bounds] numbers` is arithmetic lint does not model: its dead-plan and
+    // coverage-gap checks of `+!tick` are undecided, and the runs decide them.
+    let (_, r, _) = verify_json("tests/jason/38-counter", "undecided-by-runs");
+    let findings = r["findings"].as_array().unwrap();
+    let tick: Vec<_> = findings
+        .iter()
+        .filter(|f| f["message"].as_str().unwrap_or("").contains("+!tick"))
+        .filter(|f| f["check"] == "dead-plan" || f["check"] == "coverage-gap")
+        .collect();
+    assert!(!tick.is_empty(), "{findings:#?}");
+    for f in tick {
+        assert_eq!(f["status"], "pass", "{f:#}");
+    }
+    assert!(findings
+        .iter()
+        .any(|f| f["message"] == "+!tick is applicable: a run adopts it"));
+}

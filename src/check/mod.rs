@@ -307,6 +307,7 @@ pub fn verify_with(
         actions: action_failures,
         goals: goal_failures,
         no_plan,
+        applied,
     } = failures;
     let c = Checker {
         project,
@@ -319,6 +320,7 @@ pub fn verify_with(
         .iter()
         .map(|f| c.settle(f, &action_failures, &no_plan))
         .collect();
+    settle_undecided(&mut findings, project, &applied, &no_plan, graph.complete());
     c.safety(&mut findings, &props);
     settle_non_inductive(&mut findings, project, graph.complete());
     c.failures(&mut findings, action_failures, goal_failures);
@@ -372,6 +374,8 @@ struct Failures {
     actions: BTreeMap<(u32, u32), Failure>,
     goals: BTreeMap<String, Failure>,
     no_plan: BTreeMap<(String, usize), Failure>,
+    /// The plans some run adopts.
+    applied: std::collections::BTreeSet<u32>,
 }
 
 impl Failures {
@@ -403,6 +407,9 @@ impl Failures {
                         t.literal.arity(),
                     );
                     self.no_plan.entry(key).or_insert_with(at);
+                }
+                Note::Plan { plan, .. } => {
+                    self.applied.insert(*plan);
                 }
                 _ => {}
             }
@@ -444,6 +451,57 @@ where
         progress,
     );
     (graph.cast(), not_equivariant)
+}
+
+/// Decides with the runs the plan checks lint could not decide (z3's budget, arithmetic
+/// it does not model): a plan some run adopts is not dead, nor hidden by an earlier one
+/// (with Jason's first-applicable selection); a goal for which no run meets a state where
+/// no plan applies, in a complete search, has no gap any run reaches.
+fn settle_undecided(
+    findings: &mut [Finding],
+    project: &Project,
+    applied: &std::collections::BTreeSet<u32>,
+    no_plan: &BTreeMap<(String, usize), Failure>,
+    complete: bool,
+) {
+    let first =
+        project.manifest.bounds.plan_selection == crate::syntax::manifest::PlanSelection::First;
+    for f in findings.iter_mut() {
+        if f.status != Status::Unknown {
+            continue;
+        }
+        let Some(i) = project
+            .plans
+            .plans
+            .iter()
+            .position(|p| Some(p.span) == f.span)
+        else {
+            continue;
+        };
+        let plan = &project.plans.plans[i];
+        match f.check.as_str() {
+            "dead-plan" if applied.contains(&(i as u32)) => {
+                f.status = Status::Pass;
+                f.message = format!("{} is applicable: a run adopts it", plan.name());
+            }
+            "shadowed-plan" if first && applied.contains(&(i as u32)) => {
+                f.status = Status::Pass;
+                f.message = format!("no earlier plan hides {}: a run adopts it", plan.name());
+            }
+            "coverage-gap" if complete => {
+                let t = &plan.trigger.literal;
+                let key = (t.functor().unwrap_or("").to_string(), t.arity());
+                if !no_plan.contains_key(&key) {
+                    f.status = Status::Pass;
+                    f.message = format!(
+                        "no run meets a state where no plan for {} applies",
+                        plan.trigger
+                    );
+                }
+            }
+            _ => {}
+        }
+    }
 }
 
 /// Settles lint's `action-breaks-invariant` warnings with the invariants the search
