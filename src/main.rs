@@ -11,6 +11,17 @@ use std::process::ExitCode;
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
+/// A number of seconds: finite and not negative (`-1`, `inf` and `NaN` are usage errors).
+fn seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        Ok(_) => Err(format!(
+            "`{s}` is not a number of seconds (finite, at least 0)"
+        )),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 /// Verifies Jason AgentSpeak plan libraries before they run on a robot.
 #[derive(Parser, Debug)]
 #[command(name = "bdi-check", version, about, long_about = None)]
@@ -130,7 +141,7 @@ enum Command {
         #[arg(long)]
         max_depth: Option<u64>,
         /// Stop after this many seconds.
-        #[arg(long)]
+        #[arg(long, value_parser = seconds)]
         timeout: Option<f64>,
         /// Write one replayable scenario file per counterexample into this folder.
         #[arg(long)]

@@ -251,3 +251,26 @@ fn an_include_of_a_device_is_refused_not_read() {
         "{err}"
     );
 }
+
+#[test]
+fn a_timeout_must_be_a_number_of_seconds() {
+    for bad in ["-1", "inf", "-inf", "NaN", "soon"] {
+        let arg = format!("--timeout={bad}");
+        let o = bdi_check(&["verify", "specs/paper", &arg]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+    }
+}
+
+#[test]
+fn a_manifest_naming_a_device_says_so() {
+    let dir = common::temp_dir("manifest-device");
+    std::fs::write(
+        dir.join("bdi-check.toml"),
+        "[agent]\nplans = \"/dev/zero\"\nactions = \"x.pddl\"\n",
+    )
+    .unwrap();
+    let o = bdi_check(&["parse", dir.join("bdi-check.toml").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("`/dev/zero` is not a regular file"), "{err}");
+}

@@ -1327,6 +1327,8 @@ impl<'a> Cx<'a> {
             if written.value.is_empty() || !path.is_file() {
                 let why = if path.is_dir() {
                     "is a folder"
+                } else if path.exists() {
+                    "is not a regular file"
                 } else {
                     "does not exist"
                 };
