@@ -290,11 +290,17 @@ fn render_summary(r: &ParseReport) -> String {
 /// Human text for one agent file.
 fn render_agent(f: &FileOutline) -> String {
     let mut out = String::new();
+    // Plans grouped by trigger, in order of first appearance (an index per trigger keeps a
+    // library of many triggers linear).
     let mut triggers: Vec<(&str, Vec<&PlanOutline>)> = Vec::new();
+    let mut index: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
     for p in &f.plans {
-        match triggers.iter_mut().find(|(t, _)| *t == p.trigger) {
-            Some((_, v)) => v.push(p),
-            None => triggers.push((&p.trigger, vec![p])),
+        match index.get(p.trigger.as_str()) {
+            Some(&i) => triggers[i].1.push(p),
+            None => {
+                index.insert(&p.trigger, triggers.len());
+                triggers.push((&p.trigger, vec![p]));
+            }
         }
     }
     out.push_str(&format!(
