@@ -545,3 +545,10 @@ fn plan_checks_lint_cannot_decide_are_decided_by_the_runs() {
         .iter()
         .any(|f| f["message"] == "+!tick is applicable: a run adopts it"));
 }
+
+#[test]
+fn a_plan_for_a_number_a_countdown_reaches_is_not_dead() {
+    let (code, r, _) = verify_json("tests/verify/countdown", "countdown");
+    assert_eq!(code, 0, "{r:#}");
+    assert!(failing(&r, "dead-plan").is_empty());
+}

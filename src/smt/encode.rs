@@ -339,9 +339,11 @@ impl<'p> Encoder<'p> {
                 Some(o) => Val::Obj(o),
                 None => Val::Other(t.clone()),
             }),
-            Term::Num(n) => Some(match n.as_i64() {
-                Some(i) => Val::Num(Int::from_i64(i)),
-                None => Val::Other(t.clone()),
+            // A number of `[bounds] numbers` is an object of the model, as in its atoms.
+            Term::Num(n) => Some(match (self.project.universe.object_of(t), n.as_i64()) {
+                (Some(o), _) => Val::Obj(o),
+                (None, Some(i)) => Val::Num(Int::from_i64(i)),
+                (None, None) => Val::Other(t.clone()),
             }),
             Term::Str(_) => Some(Val::Other(t.clone())),
             Term::Struct(s) if is_arith(s.functor()) && !s.negated() && s.annots().is_empty() => {
