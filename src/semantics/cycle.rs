@@ -1415,74 +1415,55 @@ impl<'p> Semantics<'p> {
                     removed: Vec::new(),
                     origin,
                 });
-                self.normalize(frame, s);
-                let int = std::mem::replace(int, empty_intention(origin));
-                s.pending = Some(Pending {
-                    intention: int,
-                    failure: None,
-                });
-                return Flow::Gone;
+                return self.wait_for_feedback(s, int, None);
             }
             BodyStep::Action(t) => {
                 let term = value!(t);
                 let text = term.to_string();
                 // The environment runs the action now; the intention waits for the
                 // feedback, which the next cycle's `ProcAct` takes (Jason's pending action).
-                let failure = match self.ground_action(&term) {
-                    Err(reason) => Some(reason),
+                let ga = match self.ground_action(&term) {
                     Ok(ga) if !ga.applicable(&s.beliefs) => {
-                        Some("its precondition does not hold".to_string())
+                        Err("its precondition does not hold".to_string())
                     }
-                    Ok(_) => None,
+                    other => other,
                 };
-                if let Some(reason) = failure {
-                    notes.push(Note::ActionFailed {
-                        text: text.clone(),
-                        plan,
-                        span: step.span,
-                        reason: reason.clone(),
-                    });
-                    let int = std::mem::replace(int, empty_intention(origin));
-                    s.pending = Some(Pending {
-                        intention: int,
-                        failure: Some(ActionFailure {
+                let ga = match ga {
+                    Ok(ga) => ga,
+                    Err(reason) => {
+                        notes.push(Note::ActionFailed {
+                            text,
+                            plan,
+                            span: step.span,
+                            reason: reason.clone(),
+                        });
+                        let failure = ActionFailure {
                             plan,
                             span: step.span,
                             action: term,
                             why: reason,
-                        }),
-                    });
-                    return Flow::Gone;
-                }
-                match self.ground_action(&term) {
-                    Err(_) => unreachable!("checked above"),
-                    Ok(ga) => {
-                        let before = s.beliefs.clone();
-                        s.beliefs = ga.apply(&before);
-                        let (mut added, mut removed) = diff(&before, &s.beliefs);
-                        let after = env_before + added.len() - removed.len();
-                        self.java_order(&mut removed, env_before);
-                        self.java_order(&mut added, after);
-                        self.perceive(s, &added, &removed);
-                        notes.push(Note::Action {
-                            text,
-                            term,
-                            stack: views,
-                            plan,
-                            span: step.span,
-                            added,
-                            removed,
-                            origin,
-                        });
-                        self.normalize(frame, s);
-                        let int = std::mem::replace(int, empty_intention(origin));
-                        s.pending = Some(Pending {
-                            intention: int,
-                            failure: None,
-                        });
-                        return Flow::Gone;
+                        };
+                        return self.wait_for_feedback(s, int, Some(failure));
                     }
-                }
+                };
+                let before = s.beliefs.clone();
+                s.beliefs = ga.apply(&before);
+                let (mut added, mut removed) = diff(&before, &s.beliefs);
+                let after = env_before + added.len() - removed.len();
+                self.java_order(&mut removed, env_before);
+                self.java_order(&mut added, after);
+                self.perceive(s, &added, &removed);
+                notes.push(Note::Action {
+                    text,
+                    term,
+                    stack: views,
+                    plan,
+                    span: step.span,
+                    added,
+                    removed,
+                    origin,
+                });
+                return self.wait_for_feedback(s, int, None);
             }
             BodyStep::Internal(t) => {
                 let term = value!(t);
@@ -1739,6 +1720,23 @@ impl<'p> Semantics<'p> {
         }
         self.normalize(frame, s);
         Flow::Continue
+    }
+
+    /// `int` sent an environment action: it waits, its step done (or failed, with why),
+    /// for the feedback that the next cycle's `ProcAct` takes.
+    fn wait_for_feedback(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        failure: Option<ActionFailure>,
+    ) -> Flow {
+        if let Some(top) = int.frames.last_mut() {
+            self.normalize(top, s);
+        }
+        let origin = int.origin;
+        let intention = std::mem::replace(int, empty_intention(origin));
+        s.pending = Some(Pending { intention, failure });
+        Flow::Gone
     }
 
     /// Suspends `int` on the subgoal event `trigger` (`!g`, or `?g` handled by a `+?g`
