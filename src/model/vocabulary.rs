@@ -245,29 +245,11 @@ fn modelled_action(name: &str) -> bool {
     INTERNAL_ACTIONS.contains(&name) || super::internal::PURE.iter().any(|(n, _)| *n == name)
 }
 
-/// The arithmetic functions bdi-check models inside expressions (`X = math.abs(Y)`), besides
-/// `.count(Query)` and `.length(List)`.
-pub const ARITHMETIC_FUNCTIONS: &[&str] = &[
-    "math.abs",
-    "math.acos",
-    "math.asin",
-    "math.atan",
-    "math.average",
-    "math.ceil",
-    "math.cos",
-    "math.e",
-    "math.floor",
-    "math.log",
-    "math.max",
-    "math.min",
-    "math.pi",
-    "math.round",
-    "math.sin",
-    "math.sqrt",
-    "math.std_dev",
-    "math.sum",
-    "math.tan",
-];
+/// Whether `name` is an arithmetic function bdi-check evaluates inside expressions
+/// (`X = math.abs(Y)`; [`super::internal::FUNCTIONS`]), besides `.count(Query)`.
+fn arithmetic_function(name: &str) -> bool {
+    super::internal::FUNCTIONS.iter().any(|(f, _)| *f == name)
+}
 
 /// Internal actions whose argument is a goal.
 const GOAL_ACTIONS: &[&str] = &[
@@ -1358,7 +1340,7 @@ impl<'a> Checker<'a> {
         match (name, l.args.len()) {
             (".count", 1) => self.count_query(cl, &l.args[0], scope),
             (".length", 1) => self.term(cl, &l.args[0], scope),
-            _ if ARITHMETIC_FUNCTIONS.contains(&name) => {
+            _ if arithmetic_function(name) => {
                 for a in &l.args {
                     self.term(cl, a, scope);
                 }
@@ -1395,7 +1377,7 @@ impl<'a> Checker<'a> {
     fn internal(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
         let name = l.functor.as_str();
         let n = l.args.len();
-        if name.starts_with("math.") && ARITHMETIC_FUNCTIONS.contains(&name) {
+        if name.starts_with("math.") && arithmetic_function(name) {
             self.diags.push(
                 Diagnostic::error(
                     "input",

@@ -404,16 +404,21 @@ impl<'p> Semantics<'p> {
         added: &AtomSet,
     ) {
         order.retain(|a| !removed.contains(*a) && !added.contains(*a));
-        let pred = |a: AtomId| self.project.atoms.pred_of(a);
         // Inserting the oldest first in front of its group leaves the newest in front.
         for &a in front.iter().rev() {
-            let p = pred(a);
-            let at = order
-                .iter()
-                .position(|x| pred(*x) >= p)
-                .unwrap_or(order.len());
-            order.insert(at, a);
+            self.put_in_front(order, a);
         }
+    }
+
+    /// Puts `a` in front of its predicate's beliefs in `order`.
+    fn put_in_front(&self, order: &mut Vec<AtomId>, a: AtomId) {
+        let pred = |a: AtomId| self.project.atoms.pred_of(a);
+        let p = pred(a);
+        let at = order
+            .iter()
+            .position(|x| pred(*x) >= p)
+            .unwrap_or(order.len());
+        order.insert(at, a);
     }
 
     /// Keeps [`State::order`] for a belief added (in front of its predicate's beliefs)
@@ -426,14 +431,8 @@ impl<'p> Semantics<'p> {
             }
         }
         for &a in added {
-            let p = pred(a);
-            if self.is_ordered(p) {
-                let at = s
-                    .order
-                    .iter()
-                    .position(|x| pred(*x) >= p)
-                    .unwrap_or(s.order.len());
-                s.order.insert(at, a);
+            if self.is_ordered(pred(a)) {
+                self.put_in_front(&mut s.order, a);
             }
         }
     }
@@ -871,7 +870,7 @@ impl<'p> Semantics<'p> {
                     trigger: ev.trigger.clone(),
                     calling: None,
                 };
-                self.normalize(&mut frame, &s);
+                self.normalize(&mut frame);
                 let origin = match &ev.intention {
                     Some(i) => i.origin,
                     None => ev.origin,
@@ -1110,7 +1109,7 @@ impl<'p> Semantics<'p> {
     /// Moves a frame's cursors to the next step to execute, leaving blocks that have
     /// ended; a loop's body that has ended stays, its cursor past the end, until the loop
     /// is tested again ([`Semantics::loop_again`]). `cursors` is empty when the body is done.
-    fn normalize(&self, f: &mut Frame, _s: &State) {
+    fn normalize(&self, f: &mut Frame) {
         let blocks = &self.blocks[f.plan as usize];
         while let Some(c) = f.cursors.last() {
             if (c.pos as usize) < blocks.blocks[c.block as usize].len()
@@ -1162,7 +1161,7 @@ impl<'p> Semantics<'p> {
                 }
             }
         }
-        self.normalize(f, s);
+        self.normalize(f);
     }
 
     /// Jason's `applyProcAct`, the act phase's first stage: the feedback of the action
@@ -1186,7 +1185,7 @@ impl<'p> Semantics<'p> {
                 self.fail_intention(s, int, &failed, at, &reason, "action_failed", notes);
             }
             None => {
-                if self.clear_finished(s, &mut int, notes) {
+                if self.clear_finished(&mut int, notes) {
                     s.intentions.push(int);
                 }
             }
@@ -1214,7 +1213,7 @@ impl<'p> Semantics<'p> {
                 Flow::Suspended | Flow::Gone => return,
             }
         }
-        if self.clear_finished(s, &mut int, notes) {
+        if self.clear_finished(&mut int, notes) {
             s.intentions.push(int);
         }
     }
@@ -1225,7 +1224,7 @@ impl<'p> Semantics<'p> {
     /// plans above the one it handled, down to the plan of `g` itself or to the plan whose
     /// step posted `g`, and the plan below goes on after its current step (the `!g`, or
     /// the step that failed, when a failure plan failed at the bottom of the stack).
-    fn clear_finished(&self, s: &State, int: &mut Intention, notes: &mut Vec<Note>) -> bool {
+    fn clear_finished(&self, int: &mut Intention, notes: &mut Vec<Note>) -> bool {
         loop {
             let Some(top) = int.frames.last() else {
                 notes.push(Note::Finished(int.origin));
@@ -1263,7 +1262,7 @@ impl<'p> Semantics<'p> {
                 // The frame now on top goes on after its current step.
                 if let Some(parent) = int.frames.last_mut() {
                     parent.calling = None;
-                    self.normalize(parent, s);
+                    self.normalize(parent);
                 }
                 continue;
             }
@@ -1288,7 +1287,7 @@ impl<'p> Semantics<'p> {
                     parent.subst = u;
                 }
                 parent.calling = None;
-                self.normalize(parent, s);
+                self.normalize(parent);
             }
         }
     }
@@ -1484,7 +1483,7 @@ impl<'p> Semantics<'p> {
                     f @ (".succeed_goal" | ".fail_goal") => {
                         let g = term.args().first().cloned().unwrap_or_else(Term::nil);
                         notes.push(Note::Internal { text, plan, origin });
-                        self.normalize(frame, s);
+                        self.normalize(frame);
                         let current = std::mem::replace(int, empty_intention(origin));
                         let fail = f == ".fail_goal";
                         self.goal_directive(s, current, &g, fail, (plan, step.span), notes);
@@ -1718,7 +1717,7 @@ impl<'p> Semantics<'p> {
                 }
             }
         }
-        self.normalize(frame, s);
+        self.normalize(frame);
         Flow::Continue
     }
 
@@ -1731,7 +1730,7 @@ impl<'p> Semantics<'p> {
         failure: Option<ActionFailure>,
     ) -> Flow {
         if let Some(top) = int.frames.last_mut() {
-            self.normalize(top, s);
+            self.normalize(top);
         }
         let origin = int.origin;
         let intention = std::mem::replace(int, empty_intention(origin));
@@ -1751,7 +1750,7 @@ impl<'p> Semantics<'p> {
         let origin = int.origin;
         if let Some(top) = int.frames.last_mut() {
             top.calling = Some(trigger.literal.clone());
-            self.normalize(top, s);
+            self.normalize(top);
         }
         let suspended = std::mem::replace(int, empty_intention(origin));
         s.events.push(Event {
@@ -1809,9 +1808,9 @@ impl<'p> Semantics<'p> {
             } else if let Some(mut int) = ev.intention {
                 if let Some(top) = int.frames.last_mut() {
                     top.calling = None;
-                    self.normalize(top, s);
+                    self.normalize(top);
                 }
-                if self.clear_finished(s, &mut int, notes) {
+                if self.clear_finished(&mut int, notes) {
                     s.intentions.push(int);
                 }
             } else {
@@ -1836,9 +1835,9 @@ impl<'p> Semantics<'p> {
             // goal, that is its `!g`).
             if let Some(top) = int.frames.last_mut() {
                 top.calling = None;
-                self.normalize(top, s);
+                self.normalize(top);
             }
-            if self.clear_finished(s, &mut int, notes) {
+            if self.clear_finished(&mut int, notes) {
                 s.intentions.push(int);
             }
         }
@@ -1893,9 +1892,9 @@ impl<'p> Semantics<'p> {
             }
             if let Some(top) = int.frames.last_mut() {
                 top.calling = None;
-                self.normalize(top, s);
+                self.normalize(top);
             }
-            return self.clear_finished(s, &mut int, notes).then_some(int);
+            return self.clear_finished(&mut int, notes).then_some(int);
         }
         let tevent = EventTrigger {
             op: TriggerOp::Add,
@@ -1907,7 +1906,7 @@ impl<'p> Semantics<'p> {
                 if current {
                     if let Some(top) = int.frames.last_mut() {
                         top.calling = None;
-                        self.normalize(top, s);
+                        self.normalize(top);
                     }
                 }
                 let origin = int.origin;
