@@ -274,3 +274,51 @@ fn a_manifest_naming_a_device_says_so() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("`/dev/zero` is not a regular file"), "{err}");
 }
+
+#[test]
+fn a_test_goal_on_an_undefined_predicate_is_a_lint_warning() {
+    // Jason just fails `?nowhere(P)`: the project loads, and lint says it always fails.
+    let o = bdi_check(&[
+        "lint",
+        "tests/jason/21-test-goal-undefined",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let f: Vec<_> = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["check"] == "undefined-predicate" && f["status"] == "fail")
+        .collect();
+    assert!(!f.is_empty(), "{r:#}");
+    assert!(f.iter().all(|f| f["severity"] == "warning"));
+    assert!(f[0]["message"].as_str().unwrap().contains("`nowhere/1`"));
+}
+
+#[test]
+fn a_jason_jar_include_is_looked_for_along_the_source_path() {
+    let dir = common::temp_dir("jason-jar");
+    std::fs::create_dir_all(dir.join("res/inc")).unwrap();
+    std::fs::write(dir.join("res/inc/lib.asl"), "+!g <- true.\n").unwrap();
+    let agent = dir.join("a.asl");
+    std::fs::write(&agent, "{ include(\"$jasonJar/inc/lib.asl\") }\n").unwrap();
+    let a = agent.to_str().unwrap();
+    let o = bdi_check(&["parse", a]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("a file of Jason's jar"));
+    let res = dir.join("res");
+    let o = bdi_check(&["parse", a, "-I", res.to_str().unwrap()]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
