@@ -116,16 +116,6 @@ const KNOWN: &[(&str, &str, &str)] = &[
         "go",
         "refused: `.add_plan`/`.remove_plan` change the plan library at run time, which the model does not",
     ),
-    (
-        "50-strong-negation",
-        "go_twice",
-        "refused: strongly negated mental notes (`~p`) are not modelled",
-    ),
-    (
-        "50-strong-negation",
-        "neg_a_b",
-        "refused: strongly negated mental notes (`~p`) are not modelled",
-    ),
 ];
 
 #[test]

@@ -67,7 +67,7 @@ fn ground(p: &Project, e: &Expr) -> Option<AtomId> {
     let ExprKind::Literal(l) = &e.kind else {
         return None;
     };
-    let pred = p.atoms.pred(&l.functor)?;
+    let pred = p.atoms.pred_lit(&l.functor, l.negated)?;
     let args = l
         .args
         .iter()

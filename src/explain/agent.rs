@@ -229,7 +229,7 @@ impl<'p> Explainer<'p> {
     /// Whether an atom (possibly with variables: some instance) is believed in `s`.
     pub fn holds(&self, s: &AtomSet, atom: &Term) -> bool {
         let p = self.project;
-        let Some(pred) = atom.functor().and_then(|f| p.atoms.pred(f)) else {
+        let Some(pred) = p.atoms.pred_of_literal(atom) else {
             return false;
         };
         let atom = atom.without_annots();

@@ -38,6 +38,9 @@ struct PredEntry {
 pub struct AtomTable {
     preds: Vec<PredEntry>,
     by_name: HashMap<Arc<str>, PredId>,
+    /// The strongly negated predicates (`~p`, a name of its own in the vocabulary), by the
+    /// name of `p`: Jason keeps `~p` apart from `p` (different predicate indicators).
+    negated_by_name: HashMap<Arc<str>, PredId>,
     /// For each type, each object's position among the objects of that type (`u32::MAX`
     /// when the object is not of the type).
     position: Vec<Vec<u32>>,
@@ -70,6 +73,7 @@ impl AtomTable {
         let mut table = AtomTable {
             preds: Vec::new(),
             by_name: HashMap::new(),
+            negated_by_name: HashMap::new(),
             position,
             members,
             len: 0,
@@ -91,6 +95,9 @@ impl AtomTable {
                 count: count as u32,
             });
             table.by_name.insert(name.clone(), id);
+            if let Some(positive) = name.strip_prefix('~') {
+                table.negated_by_name.insert(positive.into(), id);
+            }
             total += count;
         }
         table.len = total as u32;
@@ -115,6 +122,20 @@ impl AtomTable {
     /// The predicate with this name.
     pub fn pred(&self, name: &str) -> Option<PredId> {
         self.by_name.get(name).copied()
+    }
+
+    /// The predicate of a literal `name` or, when `negated`, `~name`.
+    pub fn pred_lit(&self, name: &str, negated: bool) -> Option<PredId> {
+        if negated {
+            self.negated_by_name.get(name).copied()
+        } else {
+            self.by_name.get(name).copied()
+        }
+    }
+
+    /// The predicate of a literal term (`p(..)` or `~p(..)`), if it names one.
+    pub fn pred_of_literal(&self, t: &Term) -> Option<PredId> {
+        self.pred_lit(t.functor()?, t.is_negated())
     }
 
     /// A predicate's name.
@@ -186,15 +207,13 @@ impl AtomTable {
     pub fn term(&self, a: AtomId, universe: &Universe) -> Term {
         let (p, args) = self.decode(a);
         let name = self.pred_name(p);
-        if args.is_empty() {
-            Term::atom(name)
-        } else {
-            Term::structure(
-                name,
-                args.iter()
-                    .map(|o| Term::atom(universe.object_name(*o)))
-                    .collect(),
-            )
+        let args = args
+            .iter()
+            .map(|o| Term::atom(universe.object_name(*o)))
+            .collect();
+        match name.strip_prefix('~') {
+            Some(positive) => Term::literal(positive, true, args, Vec::new()),
+            None => Term::structure(name, args),
         }
     }
 

@@ -353,16 +353,6 @@ fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnos
                 new_focus: true,
             },
             StepKind::Test(e) => BodyStep::Test(formula(c, e)?),
-            StepKind::AddBel(e)
-            | StepKind::AddBelEnd(e)
-            | StepKind::AddBelNewFocus(e)
-            | StepKind::DelBel(e)
-            | StepKind::DelBelNewFocus(e)
-            | StepKind::DelAddBel(e)
-                if matches!(&e.kind, ExprKind::Literal(l) if l.negated) =>
-            {
-                return Err(super::project::strong_negation(e.span));
-            }
             StepKind::AddBel(e) | StepKind::AddBelEnd(e) | StepKind::AddBelNewFocus(e) => {
                 if matches!(e.kind, ExprKind::PlanTerm(_)) {
                     return Err(unsupported(s.span, "plans added at run time"));

@@ -250,23 +250,10 @@ fn load_domain(manifest: &Manifest, map: &mut SourceMap) -> Result<Domain, Vec<D
 }
 
 /// The atom a ground literal names.
-/// The refusal of a strongly negated belief (`~p`), which the model's atoms cannot hold.
-pub fn strong_negation(span: Span) -> Diagnostic {
-    Diagnostic::error(
-        "input",
-        "strongly negated beliefs (`~p`) are not modelled by bdi-check yet",
-    )
-    .with_label(span, "a belief `~p`, apart from `p`")
-    .with_help("Jason keeps `~p` as a belief of its own; write it as a mental note such as `not_p`")
-}
-
 fn ground_atom(l: &Literal, atoms: &AtomTable, universe: &Universe) -> Result<AtomId, Diagnostic> {
     let bad = |span: Span, msg: String| Diagnostic::error("input", msg).with_label(span, "here");
-    if l.negated {
-        return Err(strong_negation(l.span));
-    }
     let p = atoms
-        .pred(&l.functor)
+        .pred_lit(&l.functor, l.negated)
         .ok_or_else(|| bad(l.span, format!("`{}` is not a predicate", l.functor)))?;
     let mut args = Vec::new();
     for a in &l.args {

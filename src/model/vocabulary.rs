@@ -11,7 +11,9 @@
 //! * A *predicate* is a PDDL predicate (an *environment* predicate, changed only by actions and
 //!   perceived by the agent) or a *mental note*: a belief the plans add themselves (`+b`,
 //!   `+>b`, `++b`, `-+b`) or an initial belief of the `.asl`, whose name PDDL does not declare.
-//!   Predicates are known by name: a mental note has the arity of its first addition.
+//!   Predicates are known by name: a mental note has the arity of its first addition. A
+//!   strongly negated note `~p` is a predicate of its own, named `~p` (Jason gives `~p` and
+//!   `p` different predicate indicators: both can be believed at once).
 //! * An *action* in a plan body is a PDDL action, an internal action (`.print`, ...), or
 //!   *undefined*. An undefined action is not an error here but a lint finding
 //!   (`undefined-action`, SPEC §2): [`Vocabulary::undefined_actions`] lists every such call.
@@ -695,12 +697,19 @@ impl<'a> Checker<'a> {
     }
 
     fn declare_note(&mut self, l: &Literal, span: Span) {
-        if self.pred_ids.contains_key(&l.functor) {
-            return; // a PDDL predicate (refused later) or a known note
+        let name = l.belief_name();
+        if self.pred_ids.contains_key(name.as_ref())
+            || (l.negated
+                && self
+                    .pred_ids
+                    .get(&l.functor)
+                    .is_some_and(|&p| self.preds[p].env))
+        {
+            return; // a PDDL predicate or its `~` (refused later), or a known note
         }
-        self.pred_ids.insert(l.functor.clone(), self.preds.len());
+        self.pred_ids.insert(name.to_string(), self.preds.len());
         self.preds.push(PredInfo {
-            name: l.functor.clone(),
+            name: name.into_owned(),
             env: false,
             span,
             arity: l.args.len(),
@@ -1005,9 +1014,16 @@ impl<'a> Checker<'a> {
 
     /// A literal read as a belief: a PDDL predicate, a mental note or a rule.
     fn belief_literal(&mut self, cl: &mut Clause, l: &Literal, usage: Usage, scope: Scope) {
-        let name = l.functor.as_str();
+        let belief_name = l.belief_name();
+        let name = belief_name.as_ref();
         let arity = l.args.len();
-        if let Some(&p) = self.pred_ids.get(name) {
+        // `~p` of a PDDL predicate is checked (and refused) against `p` itself.
+        let env_positive = l
+            .negated
+            .then(|| self.pred_ids.get(&l.functor).copied())
+            .flatten()
+            .filter(|&p| self.preds[p].env);
+        if let Some(p) = env_positive.or_else(|| self.pred_ids.get(name).copied()) {
             let info = self.preds[p].clone();
             if info.env {
                 if matches!(usage, Usage::Add | Usage::Replace | Usage::Del) {
@@ -1032,7 +1048,8 @@ impl<'a> Checker<'a> {
                     let d = Diagnostic::error(
                         "input",
                         format!(
-                            "strong negation `~{name}` of an environment predicate: the environment is closed-world, an atom that is not true is false"
+                            "strong negation `~{}` of an environment predicate: the environment is closed-world, an atom that is not true is false",
+                            l.functor
                         ),
                     )
                     .with_label(l.span, "strong negation")

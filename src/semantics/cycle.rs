@@ -21,7 +21,7 @@
 //! with a relevant `-!g` plan gets a `-!g` event, and the frames above it go; with no such
 //! goal the intention is dropped and the failure is reported.
 
-use super::java_hash::{literal_hash, JArg};
+use super::java_hash::{literal_hash, negated_literal_hash, JArg};
 use super::query::{eval, relation, Beliefs};
 use super::state::{
     ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
@@ -331,7 +331,10 @@ impl<'p> Semantics<'p> {
                 .map(|o| project.universe.object_name(*o))
                 .collect();
             let jargs: Vec<JArg> = names.iter().map(|n| JArg::Atom(n)).collect();
-            sem.jhash.push(literal_hash(atoms.pred_name(p), &jargs));
+            sem.jhash.push(match atoms.pred_name(p).strip_prefix('~') {
+                Some(positive) => negated_literal_hash(positive, &jargs),
+                None => literal_hash(atoms.pred_name(p), &jargs),
+            });
             if sem.environment[p.0 as usize] {
                 sem.env_atoms.insert(a);
             }
@@ -544,7 +547,7 @@ impl<'p> Semantics<'p> {
                 let lit = eval(t, &f.subst).unwrap_or_else(|_| f.subst.apply(t));
                 if matches!(step.kind, BodyStep::DelAddBel(_)) {
                     // `-+b` removes any belief of the predicate.
-                    let p = lit.functor().and_then(|f| self.project.atoms.pred(f));
+                    let p = self.project.atoms.pred_of_literal(&lit);
                     for a in p.into_iter().flat_map(|p| self.project.atoms.atoms_of(p)) {
                         out.insert(a);
                     }
@@ -602,10 +605,7 @@ impl<'p> Semantics<'p> {
     /// predicate whose arguments agree with its object arguments.
     fn literal_reads(&self, lit: &Term, out: &mut AtomSet) {
         let atoms = &self.project.atoms;
-        if lit.is_negated() {
-            return;
-        }
-        let Some(p) = lit.functor().and_then(|f| atoms.pred(f)) else {
+        let Some(p) = atoms.pred_of_literal(lit) else {
             return;
         };
         if atoms.pred_params(p).len() != lit.arity() {
@@ -1965,10 +1965,7 @@ impl<'p> Semantics<'p> {
 
     /// The atom a ground literal names (annotations ignored).
     fn ground_atom(&self, t: &Term) -> Option<AtomId> {
-        if t.is_negated() {
-            return None;
-        }
-        let p = self.project.atoms.pred(t.functor()?)?;
+        let p = self.project.atoms.pred_of_literal(t)?;
         self.project.atoms.id(p, &self.objects(t)?)
     }
 }
@@ -1983,7 +1980,7 @@ fn ordered_predicates(p: &Project) -> Vec<bool> {
         if t.is_ground() {
             return;
         }
-        if let Some(q) = t.functor().and_then(|f| p.atoms.pred(f)) {
+        if let Some(q) = p.atoms.pred_of_literal(t) {
             out[q.0 as usize] = true;
         }
     };

@@ -114,9 +114,14 @@ impl Beliefs<'_> {
         } else {
             "self"
         };
+        let name = self.atoms.pred_name(p);
+        let (name, negated) = match name.strip_prefix('~') {
+            Some(positive) => (positive, true),
+            None => (name, false),
+        };
         Term::literal(
-            self.atoms.pred_name(p),
-            false,
+            name,
+            negated,
             args.iter().map(|o| self.universe.object_term(*o)).collect(),
             vec![Term::structure("source", vec![Term::atom(source)])],
         )
@@ -125,11 +130,8 @@ impl Beliefs<'_> {
     /// The believed atoms that unify with `lit` under `s`, each with its answer.
     pub fn literal_answers(&self, lit: &Term, s: &Substitution) -> Vec<(AtomId, Substitution)> {
         let lit = s.apply(lit);
-        // `~p` is never believed: no strong negations are ever added in this model.
-        if lit.is_negated() {
-            return Vec::new();
-        }
-        let Some(p) = lit.functor().and_then(|f| self.atoms.pred(f)) else {
+        // `~p` is a predicate of its own (Jason: a different predicate indicator).
+        let Some(p) = self.atoms.pred_of_literal(&lit) else {
             return Vec::new();
         };
         if self.atoms.pred_params(p).len() != lit.arity() {

@@ -888,11 +888,6 @@ impl<'p> Encoder<'p> {
     /// selected (its symbolic arguments equal its objects) and its atom holds. Unbound
     /// variables range over their positions' types.
     fn instances(&self, t: &Term, env: &Env, st: &State) -> Enc<Vec<Bool>> {
-        if t.is_negated() {
-            return Err(Unsupported(format!(
-                "strong negation in `{t}` is not modelled by lint"
-            )));
-        }
         if !t.annots().is_empty() {
             return Err(Unsupported(format!(
                 "annotations in `{t}` are not modelled by lint"
@@ -903,7 +898,7 @@ impl<'p> Encoder<'p> {
         }
         let atoms = &self.project.atoms;
         let universe = &self.project.universe;
-        let Some(p) = atoms.pred(t.functor().unwrap_or("")) else {
+        let Some(p) = atoms.pred_of_literal(t) else {
             // Closed world: a belief that nothing can add never holds.
             return Ok(Vec::new());
         };

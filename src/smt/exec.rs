@@ -393,7 +393,7 @@ impl Exec<'_, '_> {
     fn belief_atoms(&self, t: &Term, env: &Env) -> Enc<(Vec<(AtomId, Bool)>, bool)> {
         let l = self.l;
         let atoms = &l.p.atoms;
-        let Some(pred) = t.functor().and_then(|f| atoms.pred(f)) else {
+        let Some(pred) = atoms.pred_of_literal(t) else {
             return Ok((Vec::new(), false));
         };
         if atoms.pred_params(pred).len() != t.arity() {

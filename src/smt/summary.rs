@@ -164,7 +164,7 @@ pub fn matching_actions<'p>(
 /// The atoms a belief term of a plan body can be.
 pub fn matching_atoms(project: &Project, t: &Term) -> Vec<AtomId> {
     let atoms = &project.atoms;
-    let Some(p) = t.functor().and_then(|f| atoms.pred(f)) else {
+    let Some(p) = atoms.pred_of_literal(t) else {
         return Vec::new();
     };
     atoms
@@ -183,7 +183,7 @@ pub fn matching_atoms(project: &Project, t: &Term) -> Vec<AtomId> {
 /// Every atom of the predicate of `t` (what `-+t` may remove).
 pub fn same_predicate_atoms(project: &Project, t: &Term) -> Vec<AtomId> {
     let atoms = &project.atoms;
-    match t.functor().and_then(|f| atoms.pred(f)) {
+    match atoms.pred_of_literal(t) {
         Some(p) if atoms.pred_params(p).len() == t.arity() => atoms.atoms_of(p).collect(),
         _ => Vec::new(),
     }

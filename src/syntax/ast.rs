@@ -328,6 +328,16 @@ pub struct Literal {
 }
 
 impl Literal {
+    /// The name of the predicate a belief literal names: `p`, or `~p` for a strongly
+    /// negated one, which Jason keeps apart from `p` (a predicate indicator of its own).
+    pub fn belief_name(&self) -> std::borrow::Cow<'_, str> {
+        if self.negated {
+            format!("~{}", self.functor).into()
+        } else {
+            self.functor.as_str().into()
+        }
+    }
+
     /// Whether Jason treats this literal as an internal action: an unquoted functor containing
     /// a dot (`.print`, `time.check`).
     pub fn is_internal_action(&self) -> bool {
