@@ -4,8 +4,8 @@
 //! temporary folder. The initial states are fixed but for the door, so that loading stays
 //! cheap and the time measured is lint's. Prints one line per size.
 
+use bdi_check::findings::Status;
 use bdi_check::model::project::load_project;
-use bdi_check::report::Status;
 use bdi_check::smt::{lint, LintOptions};
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -165,7 +165,7 @@ fn row(cups: usize, symmetry: bool, explain: bool) {
     let failed = v
         .findings
         .iter()
-        .filter(|f| f.status == bdi_check::report::Status::Fail)
+        .filter(|f| f.status == bdi_check::findings::Status::Fail)
         .count();
     let s = &v.stats;
     println!(

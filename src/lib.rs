@@ -27,7 +27,7 @@
 //! ```
 //! use bdi_check::check::{explore::Limits, verify};
 //! use bdi_check::model::project::load_project;
-//! use bdi_check::report::Status;
+//! use bdi_check::findings::Status;
 //!
 //! let project = load_project(std::path::Path::new("specs/paper")).expect("the project loads");
 //! let limits = Limits { max_states: 10_000, max_depth: 100, timeout: None };
@@ -64,7 +64,7 @@
 //! ```
 //! # use bdi_check::check::{explore::Limits, verify};
 //! # use bdi_check::model::project::load_project;
-//! # use bdi_check::report::Status;
+//! # use bdi_check::findings::Status;
 //! # let project = load_project(std::path::Path::new("specs/paper")).unwrap();
 //! # let limits = Limits { max_states: 10_000, max_depth: 100, timeout: None };
 //! let result = verify(&project, limits, |_, _, _| {}, &[]).unwrap();
@@ -87,16 +87,20 @@
 //! * [`model`]: the formal model `M = <S, B, G, Pi>`: terms and unification, types and
 //!   objects, type checking, ground atoms and states, ground actions, plans;
 //! * [`smt`]: the static checks of `lint`, decided with z3;
+//! * [`findings`]: what every stage reports (findings, counterexamples, statistics);
 //! * [`semantics`]: Jason's reasoning cycle as a transition function, and compiled for search;
 //! * [`explain`]: the paper's two explanation algorithms (when to explain, what to say),
 //!   as pure functions a robot can call at run time;
 //! * [`check`]: exhaustive exploration and the dynamic checks;
-//! * [`report`]: what the commands print (human text, JSON, DOT) and replay.
+//! * [`report`]: rendering only: human text, JSON, SARIF, JUnit, DOT, scenario files;
+//! * [`commands`]: each command of SPEC §2: load, run the stages, hand the result to `report`.
 
 #![warn(missing_docs)]
 
 pub mod check;
+pub mod commands;
 pub mod explain;
+pub mod findings;
 pub mod model;
 #[cfg(kani)]
 #[path = "../proofs/mod.rs"]

@@ -1,6 +1,7 @@
 //! The `bdi-check` command line: argument parsing and dispatch, nothing else.
 
-use bdi_check::report::{self, verify::Detail, Format};
+use bdi_check::commands;
+use bdi_check::report::{verify::Detail, CiFormat, Format};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -61,48 +62,28 @@ struct Output {
 }
 
 impl Output {
-    /// The human or JSON format; the CI formats are taken by [`Output::ci_format`] first
-    /// (lint, verify) or refused by [`Output::refuse_ci_format`] (other commands).
-    fn format(&self) -> Format {
-        match self.format {
-            FormatArg::Human => Format::Human,
-            FormatArg::Json | FormatArg::Sarif | FormatArg::Junit => Format::Json,
-        }
-    }
-
-    fn ci_format(&self) -> Option<report::CiFormat> {
-        match self.format {
-            FormatArg::Sarif => Some(report::CiFormat::Sarif),
-            FormatArg::Junit => Some(report::CiFormat::Junit),
-            FormatArg::Human | FormatArg::Json => None,
-        }
-    }
-
-    /// A usage error (exit 2, as clap's) when a command that has no findings to report is
-    /// asked for SARIF or JUnit.
-    fn refuse_ci_format(&self, command: &str) -> Option<ExitCode> {
-        let name = match self.ci_format()? {
-            report::CiFormat::Sarif => "sarif",
-            report::CiFormat::Junit => "junit",
+    /// How the command is to write its report.
+    fn style(&self) -> commands::Style {
+        let (format, ci) = match self.format {
+            FormatArg::Human => (Format::Human, None),
+            FormatArg::Json => (Format::Json, None),
+            FormatArg::Sarif => (Format::Json, Some(CiFormat::Sarif)),
+            FormatArg::Junit => (Format::Json, Some(CiFormat::Junit)),
         };
-        eprintln!(
-            "error: `--format {name}` is for `lint` and `verify`; `{command}` writes `human` or `json`"
-        );
-        Some(ExitCode::from(2))
-    }
-
-    fn detail(&self) -> Detail {
-        if self.quiet {
+        let detail = if self.quiet {
             Detail::Quiet
         } else if self.verbose {
             Detail::Verbose
         } else {
             Detail::Normal
+        };
+        commands::Style {
+            format,
+            ci,
+            detail,
+            color: self.output.is_none() && std::io::stdout().is_terminal(),
+            stderr_color: stderr_color(),
         }
-    }
-
-    fn color(&self) -> bool {
-        self.output.is_none() && std::io::stdout().is_terminal()
     }
 }
 
@@ -222,37 +203,19 @@ fn main() -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
-    match cli.command {
+    let (done, output) = match cli.command {
         Command::Parse {
             files,
             include,
             out,
-        } => {
-            if let Some(code) = out.refuse_ci_format("parse") {
-                return code;
-            }
-            let run = report::outline::parse_files_with(&files, &include);
-            let (mut text, err) = report::outline::render(&run, out.format(), out.color());
-            if out.quiet && out.format() == Format::Human {
-                text = text
-                    .lines()
-                    .last()
-                    .map(|l| format!("{l}\n"))
-                    .unwrap_or_default();
-            }
-            eprint!("{err}");
-            finish(&text, out.output, run.report.verdict.exit_code())
-        }
-        Command::Lint { project, deny, out } => {
-            let opts = bdi_check::smt::LintOptions::default();
-            let run = report::lint::run(&project, &opts, deny.is_some());
-            let (text, err) = match out.ci_format() {
-                Some(ci) => (ci.render(&run.report, "lint"), String::new()),
-                None => report::lint::render(&run, out.format(), out.detail(), out.color()),
-            };
-            eprint!("{err}");
-            finish(&text, out.output, run.report.verdict.exit_code())
-        }
+        } => (
+            commands::parse::command(&files, &include, out.quiet, &out.style()),
+            out.output,
+        ),
+        Command::Lint { project, deny, out } => (
+            commands::lint::command(&project, deny.is_some(), &out.style()),
+            out.output,
+        ),
         Command::Verify {
             project,
             max_states,
@@ -273,209 +236,74 @@ fn main() -> ExitCode {
                 max_memory: bdi_check::check::explore::default_max_memory(),
                 compiled: defaults.compiled,
             };
-            let run = report::verify::run_with(
-                &project,
+            let bounds = commands::verify::Bounds {
                 max_states,
                 max_depth,
                 timeout,
+            };
+            let done = commands::verify::command(
+                &project,
+                &bounds,
                 &opts,
+                scenarios.as_deref(),
+                &out.style(),
                 |n, d, t| bar.tick(n, d, t),
             );
             bar.finish();
-            if let Some(dir) = &scenarios {
-                if let Err(e) = report::verify::write_scenarios(&run.report, dir) {
-                    eprintln!(
-                        "error: cannot write scenarios into `{}`: {e}",
-                        dir.display()
-                    );
-                    return ExitCode::from(2);
-                }
-            }
-            let text = match (out.ci_format(), out.format()) {
-                (Some(ci), _) => ci.render(&run.report, "verify"),
-                (None, Format::Json) => {
-                    serde_json::to_string_pretty(&run.report).unwrap_or_default() + "\n"
-                }
-                (None, Format::Human) => {
-                    report::verify::render_human(&run, out.detail(), out.color())
-                }
-            };
-            finish(&text, out.output, run.report.verdict.exit_code())
+            (done, out.output)
         }
         Command::Explain {
             project,
             scenario,
             user,
             out,
-        } => match scenario {
-            _ if out.ci_format().is_some() => {
-                out.refuse_ci_format("explain").unwrap_or(ExitCode::from(2))
-            }
-            Some(sc) => {
-                let run = report::explain::run(&project, &sc, user.as_deref());
-                if !run.diagnostics.is_empty() {
-                    if out.format() == Format::Json {
-                        let findings: Vec<_> = run
-                            .diagnostics
-                            .iter()
-                            .map(|d| report::Finding::from_input_diagnostic(d, &run.map))
-                            .collect();
-                        let r = report::Report::new(project.display().to_string(), findings);
-                        return finish(
-                            &(serde_json::to_string_pretty(&r).unwrap_or_default() + "\n"),
-                            out.output,
-                            2,
-                        );
-                    }
-                    eprint!(
-                        "{}",
-                        report::explain::render_human(&run, std::io::stderr().is_terminal())
-                    );
-                    return ExitCode::from(2);
-                }
-                let text = match out.format() {
-                    Format::Json => report::explain::render_json(&run),
-                    Format::Human => report::explain::render_human(&run, out.color()),
-                };
-                finish(&text, out.output, 0)
-            }
-            None => match report::explain::catalogue(&project, user.as_deref()) {
-                Ok(report::explain::Catalogue { entries, note, .. }) => {
-                    let text = match out.format() {
-                        Format::Json => {
-                            let v = serde_json::json!({
-                                "tool": report::Tool::default(),
-                                "project": project.display().to_string(),
-                                "verdict": "pass",
-                                "findings": [],
-                                "explanations": entries,
-                                "note": note,
-                            });
-                            serde_json::to_string_pretty(&v).unwrap_or_default() + "\n"
-                        }
-                        Format::Human => {
-                            report::explain::render_catalogue(&entries, note.as_deref())
-                        }
-                    };
-                    finish(&text, out.output, 0)
-                }
-                Err((map, errs)) => {
-                    for d in &errs {
-                        eprintln!("{}", d.render(&map, std::io::stderr().is_terminal()));
-                    }
-                    ExitCode::from(2)
-                }
-            },
-        },
+        } => (
+            commands::explain::command(
+                &project,
+                scenario.as_deref(),
+                user.as_deref(),
+                &out.style(),
+            ),
+            out.output,
+        ),
         Command::Graph {
             project,
             plans,
             states: _,
             max_states,
             output,
-        } => {
-            let p = match bdi_check::model::project::load_project(&project) {
-                Ok(p) => p,
-                Err(e) => {
-                    for d in &e.diagnostics {
-                        eprintln!("{}", d.render(&e.map, std::io::stderr().is_terminal()));
-                    }
-                    return ExitCode::from(2);
-                }
-            };
-            if plans {
-                return finish(&report::graph::plans_dot(&p), output, 0);
-            }
-            let limits = report::verify::limits(&p, max_states, None, None);
-            match report::graph::states_dot(&p, limits) {
-                Ok((dot, note)) => {
-                    if let Some(n) = note {
-                        eprintln!("note: {n}");
-                    }
-                    finish(&dot, output, 0)
-                }
-                Err(errs) => {
-                    for d in &errs {
-                        eprintln!("{}", d.render(&p.map, false));
-                    }
-                    ExitCode::from(2)
-                }
-            }
-        }
+        } => (
+            commands::graph::command(&project, plans, max_states, stderr_color()),
+            output,
+        ),
         Command::Merge {
             reports,
             format,
             output,
         } => {
-            let mut values = Vec::new();
-            for path in &reports {
-                let read = std::fs::read_to_string(path)
-                    .map_err(|e| e.to_string())
-                    .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()));
-                match read {
-                    Ok(v) => values.push(v),
-                    Err(e) => {
-                        eprintln!("error: cannot read the report `{}`: {e}", path.display());
-                        return ExitCode::from(2);
-                    }
+            let done = match format {
+                FormatArg::Json => commands::merge::command(&reports, Format::Json),
+                FormatArg::Human => commands::merge::command(&reports, Format::Human),
+                FormatArg::Sarif | FormatArg::Junit => {
+                    commands::Output::refused("error: `merge` writes `human` or `json`\n".into())
                 }
-            }
-            match report::verify::merge(&values) {
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::from(2)
-                }
-                Ok(merged) => {
-                    let verdict = merged["verdict"].as_str().unwrap_or("error").to_string();
-                    let code = match verdict.as_str() {
-                        "pass" => 0,
-                        "fail" => 1,
-                        "incomplete" => 3,
-                        _ => 2,
-                    };
-                    let text = match format {
-                        FormatArg::Json => {
-                            serde_json::to_string_pretty(&merged).unwrap_or_default() + "\n"
-                        }
-                        FormatArg::Human => format!(
-                            "verdict: {verdict} (merged {} reports, {} checks)\n",
-                            reports.len(),
-                            merged["findings"].as_array().map_or(0, |f| f.len())
-                        ),
-                        FormatArg::Sarif | FormatArg::Junit => {
-                            eprintln!("error: `merge` writes `human` or `json`");
-                            return ExitCode::from(2);
-                        }
-                    };
-                    finish(&text, output, code)
-                }
-            }
+            };
+            (done, output)
         }
         Command::Replay {
             report: path,
             finding,
-        } => match report::replay::replay(&path, finding.as_deref()) {
-            Err(errs) => {
-                for e in errs {
-                    eprintln!("{}", e.render(&bdi_check::syntax::SourceMap::new(), false));
-                }
-                ExitCode::from(2)
-            }
-            Ok(results) => {
-                let mut reached = false;
-                for r in &results {
-                    let verdict = if r.reached {
-                        "still reaches"
-                    } else {
-                        "no longer reaches"
-                    };
-                    println!("{}: {verdict} its violation ({})", r.id, r.detail);
-                    reached |= r.reached;
-                }
-                ExitCode::from(u8::from(reached))
-            }
-        },
+        } => (commands::replay::command(&path, finding.as_deref()), None),
+    };
+    eprint!("{}", done.stderr);
+    match done.report {
+        Some(text) => finish(&text, output, done.code),
+        None => ExitCode::from(done.code as u8),
     }
+}
+
+fn stderr_color() -> bool {
+    std::io::stderr().is_terminal()
 }
 
 /// Parses `K/N` with `1 <= K <= N`.

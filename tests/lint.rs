@@ -3,6 +3,7 @@
 //! enumeration of all states says (an explicit evaluator of plan formulas, independent of
 //! the z3 encoding).
 
+use bdi_check::findings::{Report, Status, Verdict};
 use bdi_check::model::atoms::{AtomId, AtomSet};
 use bdi_check::model::cond::Cond;
 use bdi_check::model::initial;
@@ -10,7 +11,6 @@ use bdi_check::model::plans::{BodyStep, Formula, Plan, Step};
 use bdi_check::model::project::{load_project, Project};
 use bdi_check::model::term::{Term, Var};
 use bdi_check::model::universe::{ObjectId, TypeId};
-use bdi_check::report::{Report, Status, Verdict};
 use bdi_check::smt::encode::{rule_clauses, Clause};
 use bdi_check::smt::summary::{matching_atoms, same_predicate_atoms, Effects, Summaries};
 use bdi_check::smt::{lint, LintFinding, LintOptions};

@@ -20,10 +20,10 @@ pub mod store;
 pub mod symmetry;
 pub mod trace;
 
+use crate::findings::{Counterexample, Finding, Stats, Status};
 use crate::model::cond::Cond;
 use crate::model::formula;
 use crate::model::project::Project;
-use crate::report::{Counterexample, Finding, Stats, Status};
 use crate::semantics::{Compiled, Note, Semantics};
 use crate::syntax::{Diagnostic, Severity, Span};
 use explore::{explore_with, Bound, Graph, Limits, Options};

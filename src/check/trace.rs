@@ -9,9 +9,9 @@
 
 use super::explore::{fingerprint, Graph, Walk};
 use super::model::Agent;
+use crate::findings::{Counterexample, StepKindTag, TraceStep};
 use crate::model::atoms::AtomId;
 use crate::model::project::Project;
-use crate::report::{Counterexample, StepKindTag, TraceStep};
 use crate::semantics::{Note, Origin, Semantics};
 use std::collections::HashMap;
 

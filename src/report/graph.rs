@@ -6,16 +6,11 @@
 //! drawn legibly, it draws the part that the counterexamples of the failing checks go
 //! through (or the first states in breadth-first order when nothing fails) and says so.
 
-use crate::check::explore::{explore, fingerprint, Limits};
-use crate::check::verify;
 use crate::model::plans::{BodyStep, Formula, Step};
 use crate::model::project::Project;
-use crate::report::Status;
-use crate::semantics::{Note, Semantics};
-use crate::syntax::Diagnostic;
 use petgraph::dot::{Config, Dot};
 use petgraph::graph::{DiGraph, NodeIndex};
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 
 /// Most states `--states` draws in full.
 pub const MAX_DRAWN_STATES: usize = 200;
@@ -100,110 +95,34 @@ pub fn plans_dot(p: &Project) -> String {
     )
 }
 
-/// The state graph (or its counterexample part) as DOT, and a note when it was cut.
-pub fn states_dot(
-    p: &Project,
-    limits: Limits,
-) -> Result<(String, Option<String>), Vec<Diagnostic>> {
-    let sem = Semantics::new(p)?;
-    let graph = explore(&sem, limits, |_, _, _| {}, |_, _, _| {});
-    let n = graph.len();
-    // Only fingerprints are kept: a drawn state is rebuilt by replaying the run to it.
-    let state = |i: u32| graph.state(&sem, i);
-    let (drawn, note): (BTreeSet<u32>, Option<String>) = if n <= MAX_DRAWN_STATES {
-        ((0..n as u32).collect(), None)
-    } else {
-        let v = verify(p, limits, |_, _, _| {}, &[])?;
-        let mut keep = BTreeSet::new();
-        for f in v.findings.iter().filter(|f| f.status == Status::Fail) {
-            if let Some(c) = &f.counterexample {
-                // The counterexample's initial state, then follow its steps through the graph.
-                let start = (0..graph.initial as u32).find(|&i| {
-                    state(i).is_some_and(|s| {
-                        s.beliefs
-                            .iter()
-                            .map(|a| p.atoms.display(a, &p.universe))
-                            .collect::<Vec<_>>()
-                            == c.initial
-                    })
-                });
-                if let Some(i) = start {
-                    keep.insert(i);
-                    let mut at = i;
-                    for _ in 0..c.steps.len() {
-                        let Some(next) = graph.successors(at) else {
-                            break;
-                        };
-                        let Some(&j) = next.first() else { break };
-                        keep.insert(j);
-                        at = j;
-                    }
-                }
-            }
-        }
-        let why = if keep.is_empty() {
-            keep = (0..MAX_DRAWN_STATES as u32).collect();
-            format!("the state graph has {n} states, too many to draw: drawing the first {MAX_DRAWN_STATES} in breadth-first order")
-        } else {
-            format!("the state graph has {n} states, too many to draw: drawing the {} states the counterexamples go through", keep.len())
-        };
-        (keep, Some(why))
-    };
+/// A drawn part of the state graph: the states (by number, with their labels), the
+/// transitions between them (with what happened), and why it was cut, if it was.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StateGraph {
+    /// Each drawn state, in drawing order.
+    pub nodes: Vec<(u32, String)>,
+    /// Each drawn transition `(from, to, label)`, between drawn states.
+    pub edges: Vec<(u32, u32, String)>,
+    /// Why not every state is drawn, if not.
+    pub note: Option<String>,
+}
+
+/// The state graph as DOT; a cut graph says why in a comment on its first line.
+pub fn states_dot(sg: &StateGraph) -> String {
     let mut g: DiGraph<String, String> = DiGraph::new();
     let mut node: HashMap<u32, NodeIndex> = HashMap::new();
-    for &i in &drawn {
-        let Some(s) = state(i) else { continue };
-        let beliefs: Vec<String> = s
-            .beliefs
-            .iter()
-            .map(|a| p.atoms.display(a, &p.universe))
-            .collect();
-        let mut label = format!("s{i}\n{}", beliefs.join("\n"));
-        if !s.is_idle() {
-            label.push_str(&format!(
-                "\n({} events, {} intentions)",
-                s.events.len(),
-                s.intentions.len()
-            ));
-        }
-        node.insert(i, g.add_node(label));
+    for (i, label) in &sg.nodes {
+        node.insert(*i, g.add_node(label.clone()));
     }
-    for &i in &drawn {
-        let (Some(targets), Some(from)) = (graph.successors(i), state(i)) else {
-            continue;
-        };
-        let succ = sem.successors(&from);
-        for &j in targets {
-            let Some(&to) = node.get(&j) else { continue };
-            let want = graph.fingerprint(j);
-            let label = succ
-                .iter()
-                .find(|t| fingerprint(&t.next) == want)
-                .map(|t| {
-                    t.notes
-                        .iter()
-                        .filter_map(|n| match n {
-                            Note::Request { index } => {
-                                Some(format!("!{}", sem.requests[*index as usize]))
-                            }
-                            Note::Action { text, .. } => Some(text.clone()),
-                            Note::ActionFailed { text, .. } => Some(format!("{text} fails")),
-                            Note::GoalFailed { cause, .. } => Some(format!("{cause} fails")),
-                            _ => None,
-                        })
-                        .collect::<Vec<_>>()
-                        .join("; ")
-                })
-                .unwrap_or_default();
-            g.add_edge(node[&i], to, label);
-        }
+    for (i, j, label) in &sg.edges {
+        g.add_edge(node[i], node[j], label.clone());
     }
     let mut dot = format!("{}", Dot::new(&g)).replace(
         "digraph {",
         "digraph states {\n    node [shape=box, fontname=\"monospace\"];",
     );
-    if let Some(why) = &note {
+    if let Some(why) = &sg.note {
         dot = format!("// {why}\n{dot}");
     }
-    Ok((dot, note))
+    dot
 }

@@ -9,7 +9,7 @@
 //! There are no `time` attributes: the output depends on the findings alone.
 
 use super::verify::render_counterexample;
-use super::{Finding, Report, Status};
+use crate::findings::{Finding, Report, Status};
 use crate::syntax::Severity;
 
 /// How a finding shows in JUnit.
@@ -75,10 +75,10 @@ pub fn render(report: &Report, command: &str) -> String {
 
 fn verdict(r: &Report) -> &'static str {
     match r.verdict {
-        super::Verdict::Pass => "pass",
-        super::Verdict::Fail => "fail",
-        super::Verdict::Incomplete => "incomplete",
-        super::Verdict::Error => "error",
+        crate::findings::Verdict::Pass => "pass",
+        crate::findings::Verdict::Fail => "fail",
+        crate::findings::Verdict::Incomplete => "incomplete",
+        crate::findings::Verdict::Error => "error",
     }
 }
 

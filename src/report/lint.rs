@@ -2,11 +2,10 @@
 //! the plan's source and the state that shows the problem) and for machines (SPEC §3 JSON).
 
 use super::verify::Detail;
-use super::{Finding, Format, Report, Status, Verdict};
-use crate::model::project::load_project;
-use crate::smt::{lint, LintFinding, LintOptions};
+use super::Format;
+use crate::findings::{Report, Status, Verdict};
+use crate::smt::LintFinding;
 use crate::syntax::{Diagnostic, Severity, SourceMap};
-use std::path::Path;
 
 /// The outcome of `lint` on one project.
 pub struct LintRun {
@@ -18,45 +17,6 @@ pub struct LintRun {
     pub diagnostics: Vec<Diagnostic>,
     /// The findings with their labels, in report order.
     pub findings: Vec<LintFinding>,
-}
-
-/// Loads and lints a project. With `deny_warnings`, a failing warning is an error (and
-/// fails the verdict), as with rustc's `-D warnings`.
-pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
-    let name = path.display().to_string();
-    let project = match load_project(path) {
-        Ok(p) => p,
-        Err(e) => {
-            let findings: Vec<Finding> = e
-                .diagnostics
-                .iter()
-                .map(|d| Finding::from_input_diagnostic(d, &e.map))
-                .collect();
-            let mut report = Report::new(name, findings);
-            report.verdict = Verdict::Error;
-            return LintRun {
-                report,
-                map: e.map,
-                diagnostics: e.diagnostics,
-                findings: Vec::new(),
-            };
-        }
-    };
-    let mut findings = lint(&project, opts);
-    if deny_warnings {
-        for f in &mut findings {
-            if f.finding.severity == Severity::Warning && f.finding.status == Status::Fail {
-                f.finding.severity = Severity::Error;
-            }
-        }
-    }
-    let report = Report::new(name, findings.iter().map(|f| f.finding.clone()).collect());
-    LintRun {
-        report,
-        map: project.map,
-        diagnostics: Vec::new(),
-        findings,
-    }
 }
 
 /// The run in the requested format: `(stdout, stderr)`. Input errors go to stderr in human

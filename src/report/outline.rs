@@ -4,18 +4,11 @@
 //! trigger); `--format json` gives the outline of every plan (trigger, context and body steps
 //! as Jason text, with locations) and the input findings of SPEC §3.
 
-use super::domain::{
-    domain_outline, project_outline, render_domain, render_project, DomainOutline, ProjectOutline,
-};
-use super::{verdict_of, Finding, Format, Tool, Verdict};
-use crate::model::project::load_project;
-use crate::syntax::ast::{Item, Plan};
-use crate::syntax::loader::load_agent_with;
-use crate::syntax::pddl::parse_domain;
-use crate::syntax::printer::{print_expr, print_literal, print_step, print_trigger};
+use super::domain::{render_domain, render_project, DomainOutline, ProjectOutline};
+use super::Format;
+use crate::findings::{Finding, Tool, Verdict};
 use crate::syntax::{Diagnostic, Location, SourceMap};
 use serde::Serialize;
-use std::path::{Path, PathBuf};
 
 /// The result of parsing some files: their outlines and every diagnostic.
 pub struct ParseRun {
@@ -93,152 +86,6 @@ pub struct PlanOutline {
     pub body: Vec<String>,
     /// Where the plan starts.
     pub location: Location,
-}
-
-/// Parses every file: `.asl` agents (with their includes), `.pddl` domains, and manifests
-/// (`.toml`: the whole project is loaded, checked and grounded). Other files are refused.
-pub fn parse_files(paths: &[PathBuf]) -> ParseRun {
-    parse_files_with(paths, &[])
-}
-
-/// [`parse_files`], with folders where an agent's `include` also looks (`-I DIR`).
-pub fn parse_files_with(paths: &[PathBuf], source_path: &[PathBuf]) -> ParseRun {
-    let mut map = SourceMap::new();
-    let mut diagnostics = Vec::new();
-    let mut files = Vec::new();
-    for path in paths {
-        let name = path.display().to_string();
-        match path.extension().and_then(|e| e.to_str()) {
-            Some("asl") => match load_agent_with(path, &mut map, source_path) {
-                Ok(agent) => files.push(FileReport::Agent(outline(path, &agent, &map))),
-                Err(errs) => diagnostics.extend(errs),
-            },
-            Some("pddl") => match std::fs::read_to_string(path) {
-                Ok(text) => {
-                    let id = map.add(path, name.clone(), text);
-                    let text = map.file(id).text.clone();
-                    match parse_domain(id, &text) {
-                        (Some(d), errs) if errs.is_empty() => {
-                            files.push(FileReport::Domain(domain_outline(&name, &d, &map)))
-                        }
-                        (_, errs) => diagnostics.extend(errs),
-                    }
-                }
-                Err(e) => diagnostics.push(
-                    Diagnostic::error("input", format!("cannot read `{name}`: {e}")).in_file(name),
-                ),
-            },
-            Some("toml") => match load_project(path) {
-                Ok(p) => {
-                    files.push(FileReport::Project(project_outline(&name, &p)));
-                    // Keep the project's files so that later diagnostics still render.
-                    absorb(&mut map, p.map);
-                }
-                Err(e) => {
-                    // Diagnostics point into the project's own source map: re-home them.
-                    let base = map.files().len() as u32;
-                    absorb(&mut map, e.map);
-                    diagnostics.extend(e.diagnostics.into_iter().map(|d| rebase(d, base)));
-                }
-            },
-            _ => diagnostics.push(
-                Diagnostic::error(
-                    "input",
-                    format!("`{name}` is not an AgentSpeak file, a PDDL domain or a manifest"),
-                )
-                .in_file(name)
-                .with_help("`parse` reads `.asl`, `.pddl` and `bdi-check.toml` files"),
-            ),
-        }
-    }
-    let findings: Vec<Finding> = diagnostics
-        .iter()
-        .map(|d| Finding::from_input_diagnostic(d, &map))
-        .collect();
-    let report = ParseReport {
-        tool: Tool::default(),
-        command: "parse",
-        verdict: verdict_of(&findings),
-        files,
-        findings,
-    };
-    ParseRun {
-        map,
-        diagnostics,
-        report,
-    }
-}
-
-/// Appends another map's files to `map` (their ids shift by `map`'s length).
-fn absorb(map: &mut SourceMap, other: SourceMap) {
-    for f in other.files() {
-        map.add(&f.path, f.name.clone(), f.text.clone());
-    }
-}
-
-/// Shifts a diagnostic's file ids by `base`, after [`absorb`].
-fn rebase(mut d: Diagnostic, base: u32) -> Diagnostic {
-    let shift = |s: &mut crate::syntax::Span| s.file = crate::syntax::FileId(s.file.0 + base);
-    if let Some(s) = &mut d.span {
-        shift(s);
-    }
-    for l in &mut d.secondary {
-        shift(&mut l.span);
-    }
-    d
-}
-
-fn outline(path: &Path, agent: &crate::syntax::LoadedAgent, map: &SourceMap) -> FileOutline {
-    let loc = |span| map.location(span);
-    let mut o = FileOutline {
-        file: path.display().to_string(),
-        includes: agent
-            .included
-            .iter()
-            .map(|i| map.file(i.file).name.clone())
-            .collect(),
-        beliefs: Vec::new(),
-        rules: Vec::new(),
-        initial_goals: Vec::new(),
-        plans: Vec::new(),
-    };
-    for item in agent.items() {
-        match item {
-            Item::Belief(b) => o.beliefs.push(Entry {
-                text: print_literal(&b.literal),
-                location: loc(b.span),
-            }),
-            Item::Rule(r) => o.rules.push(Entry {
-                text: format!("{} :- {}", print_literal(&r.head), print_expr(&r.body)),
-                location: loc(r.span),
-            }),
-            Item::InitialGoal(g) => o.initial_goals.push(Entry {
-                text: format!("!{}", print_literal(&g.literal)),
-                location: loc(g.span),
-            }),
-            Item::Plan(p) => push_plan(&mut o.plans, p, map),
-            // `items()` has already replaced directives by what they stand for.
-            Item::Directive(_) => {}
-        }
-    }
-    o
-}
-
-fn push_plan(out: &mut Vec<PlanOutline>, p: &Plan, map: &SourceMap) {
-    out.push(PlanOutline {
-        label: p.label.as_ref().and_then(|l| l.name.clone()),
-        trigger: print_trigger(&p.trigger),
-        context: p.context.as_ref().map(print_expr),
-        body: p
-            .body
-            .as_ref()
-            .map(|b| b.steps.iter().map(print_step).collect())
-            .unwrap_or_default(),
-        location: map.location(p.span),
-    });
-    for sub in &p.sub_plans {
-        push_plan(out, sub, map);
-    }
 }
 
 /// The run written in the requested format: `(stdout, stderr)`.

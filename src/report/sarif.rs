@@ -6,7 +6,7 @@
 //! paths the report does not already hold. One result per failing or undecided finding;
 //! passed checks are not results (SARIF has no "pass" result a dashboard would show).
 
-use super::{Counterexample, Finding, Report, Status, StepKindTag};
+use crate::findings::{Counterexample, Finding, Report, Status, StepKindTag};
 use crate::syntax::Severity;
 use serde_json::{json, Value};
 use std::collections::BTreeSet;
@@ -63,7 +63,7 @@ pub fn log(report: &Report, command: &str) -> Value {
             // so several projects' logs can be uploaded side by side.
             "automationDetails": {"id": format!("bdi-check/{command}/{}/", report.project)},
             "invocations": [{
-                "executionSuccessful": report.verdict != super::Verdict::Error,
+                "executionSuccessful": report.verdict != crate::findings::Verdict::Error,
                 "exitCode": report.verdict.exit_code(),
                 "toolExecutionNotifications": report
                     .warnings

@@ -1,0 +1,63 @@
+//! `bdi-check lint`: load a project and run the static checks (rendered by
+//! [`crate::report::lint`]).
+
+use super::{Output, Style};
+use crate::findings::{Finding, Report, Status, Verdict};
+use crate::model::project::load_project;
+use crate::report::lint::{render, LintRun};
+use crate::smt::{lint, LintOptions};
+use crate::syntax::Severity;
+use std::path::Path;
+
+/// `lint PROJECT [--deny warnings]`.
+pub fn command(project: &Path, deny_warnings: bool, style: &Style) -> Output {
+    let run = run(project, &LintOptions::default(), deny_warnings);
+    let (text, stderr) = match style.ci {
+        Some(ci) => (ci.render(&run.report, "lint"), String::new()),
+        None => render(&run, style.format, style.detail, style.color),
+    };
+    Output {
+        report: Some(text),
+        stderr,
+        code: run.report.verdict.exit_code(),
+    }
+}
+
+/// Loads and lints a project. With `deny_warnings`, a failing warning is an error (and
+/// fails the verdict), as with rustc's `-D warnings`.
+pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
+    let name = path.display().to_string();
+    let project = match load_project(path) {
+        Ok(p) => p,
+        Err(e) => {
+            let findings: Vec<Finding> = e
+                .diagnostics
+                .iter()
+                .map(|d| Finding::from_input_diagnostic(d, &e.map))
+                .collect();
+            let mut report = Report::new(name, findings);
+            report.verdict = Verdict::Error;
+            return LintRun {
+                report,
+                map: e.map,
+                diagnostics: e.diagnostics,
+                findings: Vec::new(),
+            };
+        }
+    };
+    let mut findings = lint(&project, opts);
+    if deny_warnings {
+        for f in &mut findings {
+            if f.finding.severity == Severity::Warning && f.finding.status == Status::Fail {
+                f.finding.severity = Severity::Error;
+            }
+        }
+    }
+    let report = Report::new(name, findings.iter().map(|f| f.finding.clone()).collect());
+    LintRun {
+        report,
+        map: project.map,
+        diagnostics: Vec::new(),
+        findings,
+    }
+}

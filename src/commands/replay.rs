@@ -1,0 +1,401 @@
+//! `bdi-check replay REPORT.json [--finding ID]`: re-runs the counterexamples of a report
+//! against the project as it is now. A kept report is a regression test: exit 1 while a
+//! counterexample still reaches its violation, 0 once none does (SPEC §2).
+
+use super::Output;
+use crate::check::explore::fingerprint;
+use crate::check::trace::Builder;
+use crate::model::atoms::AtomSet;
+use crate::model::formula;
+use crate::model::project::{load_project, Project};
+use crate::report::replay::{render, Replayed};
+use crate::semantics::{Note, Semantics, State};
+use crate::syntax::Diagnostic;
+use serde::Deserialize;
+use std::collections::HashSet;
+use std::path::Path;
+
+/// `replay REPORT [--finding ID]`: exit 1 while a counterexample still reaches its
+/// violation, 0 once none does, 2 when the report or project cannot be read.
+pub fn command(report: &Path, finding: Option<&str>) -> Output {
+    match replay(report, finding) {
+        Err(errs) => Output::refused(
+            errs.iter()
+                .map(|e| format!("{}\n", e.render(&crate::syntax::SourceMap::new(), false)))
+                .collect(),
+        ),
+        Ok(results) => {
+            let reached = results.iter().any(|r| r.reached);
+            Output::report(render(&results), i32::from(reached))
+        }
+    }
+}
+
+#[derive(Deserialize)]
+struct ReportIn {
+    project: String,
+    findings: Vec<FindingIn>,
+}
+
+#[derive(Deserialize)]
+struct FindingIn {
+    id: String,
+    check: String,
+    status: String,
+    location: Option<LocationIn>,
+    counterexample: Option<CounterexampleIn>,
+}
+
+#[derive(Deserialize)]
+struct LocationIn {
+    file: String,
+    line: usize,
+}
+
+#[derive(Deserialize)]
+struct CounterexampleIn {
+    initial: Vec<String>,
+    #[serde(default)]
+    steps: Vec<StepIn>,
+    #[serde(default)]
+    loop_start: Option<usize>,
+}
+
+#[derive(Deserialize)]
+struct StepIn {
+    kind: String,
+    text: String,
+}
+
+/// Replays the failing findings of a report (or the one named). Errors are bad input.
+pub fn replay(report: &Path, finding: Option<&str>) -> Result<Vec<Replayed>, Vec<Diagnostic>> {
+    let bad =
+        |msg: String| vec![Diagnostic::error("input", msg).in_file(report.display().to_string())];
+    let text = std::fs::read_to_string(report)
+        .map_err(|e| bad(format!("cannot read `{}`: {e}", report.display())))?;
+    let r: ReportIn = serde_json::from_str(&text).map_err(|e| {
+        vec![
+            Diagnostic::error("input", format!("not a bdi-check JSON report: {e}"))
+                .in_file(format!("{}:{}:{}", report.display(), e.line(), e.column())),
+        ]
+    })?;
+    let project = load_project(Path::new(&r.project)).map_err(|e| {
+        e.diagnostics
+            .iter()
+            .map(|d| Diagnostic::error("input", d.render(&e.map, false)))
+            .collect::<Vec<_>>()
+    })?;
+    let sem = Semantics::new(&project)?;
+    let selected: Vec<&FindingIn> = r
+        .findings
+        .iter()
+        .filter(|f| match finding {
+            Some(id) => f.id == id,
+            None => f.status == "fail" && f.counterexample.is_some(),
+        })
+        .collect();
+    if let Some(id) = finding {
+        if selected.is_empty() {
+            return Err(bad(format!("the report has no finding `{id}`")));
+        }
+    }
+    Ok(selected
+        .into_iter()
+        .map(|f| replay_one(&project, &sem, f))
+        .collect())
+}
+
+fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
+    let no = |detail: &str| Replayed {
+        id: f.id.clone(),
+        reached: false,
+        detail: detail.to_string(),
+    };
+    let Some(c) = &f.counterexample else {
+        return no("the finding has no counterexample");
+    };
+    // The initial state, if it is still one.
+    let mut atoms = AtomSet::empty(project.atoms.len());
+    let names: HashSet<&str> = c.initial.iter().map(String::as_str).collect();
+    for a in 0..project.atoms.len() as u32 {
+        let a = crate::model::atoms::AtomId(a);
+        if names.contains(project.atoms.display(a, &project.universe).as_str()) {
+            atoms.insert(a);
+        }
+    }
+    if atoms.count() != names.len() {
+        return no("its initial state mentions atoms the project no longer has");
+    }
+    let Some(mut state) = sem
+        .initial_states()
+        .into_iter()
+        .find(|s| s.beliefs == atoms)
+    else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
+        return replay_explained(project, sem, f, c, state);
+    }
+    let check = Check::of(project, f);
+    let mut builder = Builder::new(project, sem);
+    let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
+    let recorded: Vec<(&str, &str)> = c
+        .steps
+        .iter()
+        .map(|s| (s.kind.as_str(), s.text.as_str()))
+        .collect();
+    let loop_len = c
+        .loop_start
+        .map(|l| recorded.len().saturating_sub(l))
+        .unwrap_or(0);
+    // Follow the recorded steps while the current project produces them, then let the
+    // agent run on (as far as the recorded run went, plus a loop's length) to see whether
+    // the violation still happens.
+    let budget = recorded.len() + loop_len + 64;
+    for _ in 0..budget {
+        if check.settles(&state) {
+            return no("the property now holds on this run");
+        }
+        if check.state_violated(&state) {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {} steps", builder.steps().len()),
+            };
+        }
+        let succ = sem.successors(&state);
+        if succ.is_empty() {
+            if matches!(check, Check::Eventually(_)) {
+                return Replayed {
+                    id: f.id.clone(),
+                    reached: true,
+                    detail: format!(
+                        "the run ends after {} steps without the property",
+                        builder.steps().len()
+                    ),
+                };
+            }
+            break;
+        }
+        let at = builder.steps().len();
+        let pick = succ
+            .iter()
+            .position(|t| follows(project, sem, &t.notes, &recorded[at.min(recorded.len())..]))
+            .unwrap_or(0);
+        let t = &succ[pick];
+        if t.notes.iter().any(|n| check.note_violates(n, project)) {
+            builder.push(t.notes.clone());
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {} steps", builder.steps().len()),
+            };
+        }
+        builder.push(t.notes.clone());
+        state = t.next.clone();
+        if !seen.insert(fingerprint(&state)) && check.is_liveness() {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("the run loops again after {} steps", builder.steps().len()),
+            };
+        }
+    }
+    no("the run no longer reaches the violation")
+}
+
+/// Replays an explanation finding: the run as the finding's user sees it (the id is
+/// `check:user:file:line`), until a transition violates the same property at the same place.
+fn replay_explained(
+    project: &Project,
+    sem: &Semantics,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    agent: State,
+) -> Replayed {
+    use crate::check::explanation::Explained;
+    use crate::check::model::Model;
+    let no = |detail: &str| Replayed {
+        id: f.id.clone(),
+        reached: false,
+        detail: detail.to_string(),
+    };
+    let Some(user_name) = f.id.split(':').nth(1) else {
+        return no("the finding's id names no user");
+    };
+    let Ok(users) = crate::explain::agent::users(project, Some(user_name)) else {
+        return no("the project no longer has the finding's user");
+    };
+    let ex = crate::explain::agent::Explainer::new(project, sem);
+    let model = Explained::new(sem, &ex, &users[0], None);
+    let Some(mut state) = model.init_states().into_iter().find(|s| s.agent == agent) else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    // Explanations are the checker's, not the agent's: follow the agent's steps only.
+    let recorded: Vec<(&str, &str)> = c
+        .steps
+        .iter()
+        .filter(|s| s.kind != "explanation")
+        .map(|s| (s.kind.as_str(), s.text.as_str()))
+        .collect();
+    let place = f.location.as_ref().map(|l| (l.file.as_str(), l.line));
+    let mut builder = Builder::new(project, sem);
+    let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
+    for _ in 0..recorded.len() + 64 {
+        let succ = model.next_states(&state);
+        if succ.is_empty() {
+            break;
+        }
+        let at = builder.steps().len();
+        let pick = succ
+            .iter()
+            .position(|(step, _)| {
+                follows(
+                    project,
+                    sem,
+                    &step.notes,
+                    &recorded[at.min(recorded.len())..],
+                )
+            })
+            .unwrap_or(0);
+        let (step, next) = succ.into_iter().nth(pick).expect("a successor was picked");
+        builder.push(step.notes.clone());
+        let hit = step.violations.iter().any(|v| {
+            let loc = project.map.location(v.span);
+            v.check == f.check
+                && place.is_none_or(|(file, line)| loc.file == file && loc.line == line)
+        });
+        if hit {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {} steps", builder.steps().len()),
+            };
+        }
+        state = next;
+        if !seen.insert(fingerprint(&state)) {
+            break;
+        }
+    }
+    no("the run no longer reaches the violation")
+}
+
+/// Whether a transition's notes render as the next recorded steps (`(kind, text)`).
+fn follows(project: &Project, sem: &Semantics, notes: &[Note], recorded: &[(&str, &str)]) -> bool {
+    let mut b = Builder::new(project, sem);
+    b.push(notes.to_vec());
+    let steps = b.steps();
+    !steps.is_empty()
+        && steps.iter().enumerate().all(|(i, s)| {
+            recorded
+                .get(i)
+                .is_some_and(|(k, text)| kind_name(s.kind) == *k && s.text == *text)
+        })
+}
+
+fn kind_name(k: crate::findings::StepKindTag) -> &'static str {
+    use crate::findings::StepKindTag::*;
+    match k {
+        Request => "request",
+        Event => "event",
+        Plan => "plan",
+        Action => "action",
+        Belief => "belief",
+        Internal => "internal",
+        Explanation => "explanation",
+    }
+}
+
+/// What counts as reaching a finding's violation.
+enum Check {
+    State(crate::model::cond::Cond, bool),
+    /// `eventually p`: violated by a run that ends or loops while `p` never held.
+    Eventually(crate::model::cond::Cond),
+    Note {
+        kind: &'static str,
+        place: Option<(String, usize)>,
+    },
+    Liveness,
+    Unknown,
+}
+
+impl Check {
+    fn of(project: &Project, f: &FindingIn) -> Check {
+        let place = f.location.as_ref().map(|l| (l.file.clone(), l.line));
+        let name = f.id.split_once(':').map_or("", |(_, n)| n);
+        match f.check.as_str() {
+            "action-failure" => Check::Note {
+                kind: "action",
+                place,
+            },
+            "goal-failure" => Check::Note {
+                kind: "goal",
+                place,
+            },
+            "livelock" | "request-not-completed" => Check::Liveness,
+            "invariant" => project
+                .invariants
+                .iter()
+                .find(|(n, _)| n == name)
+                .map_or(Check::Unknown, |(_, c)| Check::State(c.clone(), true)),
+            "property" => {
+                let Some(p) = project
+                    .manifest
+                    .properties
+                    .iter()
+                    .find(|p| p.name.value == name)
+                else {
+                    return Check::Unknown;
+                };
+                match (
+                    p.kind,
+                    formula::compile(&p.formula.expr, &project.atoms, &project.universe),
+                ) {
+                    (crate::syntax::manifest::PropertyKind::Always, Ok(c)) => Check::State(c, true),
+                    (crate::syntax::manifest::PropertyKind::Eventually, Ok(c)) => {
+                        Check::Eventually(c)
+                    }
+                    _ => Check::Unknown,
+                }
+            }
+            _ => Check::Unknown,
+        }
+    }
+
+    fn is_liveness(&self) -> bool {
+        matches!(self, Check::Liveness | Check::Eventually(_))
+    }
+
+    /// For `eventually p`: whether `p` holds in `s` (which settles the run as not violating).
+    fn settles(&self, s: &State) -> bool {
+        matches!(self, Check::Eventually(c) if c.eval(&s.beliefs))
+    }
+
+    fn state_violated(&self, s: &State) -> bool {
+        match self {
+            Check::State(c, must_hold) => c.eval(&s.beliefs) != *must_hold,
+            _ => false,
+        }
+    }
+
+    /// A failure of the finding's kind at the finding's place (`file:line`).
+    fn note_violates(&self, n: &Note, project: &Project) -> bool {
+        let Check::Note { kind, place } = self else {
+            return false;
+        };
+        let span = match (*kind, n) {
+            ("action", Note::ActionFailed { span, .. }) => Some(*span),
+            ("goal", Note::GoalFailed { span, .. }) => *span,
+            _ => return false,
+        };
+        match (place, span) {
+            (Some((file, line)), Some(sp)) => {
+                let loc = project.map.location(sp);
+                &loc.file == file && loc.line == *line
+            }
+            // A failure with no step to point at is located at the manifest: any such
+            // failure of this kind counts.
+            _ => true,
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! `bdi-check verify`: load a project, lint it, explore every reachable state and settle
+//! the lint warnings (rendered by [`crate::report::verify`]).
+
+use super::{Output, Style};
+use crate::check::explore::Limits;
+use crate::check::{verify_with, VerifyOptions};
+use crate::findings::{Finding, Report, Verdict};
+use crate::model::project::{load_project, Project};
+use crate::report::verify::{render_human, write_scenarios, VerifyRun};
+use crate::report::Format;
+use crate::syntax::{Diagnostic, SourceMap};
+use std::path::Path;
+
+/// The options of `verify` beyond the search's own ([`VerifyOptions`]).
+#[derive(Clone, Debug, Default)]
+pub struct Bounds {
+    /// `--max-states`, over `[bounds] max_states`.
+    pub max_states: Option<u64>,
+    /// `--max-depth`, over `[bounds] max_depth`.
+    pub max_depth: Option<u64>,
+    /// `--timeout`, in seconds.
+    pub timeout: Option<f64>,
+}
+
+/// `verify PROJECT`: the report, and one scenario file per counterexample into
+/// `scenarios` when given. `progress` is called now and then with states, depth and
+/// seconds.
+pub fn command(
+    project: &Path,
+    bounds: &Bounds,
+    opts: &VerifyOptions,
+    scenarios: Option<&Path>,
+    style: &Style,
+    progress: impl FnMut(usize, u32, f64),
+) -> Output {
+    let run = run_with(
+        project,
+        bounds.max_states,
+        bounds.max_depth,
+        bounds.timeout,
+        opts,
+        progress,
+    );
+    if let Some(dir) = scenarios {
+        if let Err(e) = write_scenarios(&run.report, dir) {
+            return Output::refused(format!(
+                "error: cannot write scenarios into `{}`: {e}\n",
+                dir.display()
+            ));
+        }
+    }
+    let text = match (style.ci, style.format) {
+        (Some(ci), _) => ci.render(&run.report, "verify"),
+        (None, Format::Json) => {
+            serde_json::to_string_pretty(&run.report).unwrap_or_default() + "\n"
+        }
+        (None, Format::Human) => render_human(&run, style.detail, style.color),
+    };
+    Output::report(text, run.report.verdict.exit_code())
+}
+
+/// The limits of a project's search: the manifest's `[bounds]`, overridden by options.
+pub fn limits(
+    project: &Project,
+    max_states: Option<u64>,
+    max_depth: Option<u64>,
+    timeout: Option<f64>,
+) -> Limits {
+    Limits {
+        max_states: max_states.unwrap_or(project.manifest.bounds.max_states),
+        max_depth: max_depth.unwrap_or(project.manifest.bounds.max_depth),
+        timeout,
+    }
+}
+
+/// Loads and verifies a project with the default [`VerifyOptions`].
+pub fn run(
+    path: &Path,
+    max_states: Option<u64>,
+    max_depth: Option<u64>,
+    timeout: Option<f64>,
+    progress: impl FnMut(usize, u32, f64),
+) -> VerifyRun {
+    let opts = VerifyOptions::default();
+    run_with(path, max_states, max_depth, timeout, &opts, progress)
+}
+
+/// Loads and verifies a project.
+pub fn run_with(
+    path: &Path,
+    max_states: Option<u64>,
+    max_depth: Option<u64>,
+    timeout: Option<f64>,
+    opts: &VerifyOptions,
+    progress: impl FnMut(usize, u32, f64),
+) -> VerifyRun {
+    let name = path.display().to_string();
+    let project = match load_project(path) {
+        Ok(p) => p,
+        Err(e) => return input_failure(name, e.map, e.diagnostics),
+    };
+    let lim = limits(&project, max_states, max_depth, timeout);
+    // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
+    let lint: Vec<Finding> = crate::smt::lint(&project, &crate::smt::LintOptions::default())
+        .into_iter()
+        .map(|l| l.finding)
+        .collect();
+    match verify_with(&project, lim, opts, progress, &lint) {
+        Err(diagnostics) => input_failure(name, project.map, diagnostics),
+        Ok(v) => {
+            let mut report = Report::new(name, v.findings);
+            if report.verdict == Verdict::Pass && !v.stats.complete {
+                report.verdict = Verdict::Incomplete;
+            }
+            report.stats = Some(v.stats);
+            report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
+            VerifyRun {
+                report,
+                map: project.map,
+                diagnostics: Vec::new(),
+                bound: v.bound,
+            }
+        }
+    }
+}
+
+fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> VerifyRun {
+    let findings: Vec<Finding> = diagnostics
+        .iter()
+        .map(|d| Finding::from_input_diagnostic(d, &map))
+        .collect();
+    let mut report = Report::new(name, findings);
+    report.verdict = Verdict::Error;
+    VerifyRun {
+        report,
+        map,
+        diagnostics,
+        bound: None,
+    }
+}

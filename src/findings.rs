@@ -1,0 +1,298 @@
+//! What every stage reports: findings, their counterexample runs, search statistics, and
+//! the report of SPEC §3 that holds them.
+//!
+//! This module sits below the stages that find things (`smt`, `check`) and above `syntax`
+//! only (for locations and diagnostics), so that lint, the model checker and the renderers
+//! share one vocabulary without importing one another. Exit codes follow SPEC §2 and are
+//! derived from the findings alone ([`Verdict::exit_code`], [`verdict_of`]), so a verdict and
+//! its exit code can never disagree.
+
+use crate::syntax::{Diagnostic, Location, Severity, SourceMap};
+use serde::Serialize;
+
+/// The tool's name and version, as reports name it.
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct Tool {
+    /// `bdi-check`
+    pub name: &'static str,
+    /// The crate version.
+    pub version: &'static str,
+}
+
+impl Default for Tool {
+    fn default() -> Tool {
+        Tool {
+            name: "bdi-check",
+            version: env!("CARGO_PKG_VERSION"),
+        }
+    }
+}
+
+/// The overall outcome of a command.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq, PartialOrd, Ord)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// Every check holds and the search was complete.
+    Pass,
+    /// Something was not decided (a bound, a solver `unknown`), nothing failed.
+    Incomplete,
+    /// At least one check failed.
+    Fail,
+    /// The input is malformed.
+    Error,
+}
+
+impl Verdict {
+    /// The exit status of SPEC §2: 0 pass, 1 fail, 2 bad input, 3 undecided.
+    pub fn exit_code(self) -> i32 {
+        match self {
+            Verdict::Pass => 0,
+            Verdict::Fail => 1,
+            Verdict::Error => 2,
+            Verdict::Incomplete => 3,
+        }
+    }
+}
+
+/// Whether a finding's check held.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// The check failed.
+    Fail,
+    /// The check held.
+    Pass,
+    /// The check could not be decided.
+    Unknown,
+}
+
+/// One finding of SPEC §3.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Finding {
+    /// A stable id: `check:file:line`.
+    pub id: String,
+    /// The check's fixed name (`input`, `dead-plan`, `invariant`, ...).
+    pub check: String,
+    /// error, warning or note.
+    pub severity: Severity,
+    /// fail, pass or unknown.
+    pub status: Status,
+    /// What is wrong, in one sentence.
+    pub message: String,
+    /// Where, if it is about a place.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub location: Option<Location>,
+    /// A concrete run (or, for static checks, a state) that shows the violation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub counterexample: Option<Counterexample>,
+    /// The span behind `location`, for source excerpts in human output.
+    #[serde(skip)]
+    pub span: Option<crate::syntax::Span>,
+    /// Other places the finding names (e.g. the earlier of two overlapping plans).
+    #[serde(skip)]
+    pub related: Vec<crate::syntax::Span>,
+}
+
+impl Finding {
+    /// The first related place, if any.
+    pub fn secondary_plan_span(&self) -> Option<crate::syntax::Span> {
+        self.related.first().copied()
+    }
+}
+
+/// A counterexample of SPEC §3: where it starts, what the user asked, and what happened.
+#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+pub struct Counterexample {
+    /// Every atom true at the start (the rest are false), as Jason terms.
+    pub initial: Vec<String>,
+    /// The requests, in arrival order.
+    pub requests: Vec<String>,
+    /// The run, step by step (empty for a static finding, whose counterexample is a state).
+    pub steps: Vec<TraceStep>,
+    /// For a liveness violation (a lasso): the index in `steps` where the loop starts; the
+    /// steps from there on repeat forever.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub loop_start: Option<usize>,
+}
+
+/// The kinds of step of a run.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum StepKindTag {
+    /// A user request arrives.
+    Request,
+    /// An event is taken from the queue.
+    Event,
+    /// A plan is chosen for an event.
+    Plan,
+    /// An environment action runs.
+    Action,
+    /// A belief is added or removed by the agent.
+    Belief,
+    /// An internal action runs.
+    Internal,
+    /// An explanation is given.
+    Explanation,
+}
+
+/// One step of a counterexample run.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct TraceStep {
+    /// What kind of step.
+    pub kind: StepKindTag,
+    /// The step as Jason text: the action, the event, the plan's trigger.
+    pub text: String,
+    /// The intention it belongs to (1-based), if any.
+    pub intention: Option<usize>,
+    /// `file:line` of the plan it comes from, if any.
+    pub plan: Option<String>,
+    /// Atoms that became true.
+    pub added: Vec<String>,
+    /// Atoms that became false.
+    pub removed: Vec<String>,
+    /// The explanation given at this step, if any.
+    pub explanation: Option<String>,
+}
+
+/// Search statistics of SPEC §3.
+#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+pub struct Stats {
+    /// Initial states explored.
+    pub initial_states: usize,
+    /// Distinct states reached.
+    pub states: usize,
+    /// Transitions taken.
+    pub transitions: usize,
+    /// Length of the longest shortest path.
+    pub depth: usize,
+    /// Wall-clock time.
+    pub seconds: f64,
+    /// `states / seconds`.
+    pub states_per_second: f64,
+    /// Whether the search covered every reachable state.
+    pub complete: bool,
+}
+
+/// The report every project command writes (SPEC §3).
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// The tool.
+    pub tool: Tool,
+    /// The project as named on the command line.
+    pub project: String,
+    /// The overall verdict.
+    pub verdict: Verdict,
+    /// Every finding, failing and passing.
+    pub findings: Vec<Finding>,
+    /// Explanations given (filled by `explain`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub explanations: Vec<serde_json::Value>,
+    /// Search statistics (filled by `verify`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stats: Option<Stats>,
+    /// What the reader must know about how the verdict was reached (e.g. that symmetry
+    /// reduction rests on an assumption the agent does not meet).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+}
+
+impl Report {
+    /// A report whose verdict is derived from its findings.
+    pub fn new(project: impl Into<String>, findings: Vec<Finding>) -> Report {
+        Report {
+            tool: Tool::default(),
+            project: project.into(),
+            verdict: verdict_of(&findings),
+            findings,
+            explanations: Vec::new(),
+            stats: None,
+            warnings: Vec::new(),
+        }
+    }
+}
+
+impl Finding {
+    /// The finding SPEC §2 asks for when input is malformed: check `input`, severity error.
+    pub fn from_input_diagnostic(d: &Diagnostic, map: &SourceMap) -> Finding {
+        let location = d.location(map);
+        let id = match &location {
+            Some(l) => format!("input:{}:{}", l.file, l.line),
+            None => "input".to_string(),
+        };
+        Finding {
+            id,
+            check: "input".into(),
+            severity: d.severity,
+            status: if d.severity == Severity::Error {
+                Status::Fail
+            } else {
+                Status::Pass
+            },
+            message: d.message.clone(),
+            location,
+            counterexample: None,
+            span: d.span,
+            related: d.secondary.iter().map(|l| l.span).collect(),
+        }
+    }
+}
+
+/// The verdict of a set of findings: `error` if an input finding is an error, else `fail` if
+/// any finding of severity error failed, else `incomplete` if any is unknown, else `pass`.
+pub fn verdict_of(findings: &[Finding]) -> Verdict {
+    let failed = |f: &&Finding| f.severity == Severity::Error && f.status == Status::Fail;
+    if findings.iter().filter(failed).any(|f| f.check == "input") {
+        Verdict::Error
+    } else if findings.iter().any(|f| failed(&f)) {
+        Verdict::Fail
+    } else if findings.iter().any(|f| f.status == Status::Unknown) {
+        Verdict::Incomplete
+    } else {
+        Verdict::Pass
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn finding(check: &str, severity: Severity, status: Status) -> Finding {
+        Finding {
+            id: check.into(),
+            check: check.into(),
+            severity,
+            status,
+            message: String::new(),
+            location: None,
+            counterexample: None,
+            span: None,
+            related: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn verdicts_and_exit_codes() {
+        assert_eq!(verdict_of(&[]), Verdict::Pass);
+        let warn = finding("coverage-gap", Severity::Warning, Status::Fail);
+        assert_eq!(verdict_of(std::slice::from_ref(&warn)), Verdict::Pass);
+        let unknown = finding("dead-plan", Severity::Error, Status::Unknown);
+        assert_eq!(
+            verdict_of(&[warn.clone(), unknown.clone()]),
+            Verdict::Incomplete
+        );
+        let fail = finding("dead-plan", Severity::Error, Status::Fail);
+        assert_eq!(verdict_of(&[unknown.clone(), fail.clone()]), Verdict::Fail);
+        let input = finding("input", Severity::Error, Status::Fail);
+        assert_eq!(verdict_of(&[fail, input]), Verdict::Error);
+        assert_eq!(
+            [
+                Verdict::Pass,
+                Verdict::Fail,
+                Verdict::Error,
+                Verdict::Incomplete
+            ]
+            .map(Verdict::exit_code),
+            [0, 1, 2, 3]
+        );
+    }
+}
