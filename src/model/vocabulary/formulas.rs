@@ -1,0 +1,271 @@
+//! Formulas, terms and internal actions: what a context, a condition or a manifest formula
+//! may contain, limited to the arithmetic functions and internal actions the model covers
+//! (SPEC §4).
+
+use super::diagnostics::{given, plural_or};
+use super::literals::is_atom;
+use super::{
+    arithmetic_function, modelled_action, Checker, Clause, Scope, Usage, GOAL_ACTIONS,
+    INTERNAL_ACTIONS,
+};
+use crate::syntax::ast::*;
+use crate::syntax::{Diagnostic, Span};
+
+impl Checker<'_> {
+    /// A logical formula.
+    pub(super) fn formula(&mut self, cl: &mut Clause, e: &Expr, scope: Scope, usage: Usage) {
+        match &e.kind {
+            ExprKind::Literal(l) if l.is_internal_action() => self.internal(cl, l, scope),
+            ExprKind::Literal(l)
+                if l.args.is_empty()
+                    && !l.negated
+                    && matches!(l.functor.as_str(), "true" | "false") => {}
+            ExprKind::Literal(l) => self.belief_literal(cl, l, usage, scope),
+            ExprKind::Var(_) => {
+                self.unsupported(e.span, "a formula held in a variable", "variable")
+            }
+            ExprKind::Not(x) => self.formula(cl, x, scope, usage),
+            ExprKind::And(a, b) | ExprKind::Or(a, b) => {
+                self.formula(cl, a, scope, usage);
+                self.formula(cl, b, scope, usage);
+            }
+            ExprKind::Rel(op, a, b) => {
+                self.term(cl, a, scope);
+                self.term(cl, b, scope);
+                if matches!(scope, Scope::Manifest { .. }) {
+                    if *op == RelOp::Univ {
+                        self.unsupported(e.span, "`=..` in a manifest formula", "here");
+                    }
+                    for x in [a, b] {
+                        if let ExprKind::Literal(l) = &x.kind {
+                            if is_atom(l) {
+                                self.object_exists(&l.functor, x.span);
+                            }
+                        }
+                    }
+                }
+            }
+            ExprKind::PlanTerm(_) => {
+                self.unsupported(e.span, "a plan term in a formula", "plan term")
+            }
+            _ => self.term(cl, e, scope),
+        }
+    }
+
+    /// Reports an atom that is not an object (in a manifest comparison).
+    fn object_exists(&mut self, name: &str, span: Span) {
+        if self.universe.object(name).is_none() {
+            self.diags.push(self.not_an_object(name, span));
+        }
+    }
+
+    /// A term that is in no typed position: checks the functions and formulas inside it.
+    pub(super) fn term(&mut self, cl: &mut Clause, e: &Expr, scope: Scope) {
+        match &e.kind {
+            ExprKind::Literal(l) if l.is_internal_action() => self.function(cl, l, scope),
+            ExprKind::Literal(l) => {
+                for a in &l.args {
+                    self.term(cl, a, scope);
+                }
+            }
+            ExprKind::List(le) => {
+                for a in &le.elems {
+                    self.term(cl, a, scope);
+                }
+                if let Some(t) = &le.tail {
+                    self.term(cl, t, scope);
+                }
+            }
+            ExprKind::Unary(_, a) | ExprKind::Not(a) => self.term(cl, a, scope),
+            ExprKind::Arith(_, a, b)
+            | ExprKind::Rel(_, a, b)
+            | ExprKind::And(a, b)
+            | ExprKind::Or(a, b) => {
+                self.term(cl, a, scope);
+                self.term(cl, b, scope);
+            }
+            ExprKind::Var(_)
+            | ExprKind::Int(_)
+            | ExprKind::Float(_)
+            | ExprKind::Str(_)
+            | ExprKind::PlanTerm(_) => {}
+        }
+    }
+
+    /// A dotted functor in a term: an arithmetic function.
+    fn function(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
+        let name = l.functor.as_str();
+        match (name, l.args.len()) {
+            (".count", 1) => self.count_query(cl, &l.args[0], scope),
+            (".length", 1) => self.term(cl, &l.args[0], scope),
+            _ if arithmetic_function(name) => {
+                for a in &l.args {
+                    self.term(cl, a, scope);
+                }
+            }
+            _ => {
+                let d = Diagnostic::error(
+                    "input",
+                    format!("`{name}` is not an arithmetic function modelled by bdi-check"),
+                )
+                .with_label(l.span, "in an expression")
+                .with_help(
+                    "functions: `.count(Query)`, `.length(List)` and `math.abs`, `math.max`, ... (Jason's `math` library, except `math.random`)",
+                );
+                self.diags.push(d);
+            }
+        }
+    }
+
+    fn count_query(&mut self, cl: &mut Clause, q: &Expr, scope: Scope) {
+        if matches!(scope, Scope::Manifest { .. }) && !matches!(q.kind, ExprKind::Literal(_)) {
+            self.diags.push(
+                Diagnostic::error(
+                    "input",
+                    "the query of `.count` must be a literal such as `cupAt(C, _)`",
+                )
+                .with_label(q.span, "not a literal"),
+            );
+            return;
+        }
+        self.formula(cl, q, scope, Usage::Query);
+    }
+
+    /// An internal action as a body step or a formula.
+    pub(super) fn internal(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
+        let name = l.functor.as_str();
+        let n = l.args.len();
+        if name.starts_with("math.") && arithmetic_function(name) {
+            self.diags.push(
+                Diagnostic::error(
+                    "input",
+                    format!("`{name}` is an arithmetic function, not an internal action"),
+                )
+                .with_label(l.span, "function")
+                .with_help(format!(
+                    "use it inside an expression, such as `X = {name}(Y)`"
+                )),
+            );
+            return;
+        }
+        if !modelled_action(name) {
+            self.diags.push(
+                Diagnostic::error(
+                    "input",
+                    format!("internal action `{name}` is not modelled by bdi-check"),
+                )
+                .with_label(l.span, "unmodelled internal action")
+                .with_help(format!(
+                    "bdi-check models {}",
+                    INTERNAL_ACTIONS
+                        .iter()
+                        .copied()
+                        .chain(crate::model::internal::PURE.iter().map(|(n, _)| *n))
+                        .map(|a| format!("`{a}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )),
+            );
+            return;
+        }
+        if let Scope::Manifest { properties } = scope {
+            let ok = name == ".count" || (properties && matches!(name, ".intend" | ".desire"));
+            if !ok {
+                let only = if matches!(name, ".intend" | ".desire") {
+                    format!("`{name}` can only be used in a `[[property]]`")
+                } else {
+                    format!(
+                        "`{name}` cannot be used in a manifest formula (only `.count`, and `.intend`/`.desire` in properties)"
+                    )
+                };
+                self.diags
+                    .push(Diagnostic::error("input", only).with_label(l.span, "here"));
+                return;
+            }
+        }
+        let pure = crate::model::internal::PURE
+            .iter()
+            .find(|(n, _)| *n == name);
+        let arities: &[usize] = match name {
+            ".print" | ".println" => &[],
+            ".count" => &[2],
+            ".findall" => &[3],
+            ".drop_intention" => &[0, 1],
+            ".fail" => &[0],
+            _ if pure.is_some() => pure.map_or(&[], |(_, a)| a),
+            _ => &[1],
+        };
+        if !arities.is_empty() && !arities.contains(&n) {
+            let want: Vec<String> = arities.iter().map(|a| a.to_string()).collect();
+            self.diags.push(
+                Diagnostic::error(
+                    "input",
+                    format!(
+                        "`{name}` takes {}, but {} given",
+                        plural_or(&want, "argument"),
+                        given(n)
+                    ),
+                )
+                .with_label(l.span, "wrong number of arguments"),
+            );
+            return;
+        }
+        match name {
+            ".count" => {
+                self.count_query(cl, &l.args[0], scope);
+                let out = &l.args[1];
+                match &out.kind {
+                    ExprKind::Var(v) => {
+                        cl.counted.insert(v.name.clone());
+                    }
+                    ExprKind::Int(_) => {}
+                    _ if matches!(scope, Scope::Manifest { .. }) => self.diags.push(
+                        Diagnostic::error(
+                            "input",
+                            "the count of `.count(Query, N)` must be an integer or a variable",
+                        )
+                        .with_label(out.span, "expected an integer or a variable"),
+                    ),
+                    _ => self.term(cl, out, scope),
+                }
+            }
+            ".findall" => {
+                self.term(cl, &l.args[0], scope);
+                self.formula(cl, &l.args[1], scope, Usage::Query);
+                self.term(cl, &l.args[2], scope);
+            }
+            ".abolish" => match &l.args[0].kind {
+                // `.abolish(b)` deletes every belief that unifies with `b`.
+                ExprKind::Literal(b) if !b.is_internal_action() => {
+                    self.belief_literal(cl, b, Usage::Del, scope)
+                }
+                _ => self.diags.push(
+                    Diagnostic::error("input", "`.abolish` expects a belief such as `seen(_)`")
+                        .with_label(l.args[0].span, "not a belief literal"),
+                ),
+            },
+            _ if GOAL_ACTIONS.contains(&name) => {
+                if let Some(g) = l.args.first() {
+                    match &g.kind {
+                        ExprKind::Literal(gl) if !gl.is_internal_action() => {
+                            self.known_goal(cl, gl, g.span, scope)
+                        }
+                        ExprKind::Var(_) if scope == Scope::Agent => {}
+                        _ => self.diags.push(
+                            Diagnostic::error(
+                                "input",
+                                format!("`{name}` expects a goal such as `storeCup(C)`"),
+                            )
+                            .with_label(g.span, "not a goal"),
+                        ),
+                    }
+                }
+            }
+            _ => {
+                for a in &l.args {
+                    self.term(cl, a, scope);
+                }
+            }
+        }
+    }
+}
