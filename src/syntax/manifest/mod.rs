@@ -1,0 +1,111 @@
+//! The project manifest `bdi-check.toml` (SPEC §1) and scenario files (SPEC §2).
+//!
+//! Both are read with `toml`'s spanned document tree ([`toml::de::DeTable`]) rather than with
+//! serde derive, because strict validation needs what serde hides: every key and value with its
+//! byte range, and every error collected instead of stopping at the first. Each diagnostic points
+//! into the TOML text, so it renders as `bdi-check.toml:LINE:COLUMN` with a caret.
+//!
+//! Formulas written as TOML strings are parsed with the AgentSpeak parser, and their AST spans
+//! point *into the TOML file* (one [`FileId`] for the manifest and everything in it), so a
+//! syntax error in `always = "not cupAt(C,, floor)"` shows the manifest line with a caret under
+//! the second comma. See `StrMap` (private) for how string contents are mapped back to the file.
+//!
+//! # Defaults
+//!
+//! Only `[agent]` with `plans` and `actions` is required, plus `name` and one kind in each
+//! `[[property]]`. Everything else has a default, listed on each field: no objects, no facts,
+//! no varying predicates, no constraints, no requests, [`DEFAULT_MAX_REQUESTS`] request per run
+//! arriving when the agent is idle, no invariants, no properties, no explanation checks,
+//! [`DEFAULT_MAX_STATES`] states, [`DEFAULT_MAX_DEPTH`] depth, no symmetry, first-plan
+//! selection.
+//!
+//! The parsed values are in `types` (re-exported here); `validate` reads TOML values and
+//! formulas, `sections` each section of the manifest and of a scenario, and `spans` maps
+//! the spans of a string's contents back into the TOML text.
+
+mod sections;
+mod spans;
+#[cfg(test)]
+mod tests;
+mod types;
+mod validate;
+
+pub use types::{
+    AgentSection, Arrival, Bounds, ExpectedPair, ExplanationSection, FileRef, Formula,
+    InitialSection, Invariant, Located, Manifest, Modifies, ObjectType, Phrase, PlanSelection,
+    Property, PropertyKind, RequestsSection, Scenario, StepFormula, User, MAX_NUMBERS,
+};
+
+use super::diagnostic::Diagnostic;
+use super::source::{FileId, SourceMap};
+use std::path::Path;
+use validate::Cx;
+
+/// The manifest's file name inside a project folder.
+pub const MANIFEST_NAME: &str = "bdi-check.toml";
+/// Default of `[requests] max`: one request per run. The number of ground goal instances is not
+/// known before the PDDL objects are resolved, and one request already exercises every plan.
+pub const DEFAULT_MAX_REQUESTS: u32 = 1;
+/// Default of `[bounds] max_states`.
+pub const DEFAULT_MAX_STATES: u64 = 5_000_000;
+/// Default of `[bounds] max_depth`.
+pub const DEFAULT_MAX_DEPTH: u64 = 2_000;
+
+/// Reads and validates a manifest. `path` is the project folder or the manifest file itself
+/// (SPEC: every command that takes PROJECT accepts either). The text is added to `map`.
+/// Returns every error found, sorted by position.
+pub fn load_manifest(path: &Path, map: &mut SourceMap) -> Result<Manifest, Vec<Diagnostic>> {
+    let file_path = if path.is_dir() {
+        let p = path.join(MANIFEST_NAME);
+        if !p.is_file() {
+            return Err(vec![Diagnostic::error(
+                "input",
+                format!(
+                    "`{}` is not a project: it has no `{MANIFEST_NAME}`",
+                    path.display()
+                ),
+            )
+            .in_file(path.display().to_string())]);
+        }
+        p
+    } else {
+        path.to_path_buf()
+    };
+    let file = read_into(&file_path, map)?;
+    parse_manifest(file, &map.file(file).text, &file_path)
+}
+
+/// Validates a manifest text already in a [`SourceMap`] under `file`; `path` is where it was
+/// read from, against whose folder `plans` and `actions` are resolved and checked to exist.
+pub fn parse_manifest(file: FileId, text: &str, path: &Path) -> Result<Manifest, Vec<Diagnostic>> {
+    let mut cx = Cx::new(file, text);
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let manifest = cx
+        .parse_root()
+        .and_then(|root| cx.manifest(&root, path, &dir));
+    cx.finish(manifest)
+}
+
+/// Reads and validates a scenario file (SPEC §2: `initial` and `requests`, nothing else).
+pub fn load_scenario(path: &Path, map: &mut SourceMap) -> Result<Scenario, Vec<Diagnostic>> {
+    let file = read_into(path, map)?;
+    parse_scenario(file, &map.file(file).text, path)
+}
+
+/// Validates a scenario text already in a [`SourceMap`] under `file`.
+pub fn parse_scenario(file: FileId, text: &str, path: &Path) -> Result<Scenario, Vec<Diagnostic>> {
+    let mut cx = Cx::new(file, text);
+    let scenario = cx.parse_root().and_then(|root| cx.scenario(&root, path));
+    cx.finish(scenario)
+}
+
+fn read_into(path: &Path, map: &mut SourceMap) -> Result<FileId, Vec<Diagnostic>> {
+    match std::fs::read_to_string(path) {
+        Ok(text) => Ok(map.add(path, path.display().to_string(), text)),
+        Err(e) => Err(vec![Diagnostic::error(
+            "input",
+            format!("cannot read `{}`: {e}", path.display()),
+        )
+        .in_file(path.display().to_string())]),
+    }
+}
