@@ -48,7 +48,7 @@ use crate::model::project::Project;
 use crate::model::subst::unifier;
 use crate::model::term::Term;
 use crate::model::universe::{ObjectId, TypeId};
-use crate::report::{Counterexample, Finding, Status};
+use crate::findings::{Counterexample, Finding, Status};
 use crate::syntax::ast::{ExprKind, TriggerKind, TriggerOp};
 use crate::syntax::{Severity, Span};
 use std::collections::BTreeSet;

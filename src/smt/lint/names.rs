@@ -4,7 +4,7 @@
 
 use super::{walk, Linter};
 use crate::model::plans::BodyStep;
-use crate::report::Status;
+use crate::findings::Status;
 use crate::syntax::ast::{ExprKind, TriggerKind, TriggerOp};
 use crate::syntax::Span;
 use std::collections::{BTreeMap, BTreeSet};

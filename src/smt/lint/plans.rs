@@ -4,7 +4,7 @@
 //! and the later checks skip the plans the dead-plan check found dead.
 
 use super::{state_cx, Base, Group, Linter};
-use crate::report::{Counterexample, Status};
+use crate::findings::{Counterexample, Status};
 use crate::smt::encode::{and, or, Enc, Env, Unsupported, Val};
 use crate::smt::solve::{truth, Outcome};
 use crate::smt::text;
