@@ -9,8 +9,14 @@
 
 pub mod compiled;
 pub mod cycle;
+mod deliberate;
+mod execute;
+mod failure;
+mod internal_actions;
 pub mod java_hash;
+mod perceive;
 pub mod query;
+mod reads;
 pub mod state;
 
 pub use compiled::{Compiled, Notes, Packed};

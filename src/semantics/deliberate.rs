@@ -1,0 +1,184 @@
+//! The deliberation phase: the selected event's relevant plans, the applicable ones, the
+//! option chosen, and the intention it goes in (with Jason's tail-recursion optimisation).
+//! Mirrors `TransitionSystem.applySelEv`, `applyRelPl` (`relevantPlans`), `applyApplPl`
+//! (`applicablePlans`), `applySelAppl`, `applyAddIM`, and `applyRelApplPlRule2` for an
+//! event with no relevant or applicable plan.
+
+use super::cycle::{kind_key, op_key, Note, Semantics, MAX_STACK};
+use super::query::Beliefs;
+use super::state::{Cursor, CursorKind, Event, EventTrigger, Frame, Intention, State};
+use crate::model::{unify, Substitution};
+use crate::syntax::ast::{TriggerKind, TriggerOp};
+
+impl Semantics<'_> {
+    pub(super) fn relevant_plans(&self, t: &EventTrigger) -> &[u32] {
+        self.relevant
+            .get(&(
+                op_key(t.op),
+                kind_key(t.kind),
+                t.literal.functor().unwrap_or("").to_string(),
+                t.literal.arity(),
+            ))
+            .map_or(&[], |v| v.as_slice())
+    }
+
+    /// Handles one event (already out of the queue): every option the plan selection
+    /// allows, as its own state.
+    pub(super) fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
+        let mut notes = vec![Note::Event(ev.trigger.clone())];
+        let applicable = self.applicable_for(&s, &ev, !self.select_any);
+        if applicable.is_empty() {
+            let mut s = s;
+            if ev.trigger.kind != TriggerKind::Belief {
+                notes.push(Note::NoApplicablePlan(ev.trigger.clone()));
+            }
+            if ev.trigger.op == TriggerOp::Add && ev.trigger.kind != TriggerKind::Belief {
+                let reason = if self.relevant_plans(&ev.trigger).is_empty() {
+                    "no relevant plan"
+                } else {
+                    "no applicable plan"
+                };
+                self.goal_failed_from_event(&mut s, ev, reason, &mut notes);
+            } else if ev.trigger.op == TriggerOp::Del && ev.trigger.kind != TriggerKind::Belief {
+                // A failure event nothing can handle: Jason's "Could not finish
+                // intention"; the intention is gone.
+                let goal = ev
+                    .intention
+                    .as_ref()
+                    .and_then(|i| i.frames.first())
+                    .map_or_else(|| ev.trigger.clone(), |f| f.trigger.clone());
+                notes.push(Note::GoalFailed {
+                    goal,
+                    cause: ev.trigger.clone(),
+                    plan: ev.posted_at.map(|(p, _)| p),
+                    span: ev.posted_at.map(|(_, sp)| sp),
+                    reason: "no applicable failure plan".into(),
+                    origin: ev.origin,
+                });
+            }
+            // Belief events with no applicable plan are discarded, as in Jason.
+            return vec![(s, notes)];
+        }
+        applicable
+            .into_iter()
+            .map(|(pi, answer)| {
+                let mut s = s.clone();
+                let mut notes = notes.clone();
+                let plan = &self.project.plans.plans[pi as usize];
+                let mut frame = Frame {
+                    plan: pi,
+                    subst: answer,
+                    cursors: if plan.body.is_empty() {
+                        Vec::new()
+                    } else {
+                        vec![Cursor {
+                            block: 0,
+                            pos: 0,
+                            kind: CursorKind::Seq,
+                        }]
+                    },
+                    trigger: ev.trigger.clone(),
+                    calling: None,
+                };
+                self.normalize(&mut frame);
+                let origin = match &ev.intention {
+                    Some(i) => i.origin,
+                    None => ev.origin,
+                };
+                let subst = frame.subst.clone();
+                let depth = match ev.intention.clone() {
+                    None => {
+                        s.intentions.push(Intention {
+                            frames: vec![frame],
+                            origin,
+                        });
+                        0
+                    }
+                    Some(int) if int.frames.len() >= MAX_STACK => {
+                        let goal = int.frames.first().map(|f| f.trigger.clone());
+                        notes.push(Note::GoalFailed {
+                            goal: goal.unwrap_or_else(|| ev.trigger.clone()),
+                            cause: ev.trigger.clone(),
+                            plan: Some(pi),
+                            span: Some(plan.span),
+                            reason: format!(
+                                "its intention would hold more than {MAX_STACK} plans (Jason grows it without bound)"
+                            ),
+                            origin,
+                        });
+                        return (s, notes);
+                    }
+                    Some(mut int) => {
+                        let is_goal_add = ev.trigger.op == TriggerOp::Add
+                            && ev.trigger.kind == TriggerKind::Achieve;
+                        if let Some(top) = int.frames.last() {
+                            // Jason's TRO: a recursive subgoal that is the last step of its plan.
+                            if is_goal_add
+                                && top.cursors.is_empty()
+                                && top.calling.is_some()
+                                && top.trigger.op == TriggerOp::Add
+                                && top.trigger.kind == TriggerKind::Achieve
+                                && top.trigger.literal.functor() == ev.trigger.literal.functor()
+                                && top.trigger.literal.arity() == ev.trigger.literal.arity()
+                            {
+                                int.frames.pop();
+                            }
+                        }
+                        int.frames.push(frame);
+                        let depth = int.frames.len() - 1;
+                        s.intentions.push(int);
+                        depth
+                    }
+                };
+                notes.push(Note::Plan {
+                    plan: pi,
+                    origin,
+                    subst,
+                    depth: depth as u16,
+                });
+                (s, notes)
+            })
+            .collect()
+    }
+
+    /// The applicable plans for an event in `s`, in source order, each with the first
+    /// answer of its context; only the first one when `first_only`.
+    pub fn applicable(
+        &self,
+        s: &State,
+        trigger: &EventTrigger,
+        first_only: bool,
+    ) -> Vec<(u32, Substitution)> {
+        self.applicable_in(self.beliefs(s), trigger, first_only)
+    }
+
+    /// As [`Semantics::applicable`], for the event just taken out of the queue of `s`.
+    fn applicable_for(&self, s: &State, ev: &Event, first_only: bool) -> Vec<(u32, Substitution)> {
+        let mut b = self.beliefs(s);
+        b.selected = Some(ev);
+        self.applicable_in(b, &ev.trigger, first_only)
+    }
+
+    fn applicable_in(
+        &self,
+        b: Beliefs,
+        trigger: &EventTrigger,
+        first_only: bool,
+    ) -> Vec<(u32, Substitution)> {
+        let mut out = Vec::new();
+        for &pi in self.relevant_plans(trigger) {
+            let plan = &self.project.plans.plans[pi as usize];
+            let mut u = Substitution::new();
+            if !unify(&plan.trigger.literal, &trigger.literal, &mut u) {
+                continue;
+            }
+            if let Some(answer) = b.answers(&plan.context, &u).into_iter().next() {
+                out.push((pi, answer));
+                if first_only {
+                    break;
+                }
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,674 @@
+//! The act phase: the feedback of the action sent in the previous cycle, then the first
+//! intention runs one body step (environment actions, which wait for their feedback as
+//! Jason's pending actions; internal actions; subgoals; test goals; belief changes;
+//! constraints; `if`, `while` and `for`). Mirrors `TransitionSystem.applyProcAct`,
+//! `applySelInt` and `applyExecInt` (with the stdlib `.while`/`.foreach` loops).
+
+use super::cycle::{with_source, FrameView, Note, Semantics};
+use super::query::{eval, relation};
+use super::state::{
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
+    State,
+};
+use crate::model::atoms::{AtomId, AtomSet};
+use crate::model::plans::{BodyStep, Formula};
+use crate::model::term::Term;
+use crate::model::universe::ObjectId;
+use crate::model::Substitution;
+use crate::syntax::ast::{TriggerKind, TriggerOp};
+use crate::syntax::Span;
+
+impl Semantics<'_> {
+    /// Moves a frame's cursors to the next step to execute, leaving blocks that have
+    /// ended; a loop's body that has ended stays, its cursor past the end, until the loop
+    /// is tested again ([`Semantics::loop_again`]). `cursors` is empty when the body is done.
+    pub(super) fn normalize(&self, f: &mut Frame) {
+        let blocks = &self.blocks[f.plan as usize];
+        while let Some(c) = f.cursors.last() {
+            if (c.pos as usize) < blocks.blocks[c.block as usize].len()
+                || !matches!(c.kind, CursorKind::Seq)
+            {
+                return;
+            }
+            f.cursors.pop();
+        }
+    }
+
+    /// Tests a loop again once its body has ended: `while` restores the bindings it had
+    /// when it first ran and asks its condition again (stdlib `loop`: `un.clear();
+    /// un.compose(ubak)`), so variables bound in the body are free on the next pass and
+    /// after the loop; `for` takes its next answer, and restores the bindings from before
+    /// the loop when there is none (stdlib `foreach`). The answers of `for` are computed
+    /// when it first runs.
+    fn loop_again(&self, f: &mut Frame, s: &State) {
+        let blocks = &self.blocks[f.plan as usize];
+        let Some(c) = f.cursors.last_mut() else {
+            return;
+        };
+        match &mut c.kind {
+            CursorKind::Seq => {}
+            CursorKind::While { outer, at, base } => {
+                let cond = match &blocks.blocks[*outer as usize][*at as usize].kind {
+                    BodyStep::While(cond, _) => cond,
+                    _ => unreachable!("a while cursor points at a while step"),
+                };
+                let base = base.clone();
+                match self.beliefs(s).answers(cond, &base).into_iter().next() {
+                    Some(a) => {
+                        f.subst = a;
+                        c.pos = 0;
+                    }
+                    None => {
+                        f.subst = base;
+                        f.cursors.pop();
+                    }
+                }
+            }
+            CursorKind::For { rest, base } => {
+                if rest.is_empty() {
+                    f.subst = base.clone();
+                    f.cursors.pop();
+                } else {
+                    f.subst = rest.remove(0);
+                    c.pos = 0;
+                }
+            }
+        }
+        self.normalize(f);
+    }
+
+    /// Jason's `applyProcAct`, the act phase's first stage: the feedback of the action
+    /// sent in the previous cycle. A done action's intention goes to the back of the
+    /// queue (after any the deliberation of this cycle started) and its finished plans are
+    /// cleared; a failed one's plan fails (`generateGoalDeletion`).
+    pub(super) fn proc_act(&self, s: &mut State, notes: &mut Vec<Note>) {
+        let Some(p) = s.pending.take() else {
+            return;
+        };
+        let mut int = p.intention;
+        match p.failure {
+            Some(f) => {
+                let failed = int
+                    .frames
+                    .last()
+                    .map(|f| f.trigger.clone())
+                    .expect("a frame");
+                let reason = format!("{}: {}", f.action, f.why);
+                let at = Some((f.plan, f.span));
+                self.fail_intention(s, int, &failed, at, &reason, "action_failed", notes);
+            }
+            None => {
+                if self.clear_finished(&mut int, notes) {
+                    s.intentions.push(int);
+                }
+            }
+        }
+    }
+
+    /// The act phase: the first intention runs one step.
+    pub(super) fn act(&self, s: &mut State, notes: &mut Vec<Note>) {
+        let env = self.env_count(&s.beliefs);
+        self.act_with(s, notes, env)
+    }
+
+    /// [`Semantics::act`] on a state that may hold only some of the beliefs, `env` of the
+    /// environment's atoms holding in the whole state (their number decides the order in
+    /// which Jason perceives an action's effects).
+    pub(super) fn act_with(&self, s: &mut State, notes: &mut Vec<Note>, env: usize) {
+        if s.intentions.is_empty() {
+            return;
+        }
+        let mut int = s.intentions.remove(0);
+        let finished_top = int.frames.last().is_none_or(|f| f.cursors.is_empty());
+        if !finished_top {
+            match self.step(s, &mut int, notes, env) {
+                Flow::Continue => {}
+                Flow::Suspended | Flow::Gone => return,
+            }
+        }
+        if self.clear_finished(&mut int, notes) {
+            s.intentions.push(int);
+        }
+    }
+
+    /// Executes the next step of the top frame.
+    fn step(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        notes: &mut Vec<Note>,
+        env_before: usize,
+    ) -> Flow {
+        let depth = int.frames.len() - 1;
+        // `.drop_intention(g)` may drop the very intention that runs it.
+        let drops_itself = |g: &Term| {
+            int.frames.iter().any(|f| {
+                f.trigger.kind == TriggerKind::Achieve
+                    && crate::model::unifier(g, &f.trigger.literal).is_some()
+            })
+        };
+        let own_drop = int.frames.last().and_then(|f| {
+            let c = f.cursors.last()?;
+            match &self.blocks[f.plan as usize].blocks[c.block as usize]
+                .get(c.pos as usize)?
+                .kind
+            {
+                BodyStep::Internal(t)
+                    if matches!(t.functor(), Some(".drop_desire" | ".drop_intention")) =>
+                {
+                    Some(drops_itself(&f.subst.apply(t.args().first()?)))
+                }
+                _ => None,
+            }
+        });
+        // The stack an environment action runs in (for explanations); other steps need none.
+        let acts = int.frames.last().is_some_and(|f| {
+            f.cursors.last().is_some_and(|c| {
+                matches!(
+                    self.blocks[f.plan as usize].blocks[c.block as usize]
+                        .get(c.pos as usize)
+                        .map(|s| &s.kind),
+                    Some(BodyStep::Action(_))
+                )
+            })
+        });
+        let views: Vec<FrameView> = if acts {
+            int.frames
+                .iter()
+                .map(|f| FrameView {
+                    plan: f.plan,
+                    subst: f.subst.clone(),
+                    at: f.cursors.last().map_or((0, 0), |c| (c.block, c.pos)),
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let frame = int.frames.last_mut().expect("an intention has a frame");
+        let plan = frame.plan;
+        let blocks = &self.blocks[plan as usize];
+        let Some(cursor) = frame.cursors.last_mut() else {
+            return Flow::Continue;
+        };
+        let (block, pos) = (cursor.block, cursor.pos);
+        let Some(step) = blocks.blocks[block as usize].get(pos as usize) else {
+            // The end of a loop's body: testing the loop again is a step of its own, as
+            // Jason's `.while`/`.foreach` internal actions run again after the body.
+            self.loop_again(frame, s);
+            return Flow::Continue;
+        };
+        cursor.pos += 1;
+        let origin = int.origin;
+        let fail = |sem: &Self,
+                    s: &mut State,
+                    int: Intention,
+                    text: &str,
+                    reason: String,
+                    notes: &mut Vec<Note>| {
+            let failed = int.frames.last().map(|f| f.trigger.clone()).expect("frame");
+            // The `error(Id)` Jason's `createBasicErrorAnnots` gives the failure event.
+            let error = match step.kind {
+                BodyStep::Test(_) => "test_goal_failed",
+                BodyStep::Constraint(..) => "constraint_failed",
+                BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
+                    "belief_revision_failed"
+                }
+                _ => "ia_failed",
+            };
+            sem.fail_intention(
+                s,
+                int,
+                &failed,
+                Some((plan, step.span)),
+                &format!("{text}: {reason}"),
+                error,
+                notes,
+            );
+            Flow::Gone
+        };
+        // A step whose arithmetic has no value fails, as Jason's exception fails the plan.
+        macro_rules! value {
+            ($t:expr) => {
+                match eval($t, &frame.subst) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        let text = frame.subst.apply($t).to_string();
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(self, s, int, &text, e.to_string(), notes);
+                    }
+                }
+            };
+        }
+        match &step.kind {
+            BodyStep::Action(t) if self.is_emission(t) => {
+                // The agent's own explanation: said, not done; the world does not change.
+                let term = value!(t);
+                notes.push(Note::Action {
+                    text: term.to_string(),
+                    term,
+                    stack: views,
+                    plan,
+                    span: step.span,
+                    added: Vec::new(),
+                    removed: Vec::new(),
+                    origin,
+                });
+                return self.wait_for_feedback(s, int, None);
+            }
+            BodyStep::Action(t) => {
+                let term = value!(t);
+                let text = term.to_string();
+                // The environment runs the action now; the intention waits for the
+                // feedback, which the next cycle's `ProcAct` takes (Jason's pending action).
+                let ga = match self.ground_action(&term) {
+                    Ok(ga) if !ga.applicable(&s.beliefs) => {
+                        Err("its precondition does not hold".to_string())
+                    }
+                    other => other,
+                };
+                let ga = match ga {
+                    Ok(ga) => ga,
+                    Err(reason) => {
+                        notes.push(Note::ActionFailed {
+                            text,
+                            plan,
+                            span: step.span,
+                            reason: reason.clone(),
+                        });
+                        let failure = ActionFailure {
+                            plan,
+                            span: step.span,
+                            action: term,
+                            why: reason,
+                        };
+                        return self.wait_for_feedback(s, int, Some(failure));
+                    }
+                };
+                let before = s.beliefs.clone();
+                s.beliefs = ga.apply(&before);
+                let (mut added, mut removed) = diff(&before, &s.beliefs);
+                let after = env_before + added.len() - removed.len();
+                self.java_order(&mut removed, env_before);
+                self.java_order(&mut added, after);
+                self.perceive(s, &added, &removed);
+                notes.push(Note::Action {
+                    text,
+                    term,
+                    stack: views,
+                    plan,
+                    span: step.span,
+                    added,
+                    removed,
+                    origin,
+                });
+                return self.wait_for_feedback(s, int, None);
+            }
+            BodyStep::Internal(t) => {
+                let term = value!(t);
+                let text = term.to_string();
+                match term.functor().unwrap_or("") {
+                    ".print" | ".println" => {
+                        let out: String = term
+                            .args()
+                            .iter()
+                            .map(|a| match a {
+                                Term::Str(s) => s.to_string(),
+                                Term::Var(_) => format!("{a}<no-value>"),
+                                _ => a.to_string(),
+                            })
+                            .collect();
+                        notes.push(Note::Printed(out));
+                    }
+                    f @ (".succeed_goal" | ".fail_goal") => {
+                        let g = term.args().first().cloned().unwrap_or_else(Term::nil);
+                        notes.push(Note::Internal { text, plan, origin });
+                        self.normalize(frame);
+                        let current = std::mem::replace(int, empty_intention(origin));
+                        let fail = f == ".fail_goal";
+                        self.goal_directive(s, current, &g, fail, (plan, step.span), notes);
+                        return Flow::Gone;
+                    }
+                    ".abolish" => {
+                        // `Agent.abolish`: every belief that unifies goes, in belief-base
+                        // order, each with its `-b` event.
+                        let q = term.args().first().cloned().unwrap_or_else(Term::nil);
+                        let gone: Vec<AtomId> = self
+                            .beliefs(s)
+                            .literal_answers(&q, &Substitution::new())
+                            .into_iter()
+                            .map(|(a, _)| a)
+                            .collect();
+                        gone.iter().for_each(|a| s.beliefs.remove(*a));
+                        self.perceive(s, &[], &gone);
+                        notes.push(Note::Belief {
+                            text: text.clone(),
+                            plan,
+                            added: Vec::new(),
+                            removed: gone,
+                            origin,
+                        });
+                    }
+                    ".drop_desire" | ".drop_intention" => {
+                        let g = term.args().first().cloned().unwrap_or_else(Term::nil);
+                        let matches = |i: &Intention| {
+                            i.frames.iter().any(|f| {
+                                f.trigger.kind == TriggerKind::Achieve
+                                    && crate::model::unifier(&g, &f.trigger.literal).is_some()
+                            })
+                        };
+                        s.intentions.retain(|i| !matches(i));
+                        s.events.retain(|e| {
+                            let goal_matches = e.trigger.kind == TriggerKind::Achieve
+                                && crate::model::unifier(&g, &e.trigger.literal).is_some();
+                            !(goal_matches || e.intention.as_ref().is_some_and(matches))
+                        });
+                        if own_drop == Some(true) {
+                            notes.push(Note::Internal { text, plan, origin });
+                            return Flow::Gone;
+                        }
+                    }
+                    _ => {
+                        let f = Formula::Call(t.clone());
+                        match self.beliefs(s).answers(&f, &frame.subst).into_iter().next() {
+                            Some(a) => frame.subst = a,
+                            None => {
+                                notes.push(Note::Internal {
+                                    text: text.clone(),
+                                    plan,
+                                    origin,
+                                });
+                                let int = std::mem::replace(int, empty_intention(origin));
+                                return fail(self, s, int, &text, "it has no answer".into(), notes);
+                            }
+                        }
+                    }
+                }
+                notes.push(Note::Internal { text, plan, origin });
+            }
+            BodyStep::Achieve { goal, new_focus } => {
+                let literal = subgoal_literal(&value!(goal), depth);
+                let trigger = EventTrigger {
+                    op: TriggerOp::Add,
+                    kind: TriggerKind::Achieve,
+                    literal,
+                };
+                if *new_focus {
+                    s.events.push(Event {
+                        trigger,
+                        intention: None,
+                        origin: Origin::Spawned,
+                        posted_at: Some((plan, step.span)),
+                    });
+                } else {
+                    return self.post_subgoal(s, int, trigger, (plan, step.span));
+                }
+            }
+            BodyStep::Test(f) => {
+                match self.beliefs(s).answers(f, &frame.subst).into_iter().next() {
+                    Some(a) => frame.subst = a,
+                    None => {
+                        // Jason's `applyExecInt` (test): with no answer, a literal whose
+                        // `+?g` some plan is relevant for becomes that event, as a subgoal.
+                        if let Formula::Literal(t) = f {
+                            let trigger = EventTrigger {
+                                op: TriggerOp::Add,
+                                kind: TriggerKind::Test,
+                                literal: subgoal_literal(&frame.subst.apply(t), depth),
+                            };
+                            if !self.relevant_plans(&trigger).is_empty() {
+                                return self.post_subgoal(s, int, trigger, (plan, step.span));
+                            }
+                        }
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(self, s, int, "test goal", "it has no answer".into(), notes);
+                    }
+                }
+            }
+            BodyStep::AddBel(t) | BodyStep::DelBel(t) | BodyStep::DelAddBel(t) => {
+                let lit = value!(t);
+                let mut removed = Vec::new();
+                let mut added = Vec::new();
+                if matches!(step.kind, BodyStep::DelBel(_) | BodyStep::DelAddBel(_)) {
+                    // `-b` removes the first belief that unifies; `-+b` the first belief of
+                    // the same predicate, whatever its arguments.
+                    let pattern = match step.kind {
+                        BodyStep::DelAddBel(_) => {
+                            let vars = (0..lit.arity())
+                                .map(|i| Term::var(&format!("_DelAdd{i}")))
+                                .collect();
+                            Term::structure(lit.functor().unwrap_or(""), vars)
+                        }
+                        _ => lit.clone(),
+                    };
+                    let hits = self.beliefs(s).literal_answers(&pattern, &frame.subst);
+                    if let Some((a, answer)) = hits.into_iter().next() {
+                        s.beliefs.remove(a);
+                        removed.push(a);
+                        if matches!(step.kind, BodyStep::DelBel(_)) {
+                            frame.subst = answer;
+                        }
+                    }
+                }
+                if matches!(step.kind, BodyStep::AddBel(_) | BodyStep::DelAddBel(_)) {
+                    match self.ground_atom(&lit) {
+                        Some(a) => {
+                            if !s.beliefs.contains(a) {
+                                s.beliefs.insert(a);
+                                added.push(a);
+                            }
+                            removed.retain(|r| *r != a);
+                            added.retain(|x| !removed.contains(x));
+                        }
+                        None => {
+                            let int = std::mem::replace(int, empty_intention(origin));
+                            let text = format!("+{lit}");
+                            let why = match &self.project.manifest.bounds.numbers {
+                                Some(n) => format!(
+                                    "the belief is not a ground atom of the model (its numbers are {} to {}, `[bounds] numbers`)",
+                                    n.value.0, n.value.1
+                                ),
+                                None => "the belief is not a ground atom of the model".into(),
+                            };
+                            return fail(self, s, int, &text, why, notes);
+                        }
+                    }
+                }
+                self.perceive(s, &added, &removed);
+                let sign = match step.kind {
+                    BodyStep::AddBel(_) => "+",
+                    BodyStep::DelBel(_) => "-",
+                    _ => "-+",
+                };
+                notes.push(Note::Belief {
+                    text: format!("{sign}{lit}"),
+                    plan,
+                    added,
+                    removed,
+                    origin,
+                });
+            }
+            BodyStep::Constraint(op, a, b) => {
+                let (x, y) = (value!(a), value!(b));
+                let text = format!("{x} {} {y}", op.symbol());
+                match relation(*op, &x, &y, &frame.subst) {
+                    Some(u) => frame.subst = u,
+                    None => {
+                        let int = std::mem::replace(int, empty_intention(origin));
+                        return fail(
+                            self,
+                            s,
+                            int,
+                            &text,
+                            "the constraint does not hold".into(),
+                            notes,
+                        );
+                    }
+                }
+            }
+            BodyStep::If { branches, .. } => {
+                let kids = &blocks.children[&(block, pos)];
+                let b = self.beliefs(s);
+                let mut chosen = kids.last().copied();
+                for (k, (cond, _)) in branches.iter().enumerate() {
+                    if let Some(a) = b.answers(cond, &frame.subst).into_iter().next() {
+                        frame.subst = a;
+                        chosen = Some(kids[k]);
+                        break;
+                    }
+                }
+                if let Some(child) = chosen {
+                    frame.cursors.push(Cursor {
+                        block: child,
+                        pos: 0,
+                        kind: CursorKind::Seq,
+                    });
+                }
+            }
+            BodyStep::While(cond, _) => {
+                let child = blocks.children[&(block, pos)][0];
+                let base = frame.subst.clone();
+                if let Some(a) = self.beliefs(s).answers(cond, &base).into_iter().next() {
+                    frame.subst = a;
+                    frame.cursors.push(Cursor {
+                        block: child,
+                        pos: 0,
+                        kind: CursorKind::While {
+                            outer: block,
+                            at: pos,
+                            base,
+                        },
+                    });
+                }
+            }
+            BodyStep::For(cond, _) => {
+                let child = blocks.children[&(block, pos)][0];
+                let mut answers = self.beliefs(s).answers(cond, &frame.subst);
+                if !answers.is_empty() {
+                    let base = std::mem::replace(&mut frame.subst, answers.remove(0));
+                    frame.cursors.push(Cursor {
+                        block: child,
+                        pos: 0,
+                        kind: CursorKind::For {
+                            rest: answers,
+                            base,
+                        },
+                    });
+                }
+            }
+        }
+        self.normalize(frame);
+        Flow::Continue
+    }
+
+    /// `int` sent an environment action: it waits, its step done (or failed, with why),
+    /// for the feedback that the next cycle's `ProcAct` takes.
+    fn wait_for_feedback(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        failure: Option<ActionFailure>,
+    ) -> Flow {
+        if let Some(top) = int.frames.last_mut() {
+            self.normalize(top);
+        }
+        let origin = int.origin;
+        let intention = std::mem::replace(int, empty_intention(origin));
+        s.pending = Some(Pending { intention, failure });
+        Flow::Gone
+    }
+
+    /// Suspends `int` on the subgoal event `trigger` (`!g`, or `?g` handled by a `+?g`
+    /// plan): its top plan waits for `g` (its current step), in the event.
+    fn post_subgoal(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        trigger: EventTrigger,
+        at: (u32, Span),
+    ) -> Flow {
+        let origin = int.origin;
+        if let Some(top) = int.frames.last_mut() {
+            top.calling = Some(trigger.literal.clone());
+            self.normalize(top);
+        }
+        let suspended = std::mem::replace(int, empty_intention(origin));
+        s.events.push(Event {
+            trigger,
+            intention: Some(suspended),
+            origin,
+            posted_at: Some(at),
+        });
+        Flow::Suspended
+    }
+
+    /// The ground action a term names, or why there is none.
+    /// Whether the agent explains itself (the manifest names an `emitted_by` action).
+    pub fn explains_itself(&self) -> bool {
+        self.emitted_by.is_some()
+    }
+
+    /// Whether an action is the agent's own explanation (`[explanation] emitted_by`).
+    pub fn is_emission(&self, t: &Term) -> bool {
+        self.emitted_by.is_some() && t.functor() == self.emitted_by.as_deref()
+    }
+
+    pub(super) fn ground_action(
+        &self,
+        t: &Term,
+    ) -> Result<&crate::model::ground::GroundAction, String> {
+        let name = t.functor().ok_or("it is not an action")?;
+        let args = self.objects(t).ok_or("its arguments are not all objects")?;
+        self.project.actions.get(name, &args).ok_or_else(|| {
+            format!("`{name}` with these arguments is not an action of the PDDL domain")
+        })
+    }
+
+    fn objects(&self, t: &Term) -> Option<Vec<ObjectId>> {
+        t.args()
+            .iter()
+            .map(|a| self.project.universe.object_of(a))
+            .collect()
+    }
+
+    /// The atom a ground literal names (annotations ignored).
+    pub(super) fn ground_atom(&self, t: &Term) -> Option<AtomId> {
+        let p = self.project.atoms.pred_of_literal(t)?;
+        self.project.atoms.id(p, &self.objects(t)?)
+    }
+}
+
+/// The literal of a subgoal posted by the plan at `depth` of its stack: Jason's
+/// `prepareBodyForEvent` gives it `source(self)`, and its plan's variables are renamed to
+/// the next generation (the subgoal's plan has variables of its own).
+fn subgoal_literal(t: &Term, depth: usize) -> Term {
+    with_source(t, "self").map_vars(&mut |v| {
+        if v.generation() == 0 {
+            Term::from(v.with_generation(depth as u32 + 1))
+        } else {
+            Term::from(v.clone())
+        }
+    })
+}
+
+/// What became of the intention after a step.
+enum Flow {
+    /// It goes on (and goes to the back of the queue).
+    Continue,
+    /// It waits in an event for a subgoal's plan.
+    Suspended,
+    /// It was dropped or handed to a failure event.
+    Gone,
+}
+
+fn empty_intention(origin: Origin) -> Intention {
+    Intention {
+        frames: Vec::new(),
+        origin,
+    }
+}
+
+fn diff(before: &AtomSet, after: &AtomSet) -> (Vec<AtomId>, Vec<AtomId>) {
+    let added = after.iter().filter(|a| !before.contains(*a)).collect();
+    let removed = before.iter().filter(|a| !after.contains(*a)).collect();
+    (added, removed)
+}
