@@ -1,0 +1,153 @@
+//! The checks one transition decides: `action-failure` and `goal-failure`. The search
+//! records the first transition that shows each failure; the findings report it with the
+//! run that takes it.
+
+use super::checker::Checker;
+use crate::findings::{Finding, Status};
+use crate::semantics::Note;
+use std::collections::BTreeMap;
+
+/// The first (hence shallowest-source) transition of each failure, keyed by place.
+#[derive(Default)]
+pub(super) struct Failures {
+    pub(super) actions: BTreeMap<(u32, u32), Failure>,
+    pub(super) goals: BTreeMap<String, Failure>,
+    pub(super) no_plan: BTreeMap<(String, usize), Failure>,
+    /// The plans some run adopts.
+    pub(super) applied: std::collections::BTreeSet<u32>,
+}
+
+impl Failures {
+    /// Records the failures a transition shows.
+    pub(super) fn record<'n>(
+        &mut self,
+        src: u32,
+        k: u32,
+        fp: u64,
+        notes: impl Iterator<Item = &'n Note>,
+    ) {
+        for n in notes {
+            let at = || Failure {
+                src,
+                k,
+                fp,
+                note: n.clone(),
+            };
+            match n {
+                Note::ActionFailed { span, .. } => {
+                    self.actions
+                        .entry((span.file.0, span.start))
+                        .or_insert_with(at);
+                }
+                Note::GoalFailed { goal, span, .. } => {
+                    let key = match span {
+                        Some(sp) => format!("{}:{}", sp.file.0, sp.start),
+                        None => goal.to_string(),
+                    };
+                    self.goals.entry(key).or_insert_with(at);
+                }
+                Note::NoApplicablePlan(t) => {
+                    let key = (
+                        t.literal.functor().unwrap_or("").to_string(),
+                        t.literal.arity(),
+                    );
+                    self.no_plan.entry(key).or_insert_with(at);
+                }
+                Note::Plan { plan, .. } => {
+                    self.applied.insert(*plan);
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+/// A transition that shows a failure: where it starts, its number there, the fingerprint
+/// of its target, and the note.
+pub(super) struct Failure {
+    pub(super) src: u32,
+    pub(super) k: u32,
+    pub(super) fp: u64,
+    pub(super) note: Note,
+}
+
+impl Checker<'_> {
+    pub(super) fn failures(
+        &self,
+        out: &mut Vec<Finding>,
+        actions: BTreeMap<(u32, u32), Failure>,
+        goals: BTreeMap<String, Failure>,
+    ) {
+        let span = self.project.manifest.agent.plans.written.span;
+        if actions.is_empty() {
+            out.push(self.finding(
+                "action-failure",
+                "all",
+                span,
+                self.held(),
+                "no action is ever attempted when its precondition does not hold".into(),
+            ));
+        }
+        for x in actions.values() {
+            if let Note::ActionFailed {
+                text,
+                plan,
+                span,
+                reason,
+            } = &x.note
+            {
+                let loc = self.location(*span);
+                let plan = &self.project.plans.plans[*plan as usize];
+                let mut f = self.finding(
+                    "action-failure",
+                    &format!("{}:{}", loc.file, loc.line),
+                    *span,
+                    Status::Fail,
+                    format!("`{text}` in plan {} fails: {reason}", plan.name()),
+                );
+                f.id = format!("action-failure:{}:{}", loc.file, loc.line);
+                f.counterexample =
+                    Some(self.counterexample(&self.graph.path_to(x.src), Some(x), &[]));
+                out.push(f);
+            }
+        }
+        if goals.is_empty() {
+            out.push(self.finding(
+                "goal-failure",
+                "all",
+                span,
+                self.held(),
+                "no goal ever fails without a failure plan to handle it".into(),
+            ));
+        }
+        for x in goals.values() {
+            if let Note::GoalFailed {
+                goal,
+                cause,
+                span: at,
+                reason,
+                ..
+            } = &x.note
+            {
+                let place = at.unwrap_or(span);
+                let loc = self.location(place);
+                let what = if goal == cause {
+                    format!("goal {goal} fails ({reason})")
+                } else {
+                    format!("{cause} fails ({reason}), so goal {goal} fails")
+                };
+                let mut f = self.finding(
+                    "goal-failure",
+                    "",
+                    place,
+                    Status::Fail,
+                    format!("{what}, and no failure plan handles it: the intention is dropped"),
+                );
+                f.id = format!("goal-failure:{}:{}", loc.file, loc.line);
+                f.counterexample =
+                    Some(self.counterexample(&self.graph.path_to(x.src), Some(x), &[]));
+                out.push(f);
+            }
+        }
+    }
+}

@@ -1,0 +1,155 @@
+//! What the search records as it goes, for the checks that run after it: per state, which
+//! of the checked conditions hold, its pending requests and whether it is idle (computed
+//! in the exploring threads, since no state is kept); per transition, the failures it shows.
+
+use super::explore::{explore_with, Graph, Limits, Options};
+use super::failures::Failures;
+use super::model::{AgentState, CycleNotes, Model};
+use crate::model::cond::Cond;
+use crate::semantics::Semantics;
+use std::collections::HashMap;
+
+/// What the search records about one state, computed where the state is found.
+struct Summary {
+    /// Bit `j`: condition `j` of [`Conditions`] holds.
+    holds: smallvec::SmallVec<[u64; 2]>,
+    pending: u64,
+    idle: bool,
+}
+
+/// The state conditions evaluated on every state, in one numbering: invariants, then
+/// properties, then the plan pairs whose overlap lint asks about.
+pub(super) struct Conditions<'a> {
+    pub(super) invariants: Vec<&'a Cond>,
+    pub(super) props: Vec<&'a Cond>,
+    pub(super) overlaps: Vec<(u32, u32)>,
+}
+
+impl Conditions<'_> {
+    pub(super) fn len(&self) -> usize {
+        self.invariants.len() + self.props.len() + self.overlaps.len()
+    }
+
+    fn summarize(&self, sem: &Semantics, s: &impl AgentState) -> Summary {
+        let mut holds = smallvec::SmallVec::from_elem(0u64, self.len().div_ceil(64).max(1));
+        let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
+        let conds = self.invariants.iter().chain(&self.props);
+        for (j, c) in conds.enumerate() {
+            if c.eval(s.beliefs()) {
+                set(j);
+            }
+        }
+        if !self.overlaps.is_empty() {
+            if let Some(ev) = s.first_event() {
+                let applicable = s.applicable(sem, &ev.trigger);
+                let base = self.invariants.len() + self.props.len();
+                for (k, (a, b)) in self.overlaps.iter().enumerate() {
+                    if applicable.iter().any(|(p, _)| p == a)
+                        && applicable.iter().any(|(p, _)| p == b)
+                    {
+                        set(base + k);
+                    }
+                }
+            }
+        }
+        Summary {
+            holds,
+            pending: s.pending_requests(),
+            idle: s.is_idle(),
+        }
+    }
+}
+
+/// Per-state facts kept for the checks after the search.
+#[derive(Default)]
+pub(super) struct Facts {
+    /// For each condition: the first state where it holds and the first where it does not.
+    pub(super) first_holds: Vec<Option<u32>>,
+    pub(super) first_fails: Vec<Option<u32>>,
+    /// Bit per state: idle.
+    pub(super) idle: Vec<u64>,
+    /// Per state: an index into `masks` (the requests pending there).
+    pub(super) pending: Vec<u32>,
+    pub(super) masks: Vec<u64>,
+    pub(super) mask_ids: HashMap<u64, u32>,
+    /// Per `eventually` property: bit per state, set when the property does not hold.
+    pub(super) bad: Vec<Vec<u64>>,
+}
+
+pub(super) fn bit(v: &[u64], i: u32) -> bool {
+    v.get(i as usize / 64)
+        .is_some_and(|w| w >> (i % 64) & 1 == 1)
+}
+
+pub(super) fn set_bit(v: &mut Vec<u64>, i: u32, value: bool) {
+    let w = i as usize / 64;
+    if v.len() <= w {
+        v.resize(w + 1, 0);
+    }
+    if value {
+        v[w] |= 1 << (i % 64);
+    }
+}
+
+impl Facts {
+    fn record(&mut self, i: u32, s: Summary, eventually: &[usize]) {
+        for j in 0..self.first_holds.len() {
+            let slot = if bit(&s.holds, j as u32) {
+                &mut self.first_holds[j]
+            } else {
+                &mut self.first_fails[j]
+            };
+            slot.get_or_insert(i);
+        }
+        set_bit(&mut self.idle, i, s.idle);
+        let next = self.masks.len() as u32;
+        let id = *self.mask_ids.entry(s.pending).or_insert(next);
+        if id == next {
+            self.masks.push(s.pending);
+        }
+        self.pending.push(id);
+        for (b, &j) in self.bad.iter_mut().zip(eventually) {
+            set_bit(b, i, !bit(&s.holds, j as u32));
+        }
+    }
+
+    pub(super) fn pending(&self, i: u32) -> u64 {
+        self.masks[self.pending[i as usize] as usize]
+    }
+}
+
+/// The agent's search (on the reference or the compiled model: they have the same
+/// fingerprints), recording each state's facts and each transition's failures. Returns
+/// the graph and the first equivariance violation `equivariance` reports.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn search_agent<M>(
+    model: &M,
+    sem: &Semantics,
+    conditions: &Conditions,
+    equivariance: impl Fn(&M::State) -> Option<String> + Sync,
+    (limits, opts): (Limits, &Options),
+    (facts, eventually, failures): (&mut Facts, &[usize], &mut Failures),
+    progress: impl FnMut(usize, u32, f64),
+) -> (Graph, Option<String>)
+where
+    M: Model + Sync,
+    M::State: AgentState + Send + Sync,
+    M::Label: CycleNotes + Send,
+{
+    let mut not_equivariant = None;
+    let graph = explore_with(
+        model,
+        limits,
+        opts,
+        |s| (conditions.summarize(sem, s), equivariance(s)),
+        |i, (sum, unequal)| {
+            if not_equivariant.is_none() {
+                not_equivariant = unequal;
+            }
+            facts.record(i, sum, eventually)
+        },
+        |src, k, label: &M::Label, fp| failures.record(src, k, fp, label.notes()),
+        progress,
+    );
+    (graph.cast(), not_equivariant)
+}

@@ -1,0 +1,285 @@
+//! The canonical member of a state's class, found without trying all `k!` renamings:
+//! objects sorted by a signature renaming carries along, and only the ties among objects
+//! that are not interchangeable tried in every order (see the `symmetry` module documentation).
+
+use super::{Involves, Perm, Renaming, Symmetry};
+use crate::check::explore::fingerprint;
+use crate::model::Substitution;
+use crate::semantics::state::{CursorKind, Intention};
+use crate::semantics::{Origin, State};
+
+/// Most orders tried to break ties between objects that are not interchangeable; beyond
+/// it the sorted order is kept as it is (less reduction, still sound).
+const MAX_TIE_ORDERS: usize = 5040;
+
+impl Symmetry {
+    /// The symmetric objects in the order they first occur in the state's terms.
+    fn occurrences(&self, s: &State) -> Vec<u16> {
+        let mut out = Vec::new();
+        for e in &s.events {
+            self.collect_objects(&e.trigger.literal, &mut out);
+            self.origin_objects(e.origin, &mut out);
+            if let Some(i) = &e.intention {
+                self.intention_objects(i, &mut out);
+            }
+        }
+        for i in s
+            .intentions
+            .iter()
+            .chain(s.pending.iter().map(|p| &p.intention))
+        {
+            self.intention_objects(i, &mut out);
+        }
+        // The belief-base order tells interchangeable objects apart too: `cupAt(cup2, _)`
+        // added after `cupAt(cup1, _)` is answered first.
+        for a in &s.order {
+            for &(_, _, o) in &self.atom_args[a.0 as usize] {
+                if !out.contains(&o) {
+                    out.push(o);
+                }
+            }
+        }
+        out
+    }
+
+    fn origin_objects(&self, o: Origin, out: &mut Vec<u16>) {
+        if let Origin::Request(r) = o {
+            self.collect_objects(&self.requests[r as usize], out);
+        }
+    }
+
+    fn intention_objects(&self, i: &Intention, out: &mut Vec<u16>) {
+        self.origin_objects(i.origin, out);
+        for f in &i.frames {
+            self.collect_objects(&f.trigger.literal, out);
+            for (_, t) in f.subst.iter() {
+                self.collect_objects(t, out);
+            }
+            for c in &f.cursors {
+                let subs: Vec<&Substitution> = match &c.kind {
+                    CursorKind::For { rest, base } => {
+                        rest.iter().chain(std::iter::once(base)).collect()
+                    }
+                    CursorKind::While { base, .. } => vec![base],
+                    CursorKind::Seq => Vec::new(),
+                };
+                for sub in subs {
+                    for (_, t) in sub.iter() {
+                        self.collect_objects(t, out);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The renaming that takes `s` to its canonical member (see the module documentation),
+    /// and whether ties between objects that are not interchangeable remain to be tried.
+    fn sorting(&self, s: &State) -> (Perm, Vec<Vec<u16>>) {
+        let n = self.objects.len();
+        // (first occurrence, hash of the atoms and requests that involve the object alone,
+        // whether it shares an atom or a request with another symmetric object)
+        let mut first = vec![u32::MAX; n];
+        for (k, o) in self.occurrences(s).into_iter().enumerate() {
+            first[o as usize] = k as u32;
+        }
+        let mut hash = vec![0u64; n];
+        let mut shared = vec![false; n];
+        for a in s.beliefs.iter() {
+            match self.involves[a.0 as usize] {
+                Involves::None => {}
+                Involves::One(o, key) => {
+                    hash[o as usize] = hash[o as usize].wrapping_add(mix(u64::from(key)));
+                }
+                Involves::Many => {
+                    for &(_, _, o) in &self.atom_args[a.0 as usize] {
+                        shared[o as usize] = true;
+                    }
+                }
+            }
+        }
+        for (r, inv) in self.request_involves.iter().enumerate() {
+            if s.requested >> r & 1 == 0 {
+                continue;
+            }
+            match *inv {
+                Involves::None => {}
+                Involves::One(o, key) => {
+                    // Tagged apart from atom ids.
+                    let key = u64::from(key) | 1 << 40;
+                    hash[o as usize] = hash[o as usize].wrapping_add(mix(key));
+                }
+                Involves::Many => {
+                    let mut objs = Vec::new();
+                    self.collect_objects(&self.requests[r], &mut objs);
+                    objs.iter().for_each(|&o| shared[o as usize] = true);
+                }
+            }
+        }
+        let mut perm = self.identity();
+        let mut ties = Vec::new();
+        for g in &self.groups {
+            let mut order = g.clone();
+            order.sort_by_key(|&o| (first[o as usize], hash[o as usize], shared[o as usize], o));
+            for (slot, &o) in order.iter().enumerate() {
+                perm[o as usize] = g[slot];
+            }
+            // Runs of equal signatures among objects that are not interchangeable.
+            let key = |o: u16| (first[o as usize], hash[o as usize], shared[o as usize]);
+            let mut i = 0;
+            while i < order.len() {
+                let mut j = i + 1;
+                while j < order.len() && key(order[j]) == key(order[i]) {
+                    j += 1;
+                }
+                if j - i > 1 && shared[order[i] as usize] {
+                    ties.push(g[i..j].to_vec());
+                }
+                i = j;
+            }
+        }
+        (perm, ties)
+    }
+
+    /// The renamings that may take `s` to its canonical member: the sorting order, and
+    /// when objects tie, that order with every arrangement of each tie (none beyond
+    /// [`MAX_TIE_ORDERS`]).
+    fn candidates(&self, s: &State) -> Vec<Perm> {
+        let (perm, ties) = self.sorting(s);
+        let orders: usize = ties
+            .iter()
+            .map(|t| (1..=t.len()).product::<usize>())
+            .try_fold(1usize, |acc, k| acc.checked_mul(k))
+            .unwrap_or(usize::MAX);
+        if ties.is_empty() || orders > MAX_TIE_ORDERS {
+            return vec![perm];
+        }
+        // Every order of every tie (slots within a tie are permuted after sorting).
+        let mut out = Vec::new();
+        let mut arrangement: Vec<Vec<u16>> = ties.clone();
+        loop {
+            let mut p = perm.clone();
+            for (tie, arr) in ties.iter().zip(&arrangement) {
+                let mut remap = self.identity();
+                for (k, &slot) in tie.iter().enumerate() {
+                    remap[slot as usize] = arr[k];
+                }
+                p.iter_mut().for_each(|x| *x = remap[*x as usize]);
+            }
+            out.push(p);
+            if !next_arrangement(&mut arrangement) {
+                break;
+            }
+        }
+        out
+    }
+
+    /// The canonical member of `s`'s class and its fingerprint.
+    pub fn canonical(&self, s: &State) -> (u64, Option<State>) {
+        let candidates = self.candidates(s);
+        if let [p] = candidates.as_slice() {
+            if p.iter().enumerate().all(|(i, &x)| x as usize == i) {
+                return (fingerprint(s), None);
+            }
+        }
+        let (fp, c) = candidates
+            .iter()
+            .map(|p| {
+                let c = self.apply(s, p);
+                (fingerprint(&c), c)
+            })
+            .min_by_key(|(fp, _)| *fp)
+            .expect("at least one candidate");
+        (fp, Some(c))
+    }
+
+    /// The fingerprint of a renaming of `s` together with data about it (`extra`, given the
+    /// same renaming to apply to its terms): the least over the renamings [`canonical`]
+    /// tries. A model whose states are an agent state and more (a user's view of the run)
+    /// stores them under it; since every renaming is applied to the whole, two states are
+    /// only merged when one is a renaming of the other.
+    ///
+    /// [`canonical`]: Symmetry::canonical
+    pub fn fingerprint_with<H: std::hash::Hash>(
+        &self,
+        s: &State,
+        extra: impl Fn(&Renaming) -> H,
+    ) -> u64 {
+        self.candidates(s)
+            .iter()
+            .map(|p| {
+                let r = Renaming { sym: self, perm: p };
+                fingerprint(&(self.apply(s, p), extra(&r)))
+            })
+            .min()
+            .expect("at least one candidate")
+    }
+
+    /// The canonical fingerprint of `s`.
+    pub fn fingerprint(&self, s: &State) -> u64 {
+        self.canonical(s).0
+    }
+}
+
+/// A 64-bit mixer (splitmix64's finaliser), so that sums of features rarely collide.
+fn mix(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    x ^ (x >> 31)
+}
+
+/// The next arrangement of every tie, in lexicographic order of the ties (odometer of
+/// per-tie permutations). Returns `false` after the last.
+fn next_arrangement(ties: &mut [Vec<u16>]) -> bool {
+    for t in ties.iter_mut().rev() {
+        if next_permutation(t) {
+            return true;
+        }
+        // Wrapped around: `t` is sorted again; carry to the previous tie.
+    }
+    false
+}
+
+/// The next permutation in lexicographic order, or `false` (and the first one) after the
+/// last.
+fn next_permutation(v: &mut [u16]) -> bool {
+    let n = v.len();
+    if n < 2 {
+        return false;
+    }
+    let mut i = n - 1;
+    while i > 0 && v[i - 1] >= v[i] {
+        i -= 1;
+    }
+    if i == 0 {
+        v.reverse();
+        return false;
+    }
+    let mut j = n - 1;
+    while v[j] <= v[i - 1] {
+        j -= 1;
+    }
+    v.swap(i - 1, j);
+    v[i..].reverse();
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn arrangements_cover_every_order_once() {
+        let mut ties = vec![vec![0, 1, 2], vec![3, 4]];
+        let mut seen = HashSet::new();
+        loop {
+            assert!(seen.insert(ties.clone()));
+            if !next_arrangement(&mut ties) {
+                break;
+            }
+        }
+        assert_eq!(seen.len(), 12);
+        assert_eq!(ties, vec![vec![0, 1, 2], vec![3, 4]]);
+    }
+}

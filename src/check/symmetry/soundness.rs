@@ -1,0 +1,313 @@
+//! What makes the reduction sound. [`Symmetry::new`] refuses a model that names a
+//! symmetric object where renaming would not preserve it, and initial states or requests
+//! not closed under renaming; the equivariance check, run on every stored state, finds
+//! where the reasoning cycle itself does not treat the objects alike (the report's caveat).
+
+use super::Symmetry;
+use crate::model::atoms::AtomSet;
+use crate::model::cond::{Cond, CountCmp};
+use crate::model::project::Project;
+use crate::semantics::{Semantics, State};
+use crate::syntax::{Diagnostic, Span};
+use std::collections::HashSet;
+use std::sync::Arc;
+
+impl Symmetry {
+    /// Whether the reasoning cycle treats the objects alike at `s`: for each generator `g`
+    /// of the renamings, the successors of `g(s)` are renamings of the successors of `s`
+    /// (compared as multisets of canonical fingerprints). Reduction is exact when this holds
+    /// at every state; Jason's first-answer selection can break it (answers come in belief
+    /// order, so `cup1` before `cup2`). `None` when it holds, otherwise the renaming that
+    /// breaks it, as object names.
+    pub fn equivariance_violation(&self, sem: &Semantics, s: &State) -> Option<String> {
+        self.equivariance_violation_with(s, |st| {
+            sem.successors(st).into_iter().map(|t| t.next).collect()
+        })
+    }
+
+    /// [`Symmetry::equivariance_violation`], with the successor states computed by
+    /// `successors` (the compiled reasoning cycle's, say).
+    pub fn equivariance_violation_with(
+        &self,
+        s: &State,
+        successors: impl Fn(&State) -> Vec<State>,
+    ) -> Option<String> {
+        let classes = |st: &State| {
+            let mut v: Vec<u64> = successors(st).iter().map(|t| self.fingerprint(t)).collect();
+            v.sort_unstable();
+            v
+        };
+        let here = classes(s);
+        self.generators().into_iter().find_map(|g| {
+            (classes(&self.apply(s, &g)) != here).then(|| {
+                let moved: Vec<String> = g
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, &j)| *i != j as usize)
+                    .map(|(i, &j)| format!("{} -> {}", self.names[i], self.names[j as usize]))
+                    .collect();
+                moved.join(", ")
+            })
+        })
+    }
+
+    fn refuse(&self, span: Span, name: &str, what: &str, types: &[(String, Span)]) -> Diagnostic {
+        let s = self.by_name[name];
+        let (ty, ty_span) = &types[self.group_of[s as usize] as usize];
+        Diagnostic::error(
+            "symmetry",
+            format!(
+                "{what} names `{name}`, an object of type `{ty}`, which `[bounds] symmetry` declares interchangeable: symmetry reduction would be unsound"
+            ),
+        )
+        .with_label(span, format!("names `{name}`"))
+        .with_secondary(*ty_span, "declared symmetric here")
+        .with_help(format!(
+            "use a variable instead of `{name}`, remove \"{ty}\" from `[bounds] symmetry`, or run with `--no-symmetry`"
+        ))
+    }
+
+    /// Plan library and PDDL files: no symmetric object may be named.
+    pub(super) fn check_sources(
+        &self,
+        project: &Project,
+        types: &[(String, Span)],
+    ) -> Vec<Diagnostic> {
+        let mut out = Vec::new();
+        for f in project.map.files() {
+            let ext = f.path.extension().and_then(|e| e.to_str()).unwrap_or("");
+            let (what, pddl) = match ext {
+                "asl" => ("the plan library", false),
+                "pddl" => ("the PDDL domain", true),
+                _ => continue,
+            };
+            for (start, word) in words(&f.text, pddl) {
+                let hit = if pddl {
+                    self.names.iter().find(|n| n.eq_ignore_ascii_case(word))
+                } else {
+                    self.names.iter().find(|n| &***n == word)
+                };
+                if let Some(n) = hit {
+                    let span = Span::new(f.id, start, start + word.len());
+                    out.push(self.refuse(span, n, what, types));
+                }
+            }
+        }
+        out
+    }
+
+    /// Manifest formulas and requests that name a symmetric object must be symmetric;
+    /// explanation patterns and phrases must not name one; initial states and requests must
+    /// be closed under renaming.
+    pub(super) fn check_manifest(
+        &self,
+        project: &Project,
+        types: &[(String, Span)],
+    ) -> Vec<Diagnostic> {
+        let m = &project.manifest;
+        let mut out = Vec::new();
+        let named = |text: &str| -> Option<&Arc<str>> {
+            words(text, false)
+                .into_iter()
+                .find_map(|(_, w)| self.names.iter().find(|n| &***n == w))
+        };
+        let mut formulas: Vec<(&str, Span, &crate::syntax::ast::Expr, String)> = Vec::new();
+        for f in &m.initial.facts {
+            formulas.push((&f.text, f.span, &f.expr, "the initial fact".into()));
+        }
+        for f in &m.initial.constraints {
+            formulas.push((&f.text, f.span, &f.expr, "the initial constraint".into()));
+        }
+        for i in &m.invariants {
+            let what = format!("invariant `{}`", i.name.value);
+            formulas.push((&i.formula.text, i.formula.span, &i.formula.expr, what));
+        }
+        for p in &m.properties {
+            let what = format!("property `{}`", p.name.value);
+            formulas.push((&p.formula.text, p.formula.span, &p.formula.expr, what));
+        }
+        let gens = self.generators();
+        for (text, span, expr, what) in formulas {
+            let Some(name) = named(text) else { continue };
+            let symmetric = crate::model::formula::compile(expr, &project.atoms, &project.universe)
+                .map(|c| {
+                    let base = self.normal(&c, &self.identity());
+                    gens.iter().all(|g| self.normal(&c, g) == base)
+                })
+                .unwrap_or(false);
+            if !symmetric {
+                let what = format!("{what}, which is not symmetric in these objects,");
+                out.push(self.refuse(span, name, &what, types));
+            }
+        }
+        // Requests: renaming must map requests to requests.
+        let closed = (0..self.requests.len()).all(|r| {
+            gens.iter().all(|g| {
+                self.rename(&self.requests[r], g)
+                    .is_none_or(|t| self.request_index.contains_key(&t))
+            })
+        });
+        if !closed {
+            for f in &m.requests.goals {
+                if let Some(name) = named(&f.text) {
+                    out.push(self.refuse(f.span, name, "the request", types));
+                }
+            }
+        }
+        if let Some(e) = &m.explanation {
+            let mut patterns: Vec<(&str, Span, &str)> = Vec::new();
+            for p in &e.phrases {
+                patterns.push((&p.pattern.text, p.pattern.span, "the phrase pattern"));
+                patterns.push((&p.template.value, p.template.span, "the phrase"));
+            }
+            for u in &e.users {
+                for pair in &u.expected {
+                    for side in [&pair.before, &pair.after] {
+                        patterns.push((&side.text, side.span, "the expected pair"));
+                    }
+                }
+            }
+            for (text, span, what) in patterns {
+                if let Some(name) = named(text) {
+                    out.push(self.refuse(span, name, what, types));
+                }
+            }
+        }
+        // The initial states: a set closed under renaming (facts and constraints that name
+        // no object are; this catches the rest).
+        if out.is_empty() {
+            let init: HashSet<&AtomSet> = project.initial.states.iter().collect();
+            let open = project.initial.states.iter().find(|s| {
+                gens.iter().any(|g| {
+                    let mut img = AtomSet::empty(self.atom_count);
+                    s.iter().for_each(|a| img.insert(self.atom_image(a, g)));
+                    !init.contains(&img)
+                })
+            });
+            if open.is_some() {
+                let span = m
+                    .initial
+                    .facts
+                    .first()
+                    .map_or(m.bounds.symmetry[0].span, |f| f.span);
+                out.push(
+                    Diagnostic::error(
+                        "symmetry",
+                        "the initial states are not symmetric in the objects `[bounds] symmetry` declares interchangeable: renaming them turns an initial state into one that is not initial",
+                    )
+                    .with_label(span, "the initial states")
+                    .with_help("remove the type from `[bounds] symmetry`, or run with `--no-symmetry`"),
+                );
+            }
+        }
+        out
+    }
+
+    /// A condition under a renaming, in a form where the order of `&`, `|` and `.count`
+    /// operands does not matter.
+    fn normal(&self, c: &Cond, perm: &[u16]) -> Normal {
+        match c {
+            Cond::True => Normal::True,
+            Cond::False => Normal::False,
+            Cond::Atom(a) => Normal::Atom(self.atom_image(*a, perm).0),
+            Cond::Not(inner) => Normal::Not(Box::new(self.normal(inner, perm))),
+            Cond::And(parts) | Cond::Or(parts) => {
+                let mut v: Vec<Normal> = parts.iter().map(|p| self.normal(p, perm)).collect();
+                v.sort();
+                if matches!(c, Cond::And(_)) {
+                    Normal::And(v)
+                } else {
+                    Normal::Or(v)
+                }
+            }
+            Cond::Count { atoms, cmp, n } => {
+                let mut v: Vec<u32> = atoms.iter().map(|a| self.atom_image(*a, perm).0).collect();
+                v.sort();
+                let cmp = match cmp {
+                    CountCmp::Eq => 0,
+                    CountCmp::Lt => 1,
+                    CountCmp::Le => 2,
+                    CountCmp::Gt => 3,
+                    CountCmp::Ge => 4,
+                    CountCmp::Ne => 5,
+                };
+                Normal::Count(v, cmp, *n)
+            }
+        }
+    }
+}
+
+/// A condition with sorted operands (see [`Symmetry::normal`]).
+#[derive(Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Normal {
+    True,
+    False,
+    Atom(u32),
+    Not(Box<Normal>),
+    And(Vec<Normal>),
+    Or(Vec<Normal>),
+    Count(Vec<u32>, u8, i64),
+}
+
+/// The lower-case identifiers of a source text (object names are those), with their byte
+/// offsets; comments and strings skipped. `pddl` selects `;` comments, otherwise `//` and
+/// `/* */`. An identifier right after `.` (an internal action) or `?` (a PDDL variable) is
+/// not a name.
+fn words(text: &str, pddl: bool) -> Vec<(usize, &str)> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if pddl && c == b';' || !pddl && c == b'/' && b.get(i + 1) == Some(&b'/') {
+            while i < b.len() && b[i] != b'\n' {
+                i += 1;
+            }
+        } else if !pddl && c == b'/' && b.get(i + 1) == Some(&b'*') {
+            i += 2;
+            while i < b.len() && !(b[i] == b'*' && b.get(i + 1) == Some(&b'/')) {
+                i += 1;
+            }
+            i += 2;
+        } else if c == b'"' || !pddl && c == b'\'' {
+            i += 1;
+            while i < b.len() && b[i] != c {
+                if b[i] == b'\\' {
+                    i += 1;
+                }
+                i += 1;
+            }
+            i += 1;
+        } else if c.is_ascii_alphabetic() || c == b'_' {
+            let start = i;
+            while i < b.len()
+                && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || pddl && b[i] == b'-')
+            {
+                i += 1;
+            }
+            let prev = start.checked_sub(1).map(|p| b[p]);
+            let variable = !pddl && (c.is_ascii_uppercase() || c == b'_');
+            if !variable && prev != Some(b'.') && prev != Some(b'?') {
+                out.push((start, &text[start..i]));
+            }
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn words_skip_comments_strings_variables_and_internal_actions() {
+        let asl = "+!g(C) : cupAt(C, cup1) // cup2\n <- .print(\"cup3\"); /* cup4 */ go(cup5).";
+        let w: Vec<&str> = words(asl, false).into_iter().map(|(_, w)| w).collect();
+        assert_eq!(w, ["g", "cupAt", "cup1", "go", "cup5"]);
+        let pddl = "(:action a :parameters (?cup1 - cup) ; cup2\n :effect (used cup3))";
+        let w: Vec<&str> = words(pddl, true).into_iter().map(|(_, w)| w).collect();
+        assert!(w.contains(&"cup3") && !w.contains(&"cup1") && !w.contains(&"cup2"));
+    }
+}
