@@ -82,9 +82,8 @@ fn upward_imports(src: &Path) -> Vec<String> {
         let Some(stage) = stage_of(src, f) else {
             continue;
         };
-        let here = floor(&stage).unwrap_or_else(|| {
-            panic!("{}: stage `{stage}` is not in FLOORS", f.display())
-        });
+        let here = floor(&stage)
+            .unwrap_or_else(|| panic!("{}: stage `{stage}` is not in FLOORS", f.display()));
         let text = std::fs::read_to_string(f).expect("a source file is readable");
         for (line, used) in uses(&text) {
             if used == stage {
@@ -108,7 +107,11 @@ fn upward_imports(src: &Path) -> Vec<String> {
 fn no_stage_uses_a_stage_above_it_or_beside_it() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let bad = upward_imports(&src);
-    assert!(bad.is_empty(), "imports against the data flow:\n{}", bad.join("\n"));
+    assert!(
+        bad.is_empty(),
+        "imports against the data flow:\n{}",
+        bad.join("\n")
+    );
 }
 
 #[test]
@@ -118,7 +121,11 @@ fn every_stage_folder_is_on_a_floor() {
     rust_files(&src, &mut files);
     for f in &files {
         if let Some(stage) = stage_of(&src, f) {
-            assert!(floor(&stage).is_some(), "{}: `{stage}` has no floor", f.display());
+            assert!(
+                floor(&stage).is_some(),
+                "{}: `{stage}` has no floor",
+                f.display()
+            );
         }
     }
 }
@@ -138,5 +145,8 @@ fn the_check_sees_an_upward_import() {
     let bad = upward_imports(&dir);
     std::fs::remove_dir_all(&dir).ok();
     assert_eq!(bad.len(), 1, "{bad:?}");
-    assert!(bad[0].ends_with(":3: `model` uses `check`, which is not below it"), "{bad:?}");
+    assert!(
+        bad[0].ends_with(":3: `model` uses `check`, which is not below it"),
+        "{bad:?}"
+    );
 }

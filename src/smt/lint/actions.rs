@@ -3,9 +3,9 @@
 //! `action-breaks-invariant`.
 
 use super::{state_cx, Base, Group, Linter};
+use crate::findings::{Counterexample, Status};
 use crate::model::atoms::AtomId;
 use crate::model::cond::Cond;
-use crate::findings::{Counterexample, Status};
 use crate::smt::encode::{and, or, State, Unsupported};
 use crate::smt::exec::{self, PreResult};
 use crate::smt::solve::{truth, Outcome};

@@ -41,6 +41,7 @@
 use super::encode::{and, Encoder, Val};
 use super::solve::{int, truth, Outcome, Session, DEFAULT_RLIMIT};
 use super::summary::Summaries;
+use crate::findings::{Counterexample, Finding, Status};
 use crate::model::atoms::AtomId;
 use crate::model::from_ast::Converter;
 use crate::model::plans::{BodyStep, Plan, Step};
@@ -48,7 +49,6 @@ use crate::model::project::Project;
 use crate::model::subst::unifier;
 use crate::model::term::Term;
 use crate::model::universe::{ObjectId, TypeId};
-use crate::findings::{Counterexample, Finding, Status};
 use crate::syntax::ast::{ExprKind, TriggerKind, TriggerOp};
 use crate::syntax::{Severity, Span};
 use std::collections::BTreeSet;

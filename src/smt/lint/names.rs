@@ -3,8 +3,8 @@
 //! first mention instead of a state.
 
 use super::{walk, Linter};
-use crate::model::plans::BodyStep;
 use crate::findings::Status;
+use crate::model::plans::BodyStep;
 use crate::syntax::ast::{ExprKind, TriggerKind, TriggerOp};
 use crate::syntax::Span;
 use std::collections::{BTreeMap, BTreeSet};
