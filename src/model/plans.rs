@@ -234,6 +234,10 @@ fn convert_error(e: ConvertError) -> Diagnostic {
     Diagnostic::error("input", e.message).with_label(e.span, "here")
 }
 
+/// Jason's failure annotations the model does not give (their values name Jason's own
+/// variables, file URLs and exception texts).
+const FAILURE_ANNOTS_NOT_GIVEN: &[&str] = &["error_msg", "code", "code_src"];
+
 fn unsupported(span: Span, what: &str) -> Diagnostic {
     Diagnostic::error("input", format!("{what} are not modelled by bdi-check yet"))
         .with_label(span, "not supported by the model checker")
@@ -252,6 +256,25 @@ fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
         ExprKind::Literal(l) => c.literal(l).map_err(convert_error)?,
         _ => return Err(unsupported(p.trigger.span, "variables as triggers")),
     };
+    // Jason annotates a failure event with `error`, `code_line`, `error_msg`, `code` and
+    // `code_src` (`JasonException.createBasicErrorAnnots`); the model gives the first two.
+    // A trigger that asks for another would never be relevant here while it is in Jason:
+    // refused rather than silently dead.
+    if p.trigger.op == TriggerOp::Del && p.trigger.kind != TriggerKind::Belief {
+        let asked = literal.annots().iter().find_map(|a| {
+            a.functor()
+                .filter(|f| FAILURE_ANNOTS_NOT_GIVEN.contains(f))
+                .map(str::to_string)
+        });
+        if let Some(name) = asked {
+            return Err(Diagnostic::error(
+                "input",
+                format!("the failure annotation `{name}` is not given by bdi-check yet"),
+            )
+            .with_label(p.trigger.span, "asks for it")
+            .with_help("failure events carry `error(Id)` and `code_line(L)` here; match on those, or leave the annotation out"));
+        }
+    }
     let context = match &p.context {
         Some(e) => formula(&mut c, e)?,
         None => Formula::True,
