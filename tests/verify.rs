@@ -552,3 +552,18 @@ fn a_plan_for_a_number_a_countdown_reaches_is_not_dead() {
     assert_eq!(code, 0, "{r:#}");
     assert!(failing(&r, "dead-plan").is_empty());
 }
+
+#[test]
+fn a_plan_for_a_list_argument_that_a_run_reaches_is_not_dead() {
+    // Lint's events range over objects; `+!state([])` is reached by a subgoal, so lint
+    // must leave it undecided (settled by the runs), never call it dead.
+    let (code, r, _) = verify_json("tests/verify/list_trigger", "list_trigger");
+    assert_eq!(code, 0, "{r:#}");
+    assert!(failing(&r, "dead-plan").is_empty(), "{r:#}");
+    let lint = std::process::Command::new(env!("CARGO_BIN_EXE_bdi-check"))
+        .args(["lint", "tests/verify/list_trigger", "--format", "json"])
+        .output()
+        .expect("runs");
+    let r: serde_json::Value = serde_json::from_slice(&lint.stdout).expect("JSON");
+    assert!(failing(&r, "dead-plan").is_empty(), "{r:#}");
+}

@@ -53,7 +53,14 @@ impl Encoder<'_> {
                     Some(x) => eqs.push(val_eq(x, e)),
                 },
                 _ => match self.term_val(t, env)? {
-                    Some(x) => eqs.push(val_eq(&x, e)),
+                    Some(x @ Val::Obj(_)) => eqs.push(val_eq(&x, e)),
+                    // The event stands for goals over objects; a subgoal may pass any term
+                    // (`!state([])`), so a trigger that asks for another says nothing here.
+                    Some(_) => {
+                        return Err(Unsupported(format!(
+                            "the trigger argument `{t}` is not an object: lint models events over objects"
+                        )))
+                    }
                     None => {
                         return Err(Unsupported(format!(
                             "the trigger argument `{t}` is not modelled by lint"
