@@ -1385,3 +1385,33 @@ fn lint_agrees_with_brute_force_on_the_seeded_defects() {
         differential(&format!("tests/lint/{case}"));
     }
 }
+
+#[test]
+fn more_atoms_than_lint_encodes_leave_the_solver_checks_undecided() {
+    let p = project("tests/lint/too_many_atoms");
+    assert!(p.atoms.len() > bdi_check::smt::MAX_LINT_ATOMS);
+    let fs = run_lint(&p);
+    let wrong: Vec<_> = failing(&fs)
+        .into_iter()
+        .filter(|f| f.finding.severity != Severity::Note)
+        .collect();
+    assert!(wrong.is_empty(), "{wrong:#?}");
+    let undecided: BTreeSet<&str> = fs
+        .iter()
+        .filter(|f| f.finding.status == Status::Unknown)
+        .map(|f| f.finding.check.as_str())
+        .collect();
+    for check in [
+        "dead-plan",
+        "coverage-gap",
+        "precondition",
+        "effect-conflict",
+    ] {
+        assert!(
+            undecided.contains(check),
+            "{check} not undecided: {undecided:?}"
+        );
+    }
+    // The name checks need no solver and still run.
+    assert!(fs.iter().any(|f| f.finding.check == "unused-action"));
+}

@@ -40,4 +40,4 @@ pub mod solve;
 pub mod summary;
 pub mod text;
 
-pub use lint::{lint, LintFinding, LintOptions, CHECKS};
+pub use lint::{lint, LintFinding, LintOptions, CHECKS, MAX_LINT_ATOMS};

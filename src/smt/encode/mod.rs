@@ -228,6 +228,17 @@ impl<'p> Encoder<'p> {
         let base = (0..project.atoms.len() as u32)
             .map(|a| Bool::new_const(project.atoms.display(AtomId(a), &project.universe)))
             .collect();
+        Encoder::with_base(project, base)
+    }
+
+    /// An encoder with no atom constants, for checks that encode no state (a project
+    /// with more atoms than [`crate::smt::MAX_LINT_ATOMS`]): encoding a state with it
+    /// is a bug.
+    pub fn without_atoms(project: &'p Project) -> Encoder<'p> {
+        Encoder::with_base(project, Vec::new())
+    }
+
+    fn with_base(project: &'p Project, base: State) -> Encoder<'p> {
         Encoder {
             project,
             base,

@@ -115,6 +115,10 @@ pub struct LintFinding {
     pub secondary: Vec<(Span, String)>,
 }
 
+/// Lint encodes every ground atom as a z3 constant (about 4 KB each with its uses); past
+/// this many, the solver checks are left undecided rather than run out of memory.
+pub const MAX_LINT_ATOMS: usize = 100_000;
+
 /// Runs every lint check on a loaded project, in a fresh z3 context of its own (so the
 /// answers do not depend on what ran before). Findings come sorted by place.
 pub fn lint(project: &Project, opts: &LintOptions) -> Vec<LintFinding> {
@@ -242,7 +246,11 @@ impl<'p> Linter<'p> {
         Linter {
             p,
             opts,
-            enc: Encoder::new(p),
+            enc: if p.atoms.len() > MAX_LINT_ATOMS {
+                Encoder::without_atoms(p)
+            } else {
+                Encoder::new(p)
+            },
             sum: Summaries::compute(p),
             out: Vec::new(),
         }
@@ -422,17 +430,66 @@ impl<'p> Linter<'p> {
 
     fn run(mut self) -> Vec<LintFinding> {
         let groups = self.groups();
-        let base = self.base();
-        for g in &groups {
-            self.group_checks(g, &base);
+        if self.p.atoms.len() > MAX_LINT_ATOMS {
+            self.too_many_atoms(&groups);
+        } else {
+            let base = self.base();
+            for g in &groups {
+                self.group_checks(g, &base);
+            }
+            self.effect_conflicts(&base);
+            self.invariant_breaks(&base);
         }
-        self.effect_conflicts(&base);
-        self.invariant_breaks(&base);
         self.undefined_actions();
         self.undefined_tests();
         self.unused_actions();
         self.goals_without_plans();
         self.out
+    }
+
+    /// The solver checks, undecided: the project has too many ground atoms to encode.
+    /// `verify` settles dead plans, shadowed plans and coverage by its runs.
+    fn too_many_atoms(&mut self, groups: &[Group]) {
+        let why = format!(
+            ": the project has {} ground atoms, more than lint encodes ({MAX_LINT_ATOMS})",
+            self.p.atoms.len()
+        );
+        for g in groups {
+            for &i in &g.plans {
+                let (name, span) = (self.plan(i).name(), self.plan(i).span);
+                let q = format!("whether {name} can be applicable");
+                self.undecided("dead-plan", &q, &why, span, "this plan");
+            }
+            if g.op == TriggerOp::Add && g.kind == TriggerKind::Achieve {
+                let q = format!(
+                    "whether every {} has an applicable plan",
+                    g.event_text(None)
+                );
+                let span = self.plan(g.plans[0]).span;
+                self.undecided("coverage-gap", &q, &why, span, "plans for this goal");
+            }
+        }
+        if let Some(first) = self.p.plans.plans.first() {
+            let span = first.span;
+            for (check, q) in [
+                (
+                    "shadowed-plan",
+                    "whether a plan is shadowed by an earlier one",
+                ),
+                ("plan-overlap", "whether two plans overlap"),
+                (
+                    "precondition",
+                    "whether every action's precondition holds where it is called",
+                ),
+                ("effect-conflict", "whether an action's effects conflict"),
+                (
+                    "action-breaks-invariant",
+                    "whether an action breaks an invariant",
+                ),
+            ] {
+                self.undecided(check, q, &why, span, "the plan library");
+            }
+        }
     }
 
     fn groups(&self) -> Vec<Group> {
