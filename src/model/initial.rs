@@ -48,7 +48,7 @@ pub fn enumerate(
         limit,
         out: &mut out,
     };
-    if search.go(0, &mut values, &mut known) {
+    if search.go(&mut values, &mut known) {
         out.sort();
         Ok(out)
     } else {
@@ -64,36 +64,49 @@ struct Search<'a> {
 }
 
 impl Search<'_> {
-    /// Returns false when the limit was hit.
-    fn go(&mut self, i: usize, values: &mut AtomSet, known: &mut AtomSet) -> bool {
-        if self
-            .constraints
-            .iter()
-            .any(|c| c.eval3(values, known) == Some(false))
-        {
-            return true;
-        }
-        if i == self.free.len() {
-            // Everything is known: the three-valued verdicts are the real ones.
-            if self.constraints.iter().all(|c| c.eval(values)) {
-                if self.out.len() >= self.limit {
-                    return false;
+    /// Returns false when the limit was hit. Depth-first with an explicit stack (one entry
+    /// per decided atom, holding the value tried), so that tens of thousands of varying
+    /// atoms do not overflow the thread's stack.
+    fn go(&mut self, values: &mut AtomSet, known: &mut AtomSet) -> bool {
+        let mut tried: Vec<bool> = Vec::new();
+        loop {
+            let i = tried.len();
+            let cut = self
+                .constraints
+                .iter()
+                .any(|c| c.eval3(values, known) == Some(false));
+            if !cut && i < self.free.len() {
+                let a = self.free[i];
+                known.insert(a);
+                values.set(a, false);
+                tried.push(false);
+                continue;
+            }
+            if !cut {
+                // Everything is known: the three-valued verdicts are the real ones.
+                if self.constraints.iter().all(|c| c.eval(values)) {
+                    if self.out.len() >= self.limit {
+                        return false;
+                    }
+                    self.out.push(values.clone());
                 }
-                self.out.push(values.clone());
             }
-            return true;
-        }
-        let a = self.free[i];
-        known.insert(a);
-        for v in [false, true] {
-            values.set(a, v);
-            if !self.go(i + 1, values, known) {
-                return false;
+            // Backtrack to the deepest atom still to be tried true.
+            loop {
+                let Some(d) = tried.len().checked_sub(1) else {
+                    return true;
+                };
+                let a = self.free[d];
+                if !tried[d] {
+                    tried[d] = true;
+                    values.set(a, true);
+                    break;
+                }
+                tried.pop();
+                values.remove(a);
+                known.remove(a);
             }
         }
-        values.remove(a);
-        known.remove(a);
-        true
     }
 }
 

@@ -185,15 +185,26 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         .cloned()
         .chain(invariants.iter().map(|(_, c)| c.clone()))
         .collect();
-    let limit = usize::try_from(manifest.bounds.max_states).unwrap_or(usize::MAX);
+    // The initial states are held at once: bounded by `max_states` and by memory.
+    let state_bytes = (atoms.len() / 8 + 32) as u64;
+    let by_memory = usize::try_from(INITIAL_STATES_BYTES / state_bytes).unwrap_or(usize::MAX);
+    let limit = usize::try_from(manifest.bounds.max_states)
+        .unwrap_or(usize::MAX)
+        .min(by_memory);
     let states = match initial::enumerate(atoms.len(), &facts, &vary, &all, limit) {
         Ok(s) => s,
         Err(TooMany { found }) => {
-            let d = Diagnostic::error(
-                "input",
-                format!("more than {found} initial states: raise `[bounds] max_states` or constrain `[initial]`"),
-            )
-            .in_file(manifest.path.display().to_string());
+            let why = if found == by_memory {
+                format!(" (each takes {state_bytes} bytes: more would not fit in 1 GiB): vary fewer predicates or constrain them")
+            } else {
+                ": raise `[bounds] max_states` or constrain `[initial]`".to_string()
+            };
+            let mut d =
+                Diagnostic::error("input", format!("more than {found} initial states{why}"))
+                    .in_file(manifest.path.display().to_string());
+            if let Some(v) = manifest.initial.vary.first() {
+                d = d.with_label(v.span, "the atoms of these predicates vary");
+            }
             return fail(map, vec![d]);
         }
     };
@@ -248,6 +259,9 @@ fn load_domain(manifest: &Manifest, map: &mut SourceMap) -> Result<Domain, Vec<D
         .in_file(path.display().to_string())]),
     }
 }
+
+/// Most memory the initial states may take together (they are all held at once).
+pub const INITIAL_STATES_BYTES: u64 = 1 << 30;
 
 /// The atom a ground literal names.
 fn ground_atom(l: &Literal, atoms: &AtomTable, universe: &Universe) -> Result<AtomId, Diagnostic> {

@@ -1,0 +1,3 @@
+(define (domain d) (:requirements :strips :typing) (:types thing)
+  (:predicates (rel ?a - thing ?b - thing ?c - thing))
+  (:action ping :parameters () :precondition (and) :effect (and)))
