@@ -322,3 +322,104 @@ fn a_jason_jar_include_is_looked_for_along_the_source_path() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+#[test]
+fn a_byte_order_mark_is_accepted_in_every_input() {
+    // Editors on Windows may save UTF-8 with a BOM; the manifest always accepted one.
+    let d = common::temp_dir("bom");
+    let bom = "\u{feff}";
+    let kitchen = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+    for f in ["kitchen.asl", "kitchen.pddl", "bdi-check.toml"] {
+        let text = std::fs::read_to_string(kitchen.join(f)).unwrap();
+        std::fs::write(d.join(f), format!("{bom}{text}")).unwrap();
+    }
+    for f in ["kitchen.asl", "kitchen.pddl", "bdi-check.toml"] {
+        let o = bdi_check(&["parse", d.join(f).to_str().unwrap()]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{f}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn replay_of_a_broken_report_names_the_place_once() {
+    let d = common::temp_dir("replay-broken");
+    let full = d.join("full.json");
+    let o = bdi_check(&[
+        "verify",
+        "specs/paper",
+        "--format",
+        "json",
+        "-o",
+        full.to_str().unwrap(),
+    ]);
+    assert!(o.status.code().is_some());
+    let text = std::fs::read_to_string(&full).unwrap();
+    let trunc = d.join("trunc.json");
+    std::fs::write(&trunc, &text[..text.len() / 2]).unwrap();
+    let o = bdi_check(&["replay", trunc.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    let first = err.lines().next().unwrap_or("");
+    assert_eq!(first.matches("error[").count(), 1, "{err}");
+    // `file:line:column: error[...]`, the place given once.
+    let place = first.split(": error[").next().unwrap();
+    assert!(place.ends_with(|c: char| c.is_ascii_digit()), "{first}");
+    assert_eq!(place.matches(':').count(), 2, "{first}");
+    // A report of a project that no longer loads: the project's own diagnostics, as is.
+    let moved = d.join("moved.json");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut v = v;
+    v["project"] = serde_json::json!(d.join("gone").to_str().unwrap());
+    std::fs::write(&moved, v.to_string()).unwrap();
+    let o = bdi_check(&["replay", moved.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(
+        err.lines().next().unwrap_or("").matches("error[").count(),
+        1,
+        "{err}"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn what_a_run_leaves_out_is_said() {
+    // A scenario beyond `[requests] max` runs, with a warning that verify does not cover it.
+    let d = common::temp_dir("beyond-max");
+    let sc = d.join("two.toml");
+    std::fs::write(
+        &sc,
+        "initial = [\"robotAt(table)\", \"holding(none)\", \"cupAt(cup1,table)\"]\nrequests = [\"storeCup(cup1)\", \"storeCup(cup1)\"]\n",
+    )
+    .unwrap();
+    let o = bdi_check(&["explain", "specs/paper", "--scenario", sc.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.contains("more than `[requests] max` (1)"), "{err}");
+    let o = bdi_check(&[
+        "explain",
+        "specs/paper",
+        "--scenario",
+        sc.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(
+        v["warnings"][0]
+            .as_str()
+            .unwrap()
+            .contains("`verify` does not cover"),
+        "{v:#}"
+    );
+    // An empty state graph says why.
+    let o = bdi_check(&["graph", "specs/kitchen", "--states", "--max-states", "0"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("the state graph is empty"));
+    std::fs::remove_dir_all(&d).ok();
+}

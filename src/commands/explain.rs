@@ -74,7 +74,16 @@ pub fn command(
         Format::Json => render_json(&run),
         Format::Human => render_human(&run, style.color),
     };
-    Output::report(text, 0)
+    Output {
+        report: Some(text),
+        stderr: run
+            .report
+            .warnings
+            .iter()
+            .map(|w| format!("warning: {w}\n"))
+            .collect(),
+        code: 0,
+    }
 }
 
 /// Runs a scenario of a project and explains it for every user (or only `only`).
@@ -115,6 +124,13 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
     }
     let (trace, given) = execute(&p, &sem, &beliefs, &requests, &users);
     let mut report = Report::new(name.clone(), Vec::new());
+    let max = p.manifest.requests.max as usize;
+    if requests.len() > max {
+        report.warnings.push(format!(
+            "the scenario makes {} requests, more than `[requests] max` ({max}): `verify` does not cover this run",
+            requests.len()
+        ));
+    }
     report.explanations = given
         .iter()
         .map(|g| serde_json::to_value(g).unwrap_or_default())

@@ -25,15 +25,19 @@ pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_colo
         return Output::report(plans_dot(&p), 0);
     }
     match state_graph(&p, limits(&p, max_states, None, None)) {
-        Ok(sg) => Output {
-            stderr: sg
-                .note
-                .as_ref()
-                .map(|n| format!("note: {n}\n"))
-                .unwrap_or_default(),
-            report: Some(states_dot(&sg)),
-            code: 0,
-        },
+        Ok(sg) => {
+            // An empty drawing says why (`--max-states 0`), as a cut one does.
+            let note = sg.note.clone().or_else(|| {
+                sg.nodes.is_empty().then(|| {
+                    "the state graph is empty: the state bound (`--max-states`, `[bounds] max_states`) stopped the search before its first state".to_string()
+                })
+            });
+            Output {
+                stderr: note.map(|n| format!("note: {n}\n")).unwrap_or_default(),
+                report: Some(states_dot(&sg)),
+                code: 0,
+            }
+        }
         Err(errs) => Output::refused(diagnostics_text(&errs, &p.map, false)),
     }
 }

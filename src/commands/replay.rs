@@ -10,7 +10,7 @@ use crate::model::formula;
 use crate::model::project::{load_project, Project};
 use crate::report::replay::{render, Replayed};
 use crate::semantics::{Note, Semantics, State};
-use crate::syntax::Diagnostic;
+use crate::syntax::{Diagnostic, SourceMap, Span};
 use serde::Deserialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -19,11 +19,7 @@ use std::path::Path;
 /// violation, 0 once none does, 2 when the report or project cannot be read.
 pub fn command(report: &Path, finding: Option<&str>) -> Output {
     match replay(report, finding) {
-        Err(errs) => Output::refused(
-            errs.iter()
-                .map(|e| format!("{}\n", e.render(&crate::syntax::SourceMap::new(), false)))
-                .collect(),
-        ),
+        Err((map, errs)) => Output::refused(super::diagnostics_text(&errs, &map, false)),
         Ok(results) => {
             let reached = results.iter().any(|r| r.reached);
             Output::report(render(&results), i32::from(reached))
@@ -68,24 +64,37 @@ struct StepIn {
 }
 
 /// Replays the failing findings of a report (or the one named). Errors are bad input.
-pub fn replay(report: &Path, finding: Option<&str>) -> Result<Vec<Replayed>, Vec<Diagnostic>> {
+/// Errors are bad input, with the files read (the report, or the project) for excerpts.
+pub fn replay(
+    report: &Path,
+    finding: Option<&str>,
+) -> Result<Vec<Replayed>, (SourceMap, Vec<Diagnostic>)> {
+    let mut map = SourceMap::new();
     let bad =
         |msg: String| vec![Diagnostic::error("input", msg).in_file(report.display().to_string())];
-    let text = std::fs::read_to_string(report)
-        .map_err(|e| bad(format!("cannot read `{}`: {e}", report.display())))?;
+    let text = std::fs::read_to_string(report).map_err(|e| {
+        (
+            SourceMap::new(),
+            bad(format!("cannot read `{}`: {e}", report.display())),
+        )
+    })?;
+    let id = map.add(report, report.display().to_string(), text.clone());
     let r: ReportIn = serde_json::from_str(&text).map_err(|e| {
-        vec![
-            Diagnostic::error("input", format!("not a bdi-check JSON report: {e}"))
-                .in_file(format!("{}:{}:{}", report.display(), e.line(), e.column())),
-        ]
+        // serde_json counts lines and columns from 1; a span of one character there.
+        let start: usize = text
+            .split_inclusive('\n')
+            .take(e.line().saturating_sub(1))
+            .map(str::len)
+            .sum::<usize>()
+            + e.column().saturating_sub(1);
+        let start = start.min(text.len());
+        let end = (start + 1).min(text.len());
+        let d = Diagnostic::error("input", format!("not a bdi-check JSON report: {e}"))
+            .with_label(Span::new(id, start, end), "here");
+        (map.clone(), vec![d])
     })?;
-    let project = load_project(Path::new(&r.project)).map_err(|e| {
-        e.diagnostics
-            .iter()
-            .map(|d| Diagnostic::error("input", d.render(&e.map, false)))
-            .collect::<Vec<_>>()
-    })?;
-    let sem = Semantics::new(&project)?;
+    let project = load_project(Path::new(&r.project)).map_err(|e| (e.map, e.diagnostics))?;
+    let sem = Semantics::new(&project).map_err(|d| (project.map.clone(), d))?;
     let selected: Vec<&FindingIn> = r
         .findings
         .iter()
@@ -96,7 +105,7 @@ pub fn replay(report: &Path, finding: Option<&str>) -> Result<Vec<Replayed>, Vec
         .collect();
     if let Some(id) = finding {
         if selected.is_empty() {
-            return Err(bad(format!("the report has no finding `{id}`")));
+            return Err((map, bad(format!("the report has no finding `{id}`"))));
         }
     }
     Ok(selected

@@ -223,7 +223,8 @@ pub fn lex(file: FileId, text: &str) -> (Vec<Token>, Vec<Diagnostic>) {
     let b = text.as_bytes();
     let mut toks = Vec::new();
     let mut errs = Vec::new();
-    let mut i = 0;
+    // A byte-order mark opens some files saved on Windows: it is not part of the text.
+    let mut i = if text.starts_with('\u{feff}') { 3 } else { 0 };
     let span = |s: usize, e: usize| Span::new(file, s, e);
     while i < b.len() {
         let c = b[i];

@@ -39,6 +39,8 @@ pub(super) struct Token {
 pub(super) fn lex(file: FileId, text: &str, errors: &mut Vec<Diagnostic>) -> Vec<Token> {
     let mut toks = Vec::new();
     let mut chars = text.char_indices().peekable();
+    // A byte-order mark opens some files saved on Windows: it is not part of the text.
+    chars.next_if(|&(_, c)| c == '\u{feff}');
     while let Some((i, c)) = chars.next() {
         let one = Span::new(file, i, i + c.len_utf8());
         match c {
