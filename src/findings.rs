@@ -194,6 +194,19 @@ pub struct Report {
     /// reduction rests on an assumption the agent does not meet).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// The part of the initial states this run covered (`verify --shard K/N`), so that
+    /// `merge` can check it has each part of one run exactly once.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shard: Option<Shard>,
+}
+
+/// One part of a sharded run: the `index`-th (from 1) of `count`.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+pub struct Shard {
+    /// K of `--shard K/N`.
+    pub index: u32,
+    /// N of `--shard K/N`.
+    pub count: u32,
 }
 
 impl Report {
@@ -207,6 +220,7 @@ impl Report {
             explanations: Vec::new(),
             stats: None,
             warnings: Vec::new(),
+            shard: None,
         }
     }
 }

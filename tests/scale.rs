@@ -312,8 +312,9 @@ fn sharded_runs_merge_to_the_unsharded_verdict() {
 
 #[test]
 fn merge_keeps_every_reports_warnings_once() {
-    // The exact report has no warning; the reduced one has the symmetry caveat. Whichever
-    // comes first, the merged report keeps the caveat, once.
+    // hash_order has one initial state: shard 1/2 holds it, shard 2/2 none. The reduced run
+    // has the symmetry caveat, the exact one none; the merged report keeps the caveat of
+    // whichever shard has it, once, and drops the empty shard's own warning.
     let write = |name: &str, extra: &[&str]| {
         let (r, _) = verify_json(Path::new("tests/verify/hash_order"), extra);
         let f =
@@ -321,17 +322,66 @@ fn merge_keeps_every_reports_warnings_once() {
         std::fs::write(&f, serde_json::to_string(&r).expect("JSON")).expect("writable");
         (f, r)
     };
-    let (exact, e) = write("exact", &["--no-symmetry"]);
-    let (reduced, r) = write("reduced", &[]);
+    let (exact, e) = write("exact", &["--no-symmetry", "--shard", "1/2"]);
+    let (reduced, r) = write("reduced", &["--shard", "1/2"]);
+    let (empty, m) = write("empty", &["--shard", "2/2"]);
     assert!(e.get("warnings").is_none());
     let caveat = r["warnings"].clone();
     assert_eq!(caveat.as_array().map(Vec::len), Some(1));
-    for files in [[&exact, &reduced, &reduced], [&reduced, &exact, &reduced]] {
+    assert!(m["warnings"][0]
+        .as_str()
+        .unwrap()
+        .contains("holds none of the initial states"));
+    for (files, want) in [
+        ([&reduced, &empty], caveat.clone()),
+        ([&empty, &reduced], caveat.clone()),
+        ([&exact, &empty], Value::Null),
+    ] {
         let mut args = vec!["merge"];
         args.extend(files.iter().map(|f| f.to_str().expect("UTF-8")));
         let merged: Value = serde_json::from_slice(&bdi_check(&args).stdout).expect("JSON");
-        assert_eq!(merged["warnings"], caveat, "{files:?}");
+        assert_eq!(
+            merged.get("warnings").cloned().unwrap_or(Value::Null),
+            want,
+            "{files:?}"
+        );
+        assert!(merged.get("shard").is_none());
     }
+}
+
+#[test]
+fn merge_takes_each_shard_of_one_run_once() {
+    let dir = std::env::temp_dir();
+    let shard = |k: u32, n: u32| {
+        let (r, _) = verify_json(Path::new("specs/paper"), &["--shard", &format!("{k}/{n}")]);
+        assert_eq!(r["shard"]["index"], k);
+        assert_eq!(r["shard"]["count"], n);
+        let f = dir.join(format!(
+            "bdi-check-once-{k}-{n}-{}.json",
+            std::process::id()
+        ));
+        std::fs::write(&f, r.to_string()).expect("writable");
+        f.to_str().expect("UTF-8").to_string()
+    };
+    let (a, b, c) = (shard(1, 2), shard(2, 2), shard(1, 3));
+    for (files, why) in [
+        (vec![&a, &a], "given twice"),
+        (vec![&a], "merge every shard"),
+        (vec![&a, &c], "merge the shards of one run"),
+        (vec![&a, &b, &b], "given twice"),
+    ] {
+        let mut args = vec!["merge"];
+        args.extend(files.iter().map(|f| f.as_str()));
+        let out = bdi_check(&args);
+        assert_eq!(out.status.code(), Some(2), "{files:?}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains(why),
+            "{files:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let out = bdi_check(&["merge", &a, &b]);
+    assert!(matches!(out.status.code(), Some(0 | 1)));
 }
 
 #[test]

@@ -106,6 +106,7 @@ pub fn merge(reports: &[serde_json::Value]) -> Result<serde_json::Value, String>
             complete = false;
         }
     }
+    check_shards(reports)?;
     let status = |f: &Value| {
         f.get("status")
             .and_then(Value::as_str)
@@ -185,7 +186,11 @@ pub fn merge(reports: &[serde_json::Value]) -> Result<serde_json::Value, String>
         .filter_map(|r| r.get("warnings")?.as_array())
         .flatten()
     {
-        if !warnings.contains(w) {
+        // A shard that held no initial state says so; the merged run covers them all.
+        let empty_shard = w
+            .as_str()
+            .is_some_and(|t| t.contains(super::verify::EMPTY_SHARD));
+        if !empty_shard && !warnings.contains(w) {
             warnings.push(w.clone());
         }
     }
@@ -194,6 +199,7 @@ pub fn merge(reports: &[serde_json::Value]) -> Result<serde_json::Value, String>
     out["findings"] = Value::Array(findings);
     if let Some(o) = out.as_object_mut() {
         o.remove("warnings");
+        o.remove("shard");
         if !warnings.is_empty() {
             o.insert("warnings".into(), Value::Array(warnings));
         }
@@ -208,4 +214,51 @@ pub fn merge(reports: &[serde_json::Value]) -> Result<serde_json::Value, String>
         "complete": complete,
     });
     Ok(out)
+}
+
+/// The reports must be the parts 1..N of one sharded run, each once (a report without a
+/// `shard` is the whole run, 1/1).
+fn check_shards(reports: &[serde_json::Value]) -> Result<(), String> {
+    let part = |r: &serde_json::Value| -> (u64, u64) {
+        let s = &r["shard"];
+        match (s["index"].as_u64(), s["count"].as_u64()) {
+            (Some(k), Some(n)) => (k, n),
+            _ => (1, 1),
+        }
+    };
+    let (_, n) = part(&reports[0]);
+    if n == 0 || n > reports.len() as u64 {
+        return Err(format!(
+            "report 1 is one of {n} shards, but {} reports are given: merge every shard of the run, each once",
+            reports.len()
+        ));
+    }
+    let mut seen = vec![false; n as usize];
+    for (i, r) in reports.iter().enumerate() {
+        let (k, m) = part(r);
+        if m != n {
+            return Err(format!(
+                "report {} is shard {k}/{m}, report 1 is of {n} shards: merge the shards of one run",
+                i + 1
+            ));
+        }
+        let slot = seen
+            .get_mut((k as usize).wrapping_sub(1))
+            .ok_or_else(|| format!("report {} names shard {k}/{m}, which does not exist", i + 1))?;
+        if std::mem::replace(slot, true) {
+            return Err(format!("shard {k}/{n} is given twice (report {})", i + 1));
+        }
+    }
+    let missing: Vec<String> = (1..=n)
+        .filter(|k| !seen[*k as usize - 1])
+        .map(|k| format!("{k}/{n}"))
+        .collect();
+    if !missing.is_empty() {
+        return Err(format!(
+            "shard{} {} missing: merge every shard of the run",
+            if missing.len() == 1 { " is" } else { "s are" },
+            missing.join(", ")
+        ));
+    }
+    Ok(())
 }

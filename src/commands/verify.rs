@@ -4,12 +4,15 @@
 use super::{Output, Style};
 use crate::check::explore::Limits;
 use crate::check::{verify_with, VerifyOptions};
-use crate::findings::{Finding, Report, Verdict};
+use crate::findings::{Finding, Report, Shard, Verdict};
 use crate::model::project::{load_project, Project};
 use crate::report::verify::{render_human, write_scenarios, VerifyRun};
 use crate::report::Format;
 use crate::syntax::{Diagnostic, SourceMap};
 use std::path::Path;
+
+/// What the warning of a shard that holds no initial state says.
+pub const EMPTY_SHARD: &str = "holds none of the initial states";
 
 /// The options of `verify` beyond the search's own ([`VerifyOptions`]).
 #[derive(Clone, Debug, Default)]
@@ -111,6 +114,14 @@ pub fn run_with(
             let mut report = Report::new(name, v.findings);
             if report.verdict == Verdict::Pass && !v.stats.complete {
                 report.verdict = Verdict::Incomplete;
+            }
+            if let Some((index, count)) = opts.shard {
+                report.shard = Some(Shard { index, count });
+                if v.stats.initial_states == 0 {
+                    report.warnings.push(format!(
+                        "shard {index}/{count} {EMPTY_SHARD}: it checked nothing (merge it with the other shards)"
+                    ));
+                }
             }
             report.stats = Some(v.stats);
             report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
