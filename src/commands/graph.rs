@@ -90,6 +90,7 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
         (keep, Some(why))
     };
     let mut nodes: Vec<(u32, String)> = Vec::new();
+    let mut drawn_states: BTreeSet<u32> = BTreeSet::new();
     let mut edges: Vec<(u32, u32, String)> = Vec::new();
     for &i in &drawn {
         let Some(s) = state(i) else { continue };
@@ -107,6 +108,7 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
             ));
         }
         nodes.push((i, label));
+        drawn_states.insert(i);
     }
     for &i in &drawn {
         let (Some(targets), Some(from)) = (graph.successors(i), state(i)) else {
@@ -114,7 +116,7 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
         };
         let succ = sem.successors(&from);
         for &j in targets {
-            if !nodes.iter().any(|(n, _)| *n == j) {
+            if !drawn_states.contains(&j) {
                 continue;
             }
             let want = graph.fingerprint(j);
