@@ -24,7 +24,11 @@ pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_colo
     if plans {
         return Output::report(plans_dot(&p), 0);
     }
-    match state_graph(&p, limits(&p, max_states, None, None)) {
+    let bounds = super::verify::Bounds {
+        max_states,
+        ..Default::default()
+    };
+    match state_graph(&p, limits(&p, &bounds)) {
         Ok(sg) => {
             // An empty drawing says why (`--max-states 0`), as a cut one does.
             let note = sg.note.clone().or_else(|| {

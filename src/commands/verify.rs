@@ -36,14 +36,7 @@ pub fn command(
     style: &Style,
     progress: impl FnMut(usize, u32, f64),
 ) -> Output {
-    let run = run_with(
-        project,
-        bounds.max_states,
-        bounds.max_depth,
-        bounds.timeout,
-        opts,
-        progress,
-    );
+    let run = run(project, bounds, opts, progress);
     if let Some(dir) = scenarios {
         if let Err(e) = write_scenarios(&run.report, dir) {
             return Output::refused(format!(
@@ -63,37 +56,22 @@ pub fn command(
 }
 
 /// The limits of a project's search: the manifest's `[bounds]`, overridden by options.
-pub fn limits(
-    project: &Project,
-    max_states: Option<u64>,
-    max_depth: Option<u64>,
-    timeout: Option<f64>,
-) -> Limits {
+pub fn limits(project: &Project, bounds: &Bounds) -> Limits {
     Limits {
-        max_states: max_states.unwrap_or(project.manifest.bounds.max_states),
-        max_depth: max_depth.unwrap_or(project.manifest.bounds.max_depth),
-        timeout,
+        max_states: bounds
+            .max_states
+            .unwrap_or(project.manifest.bounds.max_states),
+        max_depth: bounds
+            .max_depth
+            .unwrap_or(project.manifest.bounds.max_depth),
+        timeout: bounds.timeout,
     }
 }
 
-/// Loads and verifies a project with the default [`VerifyOptions`].
+/// Loads, lints and verifies a project.
 pub fn run(
     path: &Path,
-    max_states: Option<u64>,
-    max_depth: Option<u64>,
-    timeout: Option<f64>,
-    progress: impl FnMut(usize, u32, f64),
-) -> VerifyRun {
-    let opts = VerifyOptions::default();
-    run_with(path, max_states, max_depth, timeout, &opts, progress)
-}
-
-/// Loads and verifies a project.
-pub fn run_with(
-    path: &Path,
-    max_states: Option<u64>,
-    max_depth: Option<u64>,
-    timeout: Option<f64>,
+    bounds: &Bounds,
     opts: &VerifyOptions,
     progress: impl FnMut(usize, u32, f64),
 ) -> VerifyRun {
@@ -102,7 +80,7 @@ pub fn run_with(
         Ok(p) => p,
         Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
-    let lim = limits(&project, max_states, max_depth, timeout);
+    let lim = limits(&project, bounds);
     // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
     let lint: Vec<Finding> = crate::smt::lint(&project, &crate::smt::LintOptions::default())
         .into_iter()
