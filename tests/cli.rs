@@ -423,3 +423,24 @@ fn what_a_run_leaves_out_is_said() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("the state graph is empty"));
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn an_input_larger_than_bdi_check_reads_is_refused_where_it_is_named() {
+    let d = common::temp_dir("huge-input");
+    // A sparse file: no disk is used, nothing of it is read.
+    let huge = d.join("huge.asl");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len(bdi_check::syntax::source::MAX_INPUT_BYTES + 1)
+        .unwrap();
+    let agent = d.join("agent.asl");
+    std::fs::write(&agent, "{ include(\"huge.asl\") }\n+!go <- ping.\n").unwrap();
+    for (file, at) in [(&huge, "huge.asl:1:1"), (&agent, "agent.asl:1:")] {
+        let o = bdi_check(&["parse", file.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("more than bdi-check reads (64 MiB)"), "{err}");
+        assert!(err.contains(at), "{err}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}

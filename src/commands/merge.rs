@@ -9,7 +9,7 @@ use std::path::PathBuf;
 pub fn command(reports: &[PathBuf], format: Format) -> Output {
     let mut values = Vec::new();
     for path in reports {
-        let read = std::fs::read_to_string(path)
+        let read = crate::syntax::source::read_input(path)
             .map_err(|e| e.to_string())
             .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()));
         match read {

@@ -55,7 +55,7 @@ pub fn parse_files_with(paths: &[PathBuf], source_path: &[PathBuf]) -> ParseRun 
                 Ok(agent) => files.push(FileReport::Agent(outline(path, &agent, &map))),
                 Err(errs) => diagnostics.extend(errs),
             },
-            Some("pddl") => match std::fs::read_to_string(path) {
+            Some("pddl") => match crate::syntax::source::read_input(path) {
                 Ok(text) => {
                     let id = map.add(path, name.clone(), text);
                     let text = map.file(id).text.clone();

@@ -72,7 +72,7 @@ pub fn replay(
     let mut map = SourceMap::new();
     let bad =
         |msg: String| vec![Diagnostic::error("input", msg).in_file(report.display().to_string())];
-    let text = std::fs::read_to_string(report).map_err(|e| {
+    let text = crate::syntax::source::read_input(report).map_err(|e| {
         (
             SourceMap::new(),
             bad(format!("cannot read `{}`: {e}", report.display())),

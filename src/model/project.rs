@@ -241,7 +241,7 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
 /// Reads and parses the manifest's PDDL domain.
 fn load_domain(manifest: &Manifest, map: &mut SourceMap) -> Result<Domain, Vec<Diagnostic>> {
     let path = &manifest.agent.actions.path;
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = crate::syntax::source::read_input(path).map_err(|e| {
         vec![
             Diagnostic::error("input", format!("cannot read `{}`: {e}", path.display()))
                 .with_label(manifest.agent.actions.written.span, "named here"),

@@ -92,7 +92,7 @@ pub fn load_agent_with(
     map: &mut SourceMap,
     source_path: &[PathBuf],
 ) -> Result<LoadedAgent, Vec<Diagnostic>> {
-    let text = match std::fs::read_to_string(path) {
+    let text = match crate::syntax::source::read_input(path) {
         Ok(t) => t,
         Err(e) => {
             return Err(vec![Diagnostic::error(
@@ -275,7 +275,7 @@ impl Loader<'_> {
             });
             return;
         }
-        let text = match std::fs::read_to_string(&path) {
+        let text = match crate::syntax::source::read_input(&path) {
             Ok(t) => t,
             Err(e) => {
                 self.errors.push(

@@ -206,3 +206,24 @@ mod tests {
         assert_eq!(map.location(Span::new(id, 6, 7)).to_string(), "a.asl:2:3");
     }
 }
+
+/// The largest input file bdi-check reads (agents, domains, manifests, scenarios, reports).
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+
+/// Reads a text input: a regular file of at most [`MAX_INPUT_BYTES`]. A device, a pipe or
+/// a folder (`/dev/zero`, say) is refused before any byte is read, so no input is read
+/// without bound.
+pub fn read_input(path: &Path) -> std::io::Result<String> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::other("it is not a regular file"));
+    }
+    if meta.len() > MAX_INPUT_BYTES {
+        return Err(std::io::Error::other(format!(
+            "it holds {} bytes, more than bdi-check reads ({} MiB)",
+            meta.len(),
+            MAX_INPUT_BYTES >> 20
+        )));
+    }
+    std::fs::read_to_string(path)
+}

@@ -100,7 +100,7 @@ pub fn parse_scenario(file: FileId, text: &str, path: &Path) -> Result<Scenario,
 }
 
 fn read_into(path: &Path, map: &mut SourceMap) -> Result<FileId, Vec<Diagnostic>> {
-    match std::fs::read_to_string(path) {
+    match crate::syntax::source::read_input(path) {
         Ok(text) => Ok(map.add(path, path.display().to_string(), text)),
         Err(e) => Err(vec![Diagnostic::error(
             "input",
