@@ -190,23 +190,6 @@ impl SourceMap {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn line_and_column_are_one_based_and_count_chars() {
-        let mut map = SourceMap::new();
-        let id = map.add("a.asl", "a.asl", "ab\ncé d\n".to_string());
-        let f = map.file(id);
-        assert_eq!(f.line_col(0), (1, 1));
-        assert_eq!(f.line_col(3), (2, 1));
-        // 'é' is two bytes but one column.
-        assert_eq!(f.line_col(6), (2, 3));
-        assert_eq!(map.location(Span::new(id, 6, 7)).to_string(), "a.asl:2:3");
-    }
-}
-
 /// The largest input file bdi-check reads (agents, domains, manifests, scenarios, reports).
 pub const MAX_INPUT_BYTES: u64 = 64 << 20;
 
@@ -226,4 +209,21 @@ pub fn read_input(path: &Path) -> std::io::Result<String> {
         )));
     }
     std::fs::read_to_string(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column_are_one_based_and_count_chars() {
+        let mut map = SourceMap::new();
+        let id = map.add("a.asl", "a.asl", "ab\ncé d\n".to_string());
+        let f = map.file(id);
+        assert_eq!(f.line_col(0), (1, 1));
+        assert_eq!(f.line_col(3), (2, 1));
+        // 'é' is two bytes but one column.
+        assert_eq!(f.line_col(6), (2, 3));
+        assert_eq!(map.location(Span::new(id, 6, 7)).to_string(), "a.asl:2:3");
+    }
 }
