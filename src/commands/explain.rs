@@ -1,7 +1,7 @@
 //! `bdi-check explain`: run one scenario with the explanations each user gets, or list
 //! every distinct explanation the runs give (rendered by [`crate::report::explain`]).
 
-use super::{diagnostics_text, Output, Style};
+use super::{Output, Style};
 use crate::check::explanation::{Explained, ExplainedState, Step};
 use crate::check::explore::fingerprint;
 use crate::check::model::Model;
@@ -51,7 +51,9 @@ pub fn command(
                 };
                 Output::report(text, 0)
             }
-            Err((map, errs)) => Output::refused(diagnostics_text(&errs, &map, style.stderr_color)),
+            Err((map, errs)) => {
+                Output::refused(crate::report::diagnostics(&errs, &map, style.stderr_color))
+            }
         };
     };
     let run = run(project, sc, user);

@@ -3,7 +3,7 @@
 //! be drawn legibly, the part that the counterexamples of the failing checks go through is
 //! drawn (or the first states in breadth-first order when nothing fails).
 
-use super::{diagnostics_text, Output};
+use super::Output;
 use crate::check::explore::{explore, fingerprint, Limits};
 use crate::check::verify;
 use crate::commands::verify::limits;
@@ -19,7 +19,13 @@ use std::path::Path;
 pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_color: bool) -> Output {
     let p = match load_project(project) {
         Ok(p) => p,
-        Err(e) => return Output::refused(diagnostics_text(&e.diagnostics, &e.map, stderr_color)),
+        Err(e) => {
+            return Output::refused(crate::report::diagnostics(
+                &e.diagnostics,
+                &e.map,
+                stderr_color,
+            ))
+        }
     };
     if plans {
         return Output::report(plans_dot(&p), 0);
@@ -42,7 +48,7 @@ pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_colo
                 code: 0,
             }
         }
-        Err(errs) => Output::refused(diagnostics_text(&errs, &p.map, false)),
+        Err(errs) => Output::refused(crate::report::diagnostics(&errs, &p.map, false)),
     }
 }
 

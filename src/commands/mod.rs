@@ -73,15 +73,3 @@ impl Style {
         )))
     }
 }
-
-/// Every diagnostic rendered for stderr, one per line.
-fn diagnostics_text(
-    diagnostics: &[crate::syntax::Diagnostic],
-    map: &crate::syntax::SourceMap,
-    color: bool,
-) -> String {
-    diagnostics
-        .iter()
-        .map(|d| format!("{}\n", d.render(map, color)))
-        .collect()
-}

@@ -19,7 +19,7 @@ use std::path::Path;
 /// violation, 0 once none does, 2 when the report or project cannot be read.
 pub fn command(report: &Path, finding: Option<&str>) -> Output {
     match replay(report, finding) {
-        Err((map, errs)) => Output::refused(super::diagnostics_text(&errs, &map, false)),
+        Err((map, errs)) => Output::refused(crate::report::diagnostics(&errs, &map, false)),
         Ok(results) => {
             let reached = results.iter().any(|r| r.reached);
             Output::report(render(&results), i32::from(reached))

@@ -138,6 +138,15 @@ impl AtomTable {
         self.pred_lit(t.functor()?, t.is_negated())
     }
 
+    /// A predicate as a literal's functor and strong negation: `~p` is `("p", true)`.
+    pub fn pred_literal(&self, p: PredId) -> (&str, bool) {
+        let name = self.pred_name(p);
+        match name.strip_prefix('~') {
+            Some(positive) => (positive, true),
+            None => (name, false),
+        }
+    }
+
     /// A predicate's name.
     pub fn pred_name(&self, p: PredId) -> &str {
         &self.preds[p.0 as usize].name
@@ -206,15 +215,12 @@ impl AtomTable {
     /// The atom as a Jason term, e.g. `cupAt(cup1,table)`.
     pub fn term(&self, a: AtomId, universe: &Universe) -> Term {
         let (p, args) = self.decode(a);
-        let name = self.pred_name(p);
+        let (name, negated) = self.pred_literal(p);
         let args = args
             .iter()
             .map(|o| Term::atom(universe.object_name(*o)))
             .collect();
-        match name.strip_prefix('~') {
-            Some(positive) => Term::literal(positive, true, args, Vec::new()),
-            None => Term::structure(name, args),
-        }
+        Term::literal(name, negated, args, Vec::new())
     }
 
     /// The atom as Jason prints it.

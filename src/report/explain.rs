@@ -60,11 +60,7 @@ pub struct ExplainRun {
 
 /// The run as a numbered story with the explanations in place.
 pub fn render_human(run: &ExplainRun, color: bool) -> String {
-    let mut out = String::new();
-    for d in &run.diagnostics {
-        out.push_str(&d.render(&run.map, color));
-        out.push('\n');
-    }
+    let mut out = super::diagnostics(&run.diagnostics, &run.map, color);
     let Some(t) = &run.trace else { return out };
     let c = crate::findings::Counterexample {
         initial: t.initial.clone(),

@@ -30,11 +30,7 @@ pub fn render(run: &LintRun, format: Format, detail: Detail, color: bool) -> (St
             String::new(),
         ),
         Format::Human => {
-            let mut err = String::new();
-            for d in &run.diagnostics {
-                err.push_str(&d.render(&run.map, color));
-                err.push('\n');
-            }
+            let err = super::diagnostics(&run.diagnostics, &run.map, color);
             (render_human(run, detail, color), err)
         }
     }

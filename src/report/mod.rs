@@ -13,6 +13,15 @@ pub mod sarif;
 pub mod verify;
 
 use crate::findings::Report;
+use crate::syntax::{Diagnostic, SourceMap};
+
+/// Every diagnostic with its excerpt, as rustc prints them, each followed by a blank line.
+pub fn diagnostics(diagnostics: &[Diagnostic], map: &SourceMap, color: bool) -> String {
+    diagnostics
+        .iter()
+        .map(|d| format!("{}\n", d.render(map, color)))
+        .collect()
+}
 
 /// Output formats of `--format`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -102,12 +102,7 @@ pub fn render(run: &ParseRun, format: Format, color: bool) -> (String, String) {
 
 /// Every diagnostic with its excerpt, as rustc prints them.
 pub fn render_diagnostics(run: &ParseRun, color: bool) -> String {
-    let mut err = String::new();
-    for d in &run.diagnostics {
-        err.push_str(&d.render(&run.map, color));
-        err.push('\n');
-    }
-    err
+    super::diagnostics(&run.diagnostics, &run.map, color)
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {

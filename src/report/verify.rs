@@ -41,10 +41,7 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
     let mut out = String::new();
     let r = &run.report;
     if detail != Detail::Quiet {
-        for d in &run.diagnostics {
-            out.push_str(&d.render(&run.map, color));
-            out.push('\n');
-        }
+        out.push_str(&super::diagnostics(&run.diagnostics, &run.map, color));
         if run.diagnostics.is_empty() {
             for f in &r.findings {
                 let shown = f.status != Status::Pass || detail == Detail::Verbose;

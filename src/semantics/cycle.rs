@@ -337,9 +337,9 @@ impl<'p> Semantics<'p> {
                 .map(|o| project.universe.object_name(*o))
                 .collect();
             let jargs: Vec<JArg> = names.iter().map(|n| JArg::Atom(n)).collect();
-            sem.jhash.push(match atoms.pred_name(p).strip_prefix('~') {
-                Some(positive) => negated_literal_hash(positive, &jargs),
-                None => literal_hash(atoms.pred_name(p), &jargs),
+            sem.jhash.push(match atoms.pred_literal(p) {
+                (name, true) => negated_literal_hash(name, &jargs),
+                (name, false) => literal_hash(name, &jargs),
             });
             if sem.environment[p.0 as usize] {
                 sem.env_atoms.insert(a);

@@ -114,11 +114,7 @@ impl Beliefs<'_> {
         } else {
             "self"
         };
-        let name = self.atoms.pred_name(p);
-        let (name, negated) = match name.strip_prefix('~') {
-            Some(positive) => (positive, true),
-            None => (name, false),
-        };
+        let (name, negated) = self.atoms.pred_literal(p);
         Term::literal(
             name,
             negated,
