@@ -13,7 +13,7 @@ use crate::model::atoms::AtomSet;
 use crate::model::project::{load_project, Project};
 use crate::model::{ObjectId, Substitution, Term};
 use crate::semantics::state::{
-    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending,
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending, Waiting,
 };
 use crate::semantics::{Origin, Semantics, State};
 use std::path::Path;
@@ -227,6 +227,14 @@ impl Fixture {
                     ..f.clone()
                 }),
             }),
+            waiting: s
+                .waiting
+                .iter()
+                .map(|w| Waiting {
+                    intention: self.rename_intention(&w.intention, perm),
+                    ..w.clone()
+                })
+                .collect(),
             requested,
         }
     }

@@ -899,6 +899,8 @@ impl<'p> World<'p> {
                 }
                 self.havoc(configs, &eff)
             }
+            // Other intentions run meanwhile, as between any two steps.
+            BodyStep::Wait { .. } => configs,
             BodyStep::Test(f) => self.with_answers(f, configs),
             BodyStep::Constraint(op, a, b) => {
                 self.with_answers(&Formula::Rel(*op, a.clone(), b.clone()), configs)

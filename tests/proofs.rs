@@ -569,6 +569,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 events: Vec::new(),
                 intentions: Vec::new(),
                 pending: None,
+                waiting: Vec::new(),
                 requested: 0,
             };
             (fp(&c), Some(c))

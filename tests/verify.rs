@@ -567,3 +567,30 @@ fn a_plan_for_a_list_argument_that_a_run_reaches_is_not_dead() {
     let r: serde_json::Value = serde_json::from_slice(&lint.stdout).expect("JSON");
     assert!(failing(&r, "dead-plan").is_empty(), "{r:#}");
 }
+
+#[test]
+fn a_wait_timer_may_end_before_what_it_waits_for() {
+    // The model has no clock: `.wait(1000)` may end before `!prepare` is done, and the run
+    // that shows it replays; waiting for the event itself is correct.
+    let (code, r, file) = verify_json("tests/verify/wait_early", "wait_early");
+    assert_eq!(code, 1, "{r:#}");
+    let f: Vec<_> = failing(&r, "precondition")
+        .into_iter()
+        .filter(|f| f["severity"] == "error")
+        .collect();
+    assert_eq!(f.len(), 1, "{r:#}");
+    assert_eq!(f[0]["location"]["line"], 5);
+    let steps = steps(f[0]);
+    assert!(
+        steps
+            .iter()
+            .any(|s| s.contains(".wait(1000) ends: its time is up")),
+        "{steps:?}"
+    );
+    assert!(failing(&r, "goal-failure")
+        .iter()
+        .all(|g| g["location"]["line"] != 10));
+    let a = failing(&r, "action-failure");
+    assert_eq!(a.len(), 1, "{r:#}");
+    assert_eq!(replay_code(&file, Some(a[0]["id"].as_str().unwrap())), 1);
+}

@@ -178,6 +178,7 @@ impl AgentState for Packed<'_> {
             events: Vec::new(),
             intentions: Vec::new(),
             pending: None,
+            waiting: Vec::new(),
             requested: 0,
         };
         sem.applicable(&beliefs, trigger, false)

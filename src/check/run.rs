@@ -126,8 +126,7 @@ pub fn run_scenario(
             // The user asks as the scenario says, even for a goal asked before (the
             // search makes each request once per run; a scenario is one user's run).
             let mut next = state.clone();
-            next.requested |= 1 << r;
-            next.events.push(sem.request_event(r as usize));
+            sem.post_request(&mut next, r as usize);
             Some(crate::semantics::Transition {
                 notes: vec![Note::Request { index: r }],
                 next,

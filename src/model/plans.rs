@@ -91,6 +91,17 @@ pub enum BodyStep {
     While(Formula, Vec<Step>),
     /// `for (c) {...}`.
     For(Formula, Vec<Step>),
+    /// `.wait(...)` (stdlib `wait`): the intention is suspended until the event (`{+b}`)
+    /// comes, until the condition holds, or until its timeout; `.wait(N)` waits for the
+    /// timeout alone.
+    Wait {
+        /// The event waited for: `{+b(X)}`.
+        event: Option<Trigger>,
+        /// The condition waited for: `.wait(b(X) & X > 1)`.
+        condition: Option<Formula>,
+        /// The timeout in milliseconds, as written (evaluated when the step runs).
+        timeout: Option<Term>,
+    },
 }
 
 /// A body step with its place.
@@ -317,6 +328,78 @@ fn value(c: &mut Converter, e: &Expr) -> Result<Term, Diagnostic> {
     }
 }
 
+/// `.wait(E)`, `.wait(E, T)` as a step (stdlib `wait.execute`): a number is a timeout
+/// alone, `{+b}` an event, anything else a condition; with an event or a condition the
+/// second argument is the timeout. The third argument, the time waited, is refused:
+/// the model has no clock.
+fn wait(c: &mut Converter, l: &ast::Literal) -> Result<BodyStep, Diagnostic> {
+    let (Some(first), 1..=2) = (l.args.first(), l.args.len()) else {
+        let d = match l.args.get(2) {
+            Some(third) => Diagnostic::error(
+                "input",
+                "the time waited (the third argument of `.wait`) is not modelled by bdi-check: the model has no clock",
+            )
+            .with_label(third.span, "elapsed time"),
+            None => Diagnostic::error("input", "`.wait` takes 1 or 2 arguments")
+                .with_label(l.span, "wrong number of arguments"),
+        };
+        return Err(d);
+    };
+    let mut step = (None, None, None);
+    match &first.kind {
+        ExprKind::Int(_)
+        | ExprKind::Float(_)
+        | ExprKind::Arith(..)
+        | ExprKind::Unary(..)
+        | ExprKind::Var(_) => step.2 = Some(value(c, first)?),
+        ExprKind::PlanTerm(pt) => match wait_trigger(&pt.kind) {
+            Some((op, kind, e)) => {
+                let ExprKind::Literal(lit) = &e.kind else {
+                    return Err(unsupported(e.span, "variables as triggers"));
+                };
+                step.0 = Some(Trigger {
+                    op,
+                    kind,
+                    literal: c.literal(lit).map_err(convert_error)?,
+                });
+            }
+            None => {
+                return Err(Diagnostic::error(
+                    "input",
+                    "`.wait` waits for an event such as `{+b}`, a condition or a time",
+                )
+                .with_label(first.span, "not an event"))
+            }
+        },
+        ExprKind::Str(_) => return Err(unsupported(first.span, "events given as strings")),
+        _ => step.1 = Some(formula(c, first)?),
+    }
+    if let (None, Some(t)) = (&step.2, l.args.get(1)) {
+        step.2 = Some(value(c, t)?);
+    }
+    let (event, condition, timeout) = step;
+    Ok(BodyStep::Wait {
+        event,
+        condition,
+        timeout,
+    })
+}
+
+/// The event a plan term names for `.wait` (`Trigger.tryToGetTrigger`): a trigger
+/// (`{+!g}`), or a body of one belief addition or deletion (`{+b}`, which Jason's grammar
+/// reads as a body).
+pub fn wait_trigger(t: &ast::PlanTermKind) -> Option<(TriggerOp, TriggerKind, &Expr)> {
+    match t {
+        ast::PlanTermKind::Trigger(t) => Some((t.op, t.kind, &t.literal)),
+        ast::PlanTermKind::Body(b) if b.steps.len() == 1 => match &b.steps[0].kind {
+            StepKind::AddBel(e) => Some((TriggerOp::Add, TriggerKind::Belief, e)),
+            StepKind::DelBel(e) => Some((TriggerOp::Del, TriggerKind::Belief, e)),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 /// A logical expression (a context, a test goal, a rule body) as a [`Formula`], with the
 /// converter's variables (so several formulas of one clause share them).
 pub fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
@@ -324,6 +407,13 @@ pub fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
         ExprKind::Literal(l) if l.functor == "true" && l.args.is_empty() => Formula::True,
         ExprKind::Literal(l) if l.functor == "false" && l.args.is_empty() => {
             Formula::Not(Box::new(Formula::True))
+        }
+        ExprKind::Literal(l) if l.functor == ".wait" => {
+            return Err(Diagnostic::error(
+                "input",
+                "`.wait` suspends an intention: it is a step of a plan body, not a condition",
+            )
+            .with_label(l.span, "in a formula"))
         }
         ExprKind::Literal(l) if l.is_internal_action() => {
             let args = l
@@ -360,6 +450,10 @@ fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnos
             }
         };
         let kind = match &s.kind {
+            StepKind::Action(Expr {
+                kind: ExprKind::Literal(l),
+                ..
+            }) if l.functor == ".wait" => wait(c, l)?,
             StepKind::Action(e) => {
                 let t = lit(c, e)?;
                 match &e.kind {

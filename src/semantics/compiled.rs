@@ -278,6 +278,8 @@ impl Hash for Packed<'_> {
             self.events.iter().map(|e| e.hash),
             self.intentions.iter().map(|i| i.hash),
             self.pending.map(|p| p.hash),
+            // Agents that `.wait` are not compiled (their library is not local).
+            std::iter::empty(),
             self.requested,
         );
     }
@@ -468,6 +470,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             events: p.events.iter().map(|e| e.value.clone()).collect(),
             intentions: p.intentions.iter().map(|i| i.value.clone()).collect(),
             pending: p.pending.map(|x| x.value.clone()),
+            waiting: Vec::new(),
             requested: p.requested,
         }
     }
@@ -627,6 +630,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             events: Vec::new(),
             intentions: intention.into_iter().cloned().collect(),
             pending: None,
+            waiting: Vec::new(),
             requested: 0,
         }
     }

@@ -407,6 +407,7 @@ impl<'p> Semantics<'p> {
             events: Vec::new(),
             intentions: Vec::new(),
             pending: None,
+            waiting: Vec::new(),
             requested: 0,
         };
         let notes = &self.project.initial.agent_beliefs;
@@ -456,8 +457,7 @@ impl<'p> Semantics<'p> {
                     continue;
                 }
                 let mut next = state.clone();
-                next.requested |= 1 << r;
-                next.events.push(self.request_event(r));
+                self.post_request(&mut next, r);
                 out.push(Transition {
                     notes: vec![Note::Request { index: r as u8 }],
                     next,
@@ -470,15 +470,43 @@ impl<'p> Semantics<'p> {
         out
     }
 
-    /// One reasoning cycle: deliberate on the first event, then act on the first intention.
+    /// Makes request `r`: its event is queued.
+    pub fn post_request(&self, s: &mut State, r: usize) {
+        s.requested |= 1 << r;
+        self.post_event(s, self.request_event(r));
+    }
+
+    /// One reasoning cycle: the intentions whose `.wait` ended resume (for an agent that
+    /// waits, one branch per choice of timers fired before the cycle), then deliberate on
+    /// the first event, then act on the first intention.
     fn cycle(&self, state: &State) -> Vec<Transition> {
+        if state.waiting.is_empty() {
+            return self.cycle_from(state.clone(), Vec::new());
+        }
+        let mut out = Vec::new();
+        for fired in self.timer_choices(state) {
+            let mut s = state.clone();
+            let mut notes = Vec::new();
+            self.resume_waiting(&mut s, &fired, &mut notes);
+            out.extend(self.cycle_from(s, notes));
+        }
+        out
+    }
+
+    /// The deliberation and act phases of a cycle, after the notes `before`.
+    fn cycle_from(&self, state: State, before: Vec<Note>) -> Vec<Transition> {
         let mut options: Vec<(State, Vec<Note>)> = Vec::new();
         if state.events.is_empty() {
-            options.push((state.clone(), Vec::new()));
+            options.push((state, before));
         } else {
-            let mut s = state.clone();
+            let mut s = state;
             let ev = s.events.remove(0);
             options = self.deliberate(s, ev);
+            if !before.is_empty() {
+                for (_, notes) in &mut options {
+                    notes.splice(0..0, before.iter().cloned());
+                }
+            }
         }
         options
             .into_iter()

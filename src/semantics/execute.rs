@@ -357,6 +357,9 @@ impl Semantics<'_> {
                             })
                         };
                         s.intentions.retain(|i| !matches(i));
+                        // `drop_intention.dropInt` drops pending intentions too: the wait
+                        // ends with them.
+                        s.waiting.retain(|w| !matches(&w.intention));
                         s.events.retain(|e| {
                             let goal_matches = e.trigger.kind == TriggerKind::Achieve
                                 && crate::model::unifier(&g, &e.trigger.literal).is_some();
@@ -393,12 +396,15 @@ impl Semantics<'_> {
                     literal,
                 };
                 if *new_focus {
-                    s.events.push(Event {
-                        trigger,
-                        intention: None,
-                        origin: Origin::Spawned,
-                        posted_at: Some((plan, step.span)),
-                    });
+                    self.post_event(
+                        s,
+                        Event {
+                            trigger,
+                            intention: None,
+                            origin: Origin::Spawned,
+                            posted_at: Some((plan, step.span)),
+                        },
+                    );
                 } else {
                     return self.post_subgoal(s, int, trigger, (plan, step.span));
                 }
@@ -505,6 +511,45 @@ impl Semantics<'_> {
                     }
                 }
             }
+            BodyStep::Wait { timeout, .. } => {
+                // `(long) time.solve()`: a timer runs for a timeout of at least 0.
+                let limit = match timeout {
+                    Some(t) => Some(value!(t)),
+                    None => None,
+                };
+                let timed = match limit {
+                    None => false,
+                    Some(t) => match t.as_f64() {
+                        Some(ms) => ms.trunc() >= 0.0,
+                        None => {
+                            let int = std::mem::replace(int, empty_intention(origin));
+                            let text = step_text(self, step.span);
+                            return fail(
+                                self,
+                                s,
+                                int,
+                                &text,
+                                format!("its timeout `{t}` is not a number"),
+                                notes,
+                            );
+                        }
+                    },
+                };
+                notes.push(Note::Internal {
+                    text: step_text(self, step.span),
+                    plan,
+                    origin,
+                });
+                self.normalize(frame);
+                let waiting = std::mem::replace(int, empty_intention(origin));
+                return match self.suspend(s, waiting, (plan, block, pos, step.span), timed) {
+                    Some(back) => {
+                        *int = back;
+                        Flow::Continue
+                    }
+                    None => Flow::Gone,
+                };
+            }
             BodyStep::If { branches, .. } => {
                 let kids = &blocks.children[&(block, pos)];
                 let b = self.beliefs(s);
@@ -592,12 +637,15 @@ impl Semantics<'_> {
             self.normalize(top);
         }
         let suspended = std::mem::replace(int, empty_intention(origin));
-        s.events.push(Event {
-            trigger,
-            intention: Some(suspended),
-            origin,
-            posted_at: Some(at),
-        });
+        self.post_event(
+            s,
+            Event {
+                trigger,
+                intention: Some(suspended),
+                origin,
+                posted_at: Some(at),
+            },
+        );
         Flow::Suspended
     }
 
@@ -648,6 +696,11 @@ fn subgoal_literal(t: &Term, depth: usize) -> Term {
             Term::from(v.clone())
         }
     })
+}
+
+/// A step as written, for notes.
+fn step_text(sem: &Semantics, span: Span) -> String {
+    sem.project.map.slice(span).trim().to_string()
 }
 
 /// What became of the intention after a step.

@@ -39,12 +39,15 @@ impl Semantics<'_> {
             "no_applicable"
         };
         match (fail, ev.intention) {
-            (Some(fail), Some(int)) => s.events.push(Event {
-                trigger: with_error(fail, error, self.line_of(ev.posted_at)),
-                intention: Some(int),
-                origin: ev.origin,
-                posted_at: ev.posted_at,
-            }),
+            (Some(fail), Some(int)) => self.post_event(
+                s,
+                Event {
+                    trigger: with_error(fail, error, self.line_of(ev.posted_at)),
+                    intention: Some(int),
+                    origin: ev.origin,
+                    posted_at: ev.posted_at,
+                },
+            ),
             (_, int) => notes.push(Note::GoalFailed {
                 goal: int
                     .as_ref()
@@ -129,12 +132,15 @@ impl Semantics<'_> {
             .map_or_else(|| failed.clone(), |f| f.trigger.clone());
         if let Some(fail) = self.find_event_for_failure(&int, &tevent) {
             let origin = int.origin;
-            s.events.push(Event {
-                trigger: with_error(fail, error, self.line_of(step)),
-                intention: Some(int),
-                origin,
-                posted_at: step,
-            });
+            self.post_event(
+                s,
+                Event {
+                    trigger: with_error(fail, error, self.line_of(step)),
+                    intention: Some(int),
+                    origin,
+                    posted_at: step,
+                },
+            );
             return;
         }
         let goal = int

@@ -15,12 +15,13 @@ use crate::syntax::Span;
 impl Semantics<'_> {
     /// `.succeed_goal(g)` / `.fail_goal(g)` run by `current`, as Jason's
     /// `succeed_goal.drop`: in the events, then in the running intentions, then in the
-    /// running one, then in the one waiting for its action, every intention pursuing `g`
+    /// running one, then in the one waiting for its action, then in those in `.wait`,
+    /// every intention pursuing `g`
     /// drops its plans down to and including `g`'s ([`Semantics::drop_goal_in`]); an event
     /// `+!g` is dropped (succeed: the intention that posted it goes on) or becomes `-!g`
     /// (fail). The running intention then goes on after its current step
-    /// (`removeActionReQueue`), which, when its own `g` was dropped, is the `!g` of the plan
-    /// below.
+    /// (`removeActionReQueue`, after the others), which, when its own `g` was dropped, is
+    /// the `!g` of the plan below.
     pub(super) fn goal_directive(
         &self,
         s: &mut State,
@@ -49,13 +50,16 @@ impl Semantics<'_> {
                 s.events.push(ev);
             } else if fail {
                 // `fail_goal.dropInEvent`: the event turns into `-!g`, in its place.
-                s.events.push(Event {
-                    trigger: EventTrigger {
-                        op: TriggerOp::Del,
-                        ..ev.trigger
+                self.post_event(
+                    s,
+                    Event {
+                        trigger: EventTrigger {
+                            op: TriggerOp::Del,
+                            ..ev.trigger
+                        },
+                        ..ev
                     },
-                    ..ev
-                });
+                );
             } else if let Some(mut int) = ev.intention {
                 if let Some(top) = int.frames.last_mut() {
                     top.calling = None;
@@ -81,17 +85,6 @@ impl Semantics<'_> {
         if let Some(int) = current.take_if(|i| i.frames.iter().any(|f| is_goal(&f.trigger))) {
             current = self.drop_goal_in(s, int, g, fail, true, at, notes);
         }
-        if let Some(mut int) = current {
-            // `removeActionReQueue`: the step just run is done (for a plan below a dropped
-            // goal, that is its `!g`).
-            if let Some(top) = int.frames.last_mut() {
-                top.calling = None;
-                self.normalize(top);
-            }
-            if self.clear_finished(&mut int, notes) {
-                s.intentions.push(int);
-            }
-        }
         if let Some(p) = s.pending.take() {
             if p.intention.frames.iter().any(|f| is_goal(&f.trigger)) {
                 if let Some(int) = self.drop_goal_in(s, p.intention, g, fail, false, at, notes) {
@@ -99,6 +92,27 @@ impl Semantics<'_> {
                 }
             } else {
                 s.pending = Some(p);
+            }
+        }
+        // Last, the pending intentions (`Circumstance.PI`): those in `.wait`.
+        let (hit, kept): (Vec<_>, Vec<_>) = std::mem::take(&mut s.waiting)
+            .into_iter()
+            .partition(|w| w.intention.frames.iter().any(|f| is_goal(&f.trigger)));
+        s.waiting = kept;
+        for w in hit {
+            if let Some(int) = self.drop_goal_in(s, w.intention, g, fail, false, at, notes) {
+                s.intentions.push(int);
+            }
+        }
+        if let Some(mut int) = current {
+            // `removeActionReQueue`, once the internal action is done: the step just run
+            // is done (for a plan below a dropped goal, that is its `!g`).
+            if let Some(top) = int.frames.last_mut() {
+                top.calling = None;
+                self.normalize(top);
+            }
+            if self.clear_finished(&mut int, notes) {
+                s.intentions.push(int);
             }
         }
     }
@@ -161,12 +175,15 @@ impl Semantics<'_> {
                     }
                 }
                 let origin = int.origin;
-                s.events.push(Event {
-                    trigger: fail,
-                    intention: Some(int),
-                    origin,
-                    posted_at: Some(at),
-                });
+                self.post_event(
+                    s,
+                    Event {
+                        trigger: fail,
+                        intention: Some(int),
+                        origin,
+                        posted_at: Some(at),
+                    },
+                );
                 None
             }
             None if current => Some(int),

@@ -18,6 +18,7 @@ mod perceive;
 pub mod query;
 mod reads;
 pub mod state;
+mod wait;
 
 pub use compiled::{Compiled, Notes, Packed};
 pub use cycle::{FrameView, Note, Semantics, Transition};

@@ -110,6 +110,8 @@ impl Semantics<'_> {
         self.reorder(s, added, removed);
         let b = self.beliefs(s);
         let mut new_events = Vec::new();
+        let mut told = Vec::new();
+        let waits = s.waiting.iter().any(|w| !w.woken);
         for (atoms, op) in [(removed, TriggerOp::Del), (added, TriggerOp::Add)] {
             for a in atoms {
                 let trigger = EventTrigger {
@@ -117,6 +119,10 @@ impl Semantics<'_> {
                     kind: TriggerKind::Belief,
                     literal: b.atom_term(*a),
                 };
+                if waits {
+                    // A `.wait` hears of every event, relevant or not.
+                    told.push((trigger.clone(), *a));
+                }
                 if !self.relevant_plans(&trigger).is_empty() {
                     new_events.push(Event {
                         trigger,
@@ -128,6 +134,9 @@ impl Semantics<'_> {
             }
         }
         s.events.extend(new_events);
+        if waits {
+            self.belief_events_added(s, &told);
+        }
     }
 }
 

@@ -111,6 +111,13 @@ impl Semantics<'_> {
             BodyStep::Internal(t) => {
                 self.formula_reads(&Formula::Call(t.clone()), &f.subst, &mut out)
             }
+            // An agent that waits is not compiled (see `step_is_local`); the condition is
+            // what the step itself reads.
+            BodyStep::Wait { condition, .. } => {
+                if let Some(cond) = condition {
+                    self.formula_reads(cond, &f.subst, &mut out)
+                }
+            }
             BodyStep::Test(cond) | BodyStep::While(cond, _) | BodyStep::For(cond, _) => {
                 self.formula_reads(cond, &f.subst, &mut out)
             }
@@ -304,6 +311,8 @@ pub(super) fn formula_is_local(f: &Formula) -> bool {
 
 pub(super) fn step_is_local(s: &Step) -> bool {
     match &s.kind {
+        // A waiting intention is woken by events any other intention posts.
+        BodyStep::Wait { .. } => false,
         BodyStep::Internal(t) => !t.functor().is_some_and(|f| GLOBAL_ACTIONS.contains(&f)),
         BodyStep::Test(f) => formula_is_local(f),
         BodyStep::If {

@@ -155,6 +155,22 @@ pub struct ActionFailure {
     pub why: String,
 }
 
+/// An intention suspended by `.wait`: Jason's pending intention (`Circumstance.PI`), with
+/// the `WaitEvent` listener that resumes it (stdlib `wait`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Waiting {
+    /// The intention, its top plan past the `.wait` step.
+    pub intention: Intention,
+    /// The `.wait` step: its plan, block and position, and where it is written.
+    pub step: (u32, u16, u16, Span),
+    /// Whether a timer runs (a timeout of at least 0 ms): it may end the wait at the start
+    /// of any later cycle.
+    pub timed: bool,
+    /// The event or condition waited for has come: the intention resumes at the start of
+    /// the next cycle (`runAtBeginOfNextCycle`).
+    pub woken: bool,
+}
+
 /// The whole agent state.
 ///
 /// Its hash is built from the hashes of its parts ([`part_hash`] of the beliefs, of each
@@ -175,6 +191,9 @@ pub struct State {
     pub intentions: Vec<Intention>,
     /// The intention whose action awaits its feedback, if any.
     pub pending: Option<Pending>,
+    /// Intentions suspended by `.wait`: the woken ones first, in the order they were woken
+    /// (their resumptions are queued in that order), then the others, oldest first.
+    pub waiting: Vec<Waiting>,
     /// Bit `i`: request `i` has been made in this run.
     pub requested: u64,
 }
@@ -195,6 +214,7 @@ pub fn hash_parts<H: Hasher>(
     events: impl ExactSizeIterator<Item = u64>,
     intentions: impl ExactSizeIterator<Item = u64>,
     pending: Option<u64>,
+    waiting: impl ExactSizeIterator<Item = u64>,
     requested: u64,
 ) {
     h.write_u64(beliefs);
@@ -204,6 +224,11 @@ pub fn hash_parts<H: Hasher>(
     intentions.for_each(|i| h.write_u64(i));
     if let Some(p) = pending {
         h.write_u64(p);
+    }
+    // Only agents that wait have waiting intentions: other states hash as they always did.
+    if waiting.len() > 0 {
+        h.write_usize(waiting.len());
+        waiting.for_each(|w| h.write_u64(w));
     }
     h.write_u64(requested);
 }
@@ -216,6 +241,7 @@ impl Hash for State {
             self.events.iter().map(part_hash),
             self.intentions.iter().map(part_hash),
             self.pending.as_ref().map(part_hash),
+            self.waiting.iter().map(part_hash),
             self.requested,
         );
     }
@@ -225,14 +251,19 @@ impl State {
     /// Whether the agent has nothing to do: no event, no intention (suspended ones wait
     /// inside events).
     pub fn is_idle(&self) -> bool {
-        self.events.is_empty() && self.intentions.is_empty() && self.pending.is_none()
+        self.events.is_empty()
+            && self.intentions.is_empty()
+            && self.pending.is_none()
+            && self.waiting.is_empty()
     }
 
-    /// Every intention, running or suspended in an event.
+    /// Every intention, running, waiting (for an action's feedback or in `.wait`) or
+    /// suspended in an event.
     pub fn all_intentions(&self) -> impl Iterator<Item = &Intention> {
         self.intentions
             .iter()
             .chain(self.pending.iter().map(|p| &p.intention))
+            .chain(self.waiting.iter().map(|w| &w.intention))
             .chain(self.events.iter().filter_map(|e| e.intention.as_ref()))
     }
 
@@ -241,7 +272,8 @@ impl State {
         requests_of(
             self.intentions
                 .iter()
-                .chain(self.pending.iter().map(|p| &p.intention)),
+                .chain(self.pending.iter().map(|p| &p.intention))
+                .chain(self.waiting.iter().map(|w| &w.intention)),
             &self.events,
         )
     }

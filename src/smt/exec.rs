@@ -239,6 +239,9 @@ impl Exec<'_, '_> {
             } => self.branch(branches, else_body, st, env, p, s.span),
             BodyStep::While(c, body) => self.repeat(c, body, true, st, env, p, s.span),
             BodyStep::For(c, body) => self.repeat(c, body, false, st, env, p, s.span),
+            // While it waits, other intentions run, as between any two steps; what the
+            // event or condition binds is left unconstrained.
+            BodyStep::Wait { .. } => Ok((st, p)),
         }
     }
 

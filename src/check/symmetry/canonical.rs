@@ -27,6 +27,7 @@ impl Symmetry {
             .intentions
             .iter()
             .chain(s.pending.iter().map(|p| &p.intention))
+            .chain(s.waiting.iter().map(|w| &w.intention))
         {
             self.intention_objects(i, &mut out);
         }

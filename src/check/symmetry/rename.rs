@@ -6,7 +6,7 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::term::Term;
 use crate::model::Substitution;
 use crate::semantics::state::{
-    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending,
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending, Waiting,
 };
 use crate::semantics::{Origin, State};
 
@@ -211,6 +211,14 @@ impl Symmetry {
                     ..f.clone()
                 }),
             }),
+            waiting: s
+                .waiting
+                .iter()
+                .map(|w| Waiting {
+                    intention: self.intention(&w.intention, perm),
+                    ..w.clone()
+                })
+                .collect(),
             requested,
         }
     }

@@ -92,6 +92,24 @@ impl Checker<'_> {
         }
     }
 
+    /// The event of `.wait({+b})`: a belief read, or a goal (checked when some plan knows
+    /// it; waiting for a goal no plan handles is not an error in Jason).
+    fn trigger_literal(&mut self, cl: &mut Clause, kind: TriggerKind, e: &Expr, scope: Scope) {
+        let ExprKind::Literal(l) = &e.kind else {
+            return;
+        };
+        match kind {
+            TriggerKind::Belief => self.belief_literal(cl, l, Usage::Query, scope),
+            _ if self
+                .goal_ids
+                .contains_key(&(l.functor.clone(), l.args.len())) =>
+            {
+                self.known_goal(cl, l, e.span, scope)
+            }
+            _ => l.args.iter().for_each(|a| self.term(cl, a, scope)),
+        }
+    }
+
     /// A dotted functor in a term: an arithmetic function.
     fn function(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
         let name = l.functor.as_str();
@@ -192,6 +210,8 @@ impl Checker<'_> {
             ".findall" => &[3],
             ".drop_intention" => &[0, 1],
             ".fail" => &[0],
+            // The third (the time waited) is refused where the step is compiled.
+            ".wait" => &[1, 2, 3],
             _ if pure.is_some() => pure.map_or(&[], |(_, a)| a),
             _ => &[1],
         };
@@ -233,6 +253,24 @@ impl Checker<'_> {
                 self.term(cl, &l.args[0], scope);
                 self.formula(cl, &l.args[1], scope, Usage::Query);
                 self.term(cl, &l.args[2], scope);
+            }
+            ".wait" => {
+                for a in &l.args {
+                    match &a.kind {
+                        ExprKind::PlanTerm(pt) => {
+                            if let Some((_, kind, e)) = crate::model::plans::wait_trigger(&pt.kind)
+                            {
+                                self.trigger_literal(cl, kind, e, scope)
+                            }
+                        }
+                        ExprKind::Literal(_)
+                        | ExprKind::Not(_)
+                        | ExprKind::And(..)
+                        | ExprKind::Or(..)
+                        | ExprKind::Rel(..) => self.formula(cl, a, scope, Usage::Query),
+                        _ => self.term(cl, a, scope),
+                    }
+                }
             }
             ".abolish" => match &l.args[0].kind {
                 // `.abolish(b)` deletes every belief that unifies with `b`.

@@ -246,6 +246,7 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".fail",
     ".my_name",
     ".abolish",
+    ".wait",
 ];
 
 /// Whether the reasoning cycle models the internal action `name` (those above, and the
