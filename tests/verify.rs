@@ -594,3 +594,26 @@ fn a_wait_timer_may_end_before_what_it_waits_for() {
     assert_eq!(a.len(), 1, "{r:#}");
     assert_eq!(replay_code(&file, Some(a[0]["id"].as_str().unwrap())), 1);
 }
+
+#[test]
+fn random_values_are_choices_of_the_search() {
+    // Every value `[bounds] random` lists, and every element of `.random`'s list, is tried:
+    // the runs that fail are found and replay.
+    let (code, r, file) = verify_json("tests/verify/random", "random");
+    assert_eq!(code, 1, "{r:#}");
+    let failures = failing(&r, "action-failure");
+    let line = |f: &&serde_json::Value| f["location"]["line"].as_u64().unwrap();
+    let mut lines: Vec<u64> = failures.iter().map(line).collect();
+    lines.sort();
+    assert_eq!(lines, [8, 11], "{r:#}");
+    for f in &failures {
+        let s = steps(f);
+        let want = if line(f) == 8 {
+            ".random(0.1)"
+        } else {
+            ".random([a,b],b)"
+        };
+        assert!(s.iter().any(|x| x.contains(want)), "{s:?}");
+        assert_eq!(replay_code(&file, Some(f["id"].as_str().unwrap())), 1);
+    }
+}

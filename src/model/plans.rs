@@ -415,6 +415,12 @@ pub fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
             )
             .with_label(l.span, "in a formula"))
         }
+        ExprKind::Literal(l) if l.functor == ".random" => {
+            return Err(unsupported(
+                l.span,
+                "`.random` in contexts and rules (its answers, one per try, would be choices of the deliberation)",
+            ))
+        }
         ExprKind::Literal(l) if l.is_internal_action() => {
             let args = l
                 .args

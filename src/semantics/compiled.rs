@@ -657,7 +657,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let mut s = Self::alone(base, &intention.reads, Some(&intention.value));
         let before = s.beliefs.clone();
         let mut notes = Vec::new();
-        self.sem.act_with(&mut s, &mut notes, env);
+        // Agents with steps of several outcomes (`.random`) are not compiled.
+        self.sem.act_with(&mut s, &mut notes, env, 0);
         debug_assert!(s.intentions.len() <= 1, "one intention at most");
         let added = s.beliefs.difference(&before);
         Acted {

@@ -508,14 +508,22 @@ impl<'p> Semantics<'p> {
                 }
             }
         }
-        options
-            .into_iter()
-            .map(|(mut s, mut notes)| {
-                self.proc_act(&mut s, &mut notes);
-                self.act(&mut s, &mut notes);
-                Transition { notes, next: s }
-            })
-            .collect()
+        let mut out = Vec::new();
+        for (mut s, mut notes) in options {
+            self.proc_act(&mut s, &mut notes);
+            // One successor per outcome of the step (several for `.random` only).
+            let n = self.act_choices(&s);
+            let mut last = Some((s, notes));
+            for choice in 0..n {
+                let (mut s, mut notes) = match &last {
+                    Some((s, notes)) if choice + 1 < n => (s.clone(), notes.clone()),
+                    _ => last.take().expect("the last outcome"),
+                };
+                self.act(&mut s, &mut notes, choice);
+                out.push(Transition { notes, next: s });
+            }
+        }
+        out
     }
 }
 

@@ -14,7 +14,7 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::{BodyStep, Formula};
 use crate::model::term::Term;
 use crate::model::universe::ObjectId;
-use crate::model::Substitution;
+use crate::model::{unify, Substitution};
 use crate::syntax::ast::{TriggerKind, TriggerOp};
 use crate::syntax::Span;
 
@@ -105,23 +105,58 @@ impl Semantics<'_> {
         }
     }
 
-    /// The act phase: the first intention runs one step.
-    pub(super) fn act(&self, s: &mut State, notes: &mut Vec<Note>) {
+    /// The act phase: the first intention runs one step, with the outcome `choice` of a
+    /// step that has several ([`Semantics::act_choices`]).
+    pub(super) fn act(&self, s: &mut State, notes: &mut Vec<Note>, choice: usize) {
         let env = self.env_count(&s.beliefs);
-        self.act_with(s, notes, env)
+        self.act_with(s, notes, env, choice)
+    }
+
+    /// How many outcomes the act phase has: the values `.random` may give when it is the
+    /// first intention's next step (stdlib `random`: an element of its list, or a number
+    /// of `[bounds] random`), else one.
+    pub(super) fn act_choices(&self, s: &State) -> usize {
+        let Some(f) = s.intentions.first().and_then(|i| i.frames.last()) else {
+            return 1;
+        };
+        let Some(c) = f.cursors.last() else {
+            return 1;
+        };
+        match self.blocks[f.plan as usize].blocks[c.block as usize]
+            .get(c.pos as usize)
+            .map(|s| &s.kind)
+        {
+            Some(BodyStep::Internal(t)) if t.functor() == Some(".random") => {
+                match t.args().first().map(|a| f.subst.apply(a)) {
+                    Some(l) if l.is_list() => l.list_elements().map_or(1, |(e, _)| e.len().max(1)),
+                    _ => self.random_values().len().max(1),
+                }
+            }
+            _ => 1,
+        }
+    }
+
+    /// `[bounds] random`: the values `.random(X)` may give.
+    fn random_values(&self) -> &[f64] {
+        self.project
+            .manifest
+            .bounds
+            .random
+            .as_ref()
+            .map_or(&[], |r| r.value.as_slice())
     }
 
     /// [`Semantics::act`] on a state that may hold only some of the beliefs, `env` of the
     /// environment's atoms holding in the whole state (their number decides the order in
     /// which Jason perceives an action's effects).
-    pub(super) fn act_with(&self, s: &mut State, notes: &mut Vec<Note>, env: usize) {
+    pub(super) fn act_with(&self, s: &mut State, notes: &mut Vec<Note>, env: usize, choice: usize) {
         if s.intentions.is_empty() {
             return;
         }
         let mut int = s.intentions.remove(0);
         let finished_top = int.frames.last().is_none_or(|f| f.cursors.is_empty());
         if !finished_top {
-            match self.step(s, &mut int, notes, env) {
+            match self.step(s, &mut int, notes, env, choice) {
                 Flow::Continue => {}
                 Flow::Suspended | Flow::Gone => return,
             }
@@ -138,6 +173,7 @@ impl Semantics<'_> {
         int: &mut Intention,
         notes: &mut Vec<Note>,
         env_before: usize,
+        choice: usize,
     ) -> Flow {
         let depth = int.frames.len() - 1;
         // `.drop_intention(g)` may drop the very intention that runs it.
@@ -347,6 +383,39 @@ impl Semantics<'_> {
                             removed: gone,
                             origin,
                         });
+                    }
+                    ".random" => {
+                        // Jason's answer is random; here it is the `choice`-th possible one.
+                        let args = term.args();
+                        let (out, value) = match args.first() {
+                            Some(l) if l.is_list() => (
+                                args.get(1),
+                                l.list_elements().and_then(|(e, _)| e.get(choice).cloned()),
+                            ),
+                            first => (
+                                first,
+                                self.random_values().get(choice).map(|v| Term::num(*v)),
+                            ),
+                        };
+                        let mut u = frame.subst.clone();
+                        let bound = match (out, value) {
+                            (Some(out), Some(v)) => unify(out, &v, &mut u),
+                            _ => false,
+                        };
+                        if !bound {
+                            notes.push(Note::Internal {
+                                text: text.clone(),
+                                plan,
+                                origin,
+                            });
+                            let int = std::mem::replace(int, empty_intention(origin));
+                            return fail(self, s, int, &text, "it has no answer".into(), notes);
+                        }
+                        frame.subst = u;
+                        let text = frame.subst.apply(t).to_string();
+                        notes.push(Note::Internal { text, plan, origin });
+                        self.normalize(frame);
+                        return Flow::Continue;
                     }
                     ".drop_desire" | ".drop_intention" => {
                         let g = term.args().first().cloned().unwrap_or_else(Term::nil);

@@ -291,13 +291,16 @@ pub(super) fn ordered_predicates(p: &Project) -> Vec<bool> {
 }
 
 /// Internal actions that read or change intentions other than the one running them.
-const GLOBAL_ACTIONS: [&str; 6] = [
+const GLOBAL_ACTIONS: [&str; 7] = [
     ".desire",
     ".intend",
     ".succeed_goal",
     ".fail_goal",
     ".drop_desire",
     ".drop_intention",
+    // Not global, but a step with several outcomes, which the compiled act phase (one
+    // outcome per intention and beliefs) does not hold.
+    ".random",
 ];
 
 pub(super) fn formula_is_local(f: &Formula) -> bool {

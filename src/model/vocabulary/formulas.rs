@@ -212,6 +212,7 @@ impl Checker<'_> {
             ".fail" => &[0],
             // The third (the time waited) is refused where the step is compiled.
             ".wait" => &[1, 2, 3],
+            ".random" => &[1, 2, 3],
             _ if pure.is_some() => pure.map_or(&[], |(_, a)| a),
             _ => &[1],
         };
@@ -270,6 +271,23 @@ impl Checker<'_> {
                         | ExprKind::Rel(..) => self.formula(cl, a, scope, Usage::Query),
                         _ => self.term(cl, a, scope),
                     }
+                }
+            }
+            ".random" => {
+                // `.random(List, X)` picks an element; `.random(X)` and `.random(X, N)` a
+                // number in [0, 1), from the values the manifest lists.
+                if !matches!(l.args[0].kind, ExprKind::List(_)) && !self.random {
+                    self.diags.push(
+                        Diagnostic::error(
+                            "input",
+                            "`.random(X)` gives any number in [0, 1): the model needs the values to check",
+                        )
+                        .with_label(l.span, "a random number")
+                        .with_help("list them in the manifest: `[bounds] random = [0.0, 0.5, 0.9]`"),
+                    );
+                }
+                for a in &l.args {
+                    self.term(cl, a, scope);
                 }
             }
             ".abolish" => match &l.args[0].kind {

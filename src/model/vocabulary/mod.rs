@@ -247,6 +247,7 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".my_name",
     ".abolish",
     ".wait",
+    ".random",
 ];
 
 /// Whether the reasoning cycle models the internal action `name` (those above, and the
@@ -504,6 +505,8 @@ struct Checker<'a> {
     numbers: bool,
     /// Its range.
     manifest_numbers: Option<(i64, i64)>,
+    /// `[bounds] random` is declared: `.random(X)` has values to branch over.
+    random: bool,
     emitted_by: Option<String>,
     clauses: Vec<Clause>,
     undefined: Vec<UndefinedAction>,
@@ -535,6 +538,7 @@ impl<'a> Checker<'a> {
             called: HashSet::new(),
             numbers: manifest.bounds.numbers.is_some(),
             manifest_numbers: manifest.bounds.numbers.as_ref().map(|n| n.value),
+            random: manifest.bounds.random.is_some(),
             emitted_by: manifest
                 .explanation
                 .as_ref()

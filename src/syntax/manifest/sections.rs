@@ -534,6 +534,7 @@ impl<'a> Cx<'a> {
             "symmetry",
             "plan_selection",
             "numbers",
+            "random",
         ];
         let mut out = Bounds::default();
         let Some(t) = self.section(root, "bounds", KEYS) else {
@@ -598,6 +599,40 @@ impl<'a> Cx<'a> {
                         "`bounds.numbers` must be `[lo, hi]`, two integers with lo <= hi and fewer than {MAX_NUMBERS} numbers"
                     ),
                     "expected `[lo, hi]`",
+                ),
+            }
+        }
+        if let Some(v) = t.get("random") {
+            let values: Option<Vec<f64>> = match v.get_ref() {
+                DeValue::Array(a) => a
+                    .iter()
+                    .map(|x| match x.get_ref() {
+                        DeValue::Float(f) => f.as_str().parse::<f64>().ok(),
+                        DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
+                            .ok()
+                            .map(|i| i as f64),
+                        _ => None,
+                    })
+                    .collect(),
+                _ => None,
+            };
+            match values {
+                Some(vals)
+                    if !vals.is_empty()
+                        && vals.len() <= MAX_RANDOM
+                        && vals.iter().all(|x| (0.0..1.0).contains(x)) =>
+                {
+                    out.random = Some(Located {
+                        value: vals,
+                        span: self.span(v.span()),
+                    })
+                }
+                _ => self.err(
+                    v.span(),
+                    format!(
+                        "`bounds.random` must list from 1 to {MAX_RANDOM} numbers in [0, 1), the values `.random(X)` may give"
+                    ),
+                    "expected numbers such as `[0.0, 0.5, 0.9]`",
                 ),
             }
         }

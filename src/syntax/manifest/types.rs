@@ -239,7 +239,13 @@ pub struct Bounds {
     /// `numbers = [lo, hi]`: the integers that may be arguments of mental notes (counters
     /// and the like), as objects of the type `number`. Default: none.
     pub numbers: Option<Located<(i64, i64)>>,
+    /// `random = [0.0, 0.5, ...]`: the values `.random(X)` may give (Jason's are any double
+    /// in `[0, 1)`; the model branches over these). Default: none (`.random(X)` refused).
+    pub random: Option<Located<Vec<f64>>>,
 }
+
+/// Most values `[bounds] random` may list.
+pub const MAX_RANDOM: usize = 64;
 
 /// Most integers `[bounds] numbers` may span.
 pub const MAX_NUMBERS: i64 = 1024;
@@ -252,6 +258,7 @@ impl Default for Bounds {
             symmetry: Vec::new(),
             plan_selection: PlanSelection::First,
             numbers: None,
+            random: None,
         }
     }
 }
