@@ -75,6 +75,7 @@ fn observe(case: &Path, scenario: &Path) -> Result<Observed, String> {
             RunEnd::Done => "done".into(),
             RunEnd::Bound => "bound".into(),
             RunEnd::Refused => "refused".into(),
+            RunEnd::Beyond => "beyond".into(),
         },
     };
     o.final_beliefs.sort();

@@ -617,3 +617,23 @@ fn random_values_are_choices_of_the_search() {
         assert_eq!(replay_code(&file, Some(f["id"].as_str().unwrap())), 1);
     }
 }
+
+#[test]
+fn a_counter_past_its_bound_makes_the_search_incomplete_not_failed() {
+    // Jason would go on counting; the finite model cannot: that is a limit of the model
+    // (exit 3, incomplete), never a goal failure of the agent.
+    let (code, r, _) = verify_json("tests/verify/counter_beyond", "counter_beyond");
+    assert_eq!(code, 3, "{r:#}");
+    assert_eq!(r["verdict"], "incomplete");
+    assert_eq!(r["stats"]["complete"], false);
+    for check in ["goal-failure", "action-failure"] {
+        assert!(
+            r["findings"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .all(|f| f["check"] != check || f["status"] != "fail"),
+            "{r:#}"
+        );
+    }
+}

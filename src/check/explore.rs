@@ -40,6 +40,8 @@ pub enum Bound {
     Time,
     /// The memory bound reached (or memory ran out).
     Memory,
+    /// A run left the finite model ([`crate::semantics::Note::Beyond`]).
+    Beyond,
 }
 
 /// Limits of one search.
@@ -525,6 +527,11 @@ fn search<M: Model, T>(
                 };
                 let mut cut = false;
                 for (k, (label, t, fp)) in succ.into_iter().enumerate() {
+                    if model.beyond(&label) {
+                        g.bound.get_or_insert(Bound::Beyond);
+                        cut = true;
+                        continue;
+                    }
                     on_transition(*src, k as u32, &label, fp);
                     g.transitions += 1;
                     let target = match g.store.find(fp) {

@@ -31,6 +31,17 @@ pub trait Model {
     fn fingerprint(&self, s: &Self::State) -> u64 {
         fingerprint(s)
     }
+
+    /// Whether a transition leaves the model ([`Note::Beyond`]): the search does not follow
+    /// it and is incomplete.
+    fn beyond(&self, _label: &Self::Label) -> bool {
+        false
+    }
+}
+
+/// Whether notes leave the model.
+pub fn is_beyond<'n>(mut notes: impl Iterator<Item = &'n Note>) -> bool {
+    notes.any(|n| matches!(n, Note::Beyond { .. }))
 }
 
 impl Model for Semantics<'_> {
@@ -46,6 +57,10 @@ impl Model for Semantics<'_> {
             .into_iter()
             .map(|t| (t.notes, t.next))
             .collect()
+    }
+
+    fn beyond(&self, label: &Vec<Note>) -> bool {
+        is_beyond(label.iter())
     }
 }
 
@@ -68,6 +83,10 @@ impl Model for Agent<'_> {
 
     fn next_states(&self, s: &State) -> Vec<(Vec<Note>, State)> {
         self.sem.next_states(s)
+    }
+
+    fn beyond(&self, label: &Vec<Note>) -> bool {
+        is_beyond(label.iter())
     }
 
     fn fingerprint(&self, s: &State) -> u64 {
@@ -113,6 +132,10 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
 
     fn next_states(&self, s: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {
         self.compiled.successors(s)
+    }
+
+    fn beyond(&self, label: &Notes<'c>) -> bool {
+        is_beyond(label.iter())
     }
 
     fn fingerprint(&self, s: &Packed<'c>) -> u64 {

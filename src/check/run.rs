@@ -88,6 +88,8 @@ pub enum RunEnd {
     Bound,
     /// A request could not be made (the manifest does not allow it in this state).
     Refused,
+    /// The run left the finite model ([`Note::Beyond`]).
+    Beyond,
 }
 
 /// A scenario run: the notes of each transition, in order, and the state it ends in.
@@ -143,7 +145,11 @@ pub fn run_scenario(
         let Some(t) = pick else {
             break RunEnd::Refused;
         };
+        let beyond = crate::check::model::is_beyond(t.notes.iter());
         steps.push(t.notes);
+        if beyond {
+            break RunEnd::Beyond;
+        }
         state = t.next;
     };
     ScenarioRun {

@@ -229,6 +229,17 @@ impl<'a> Builder<'a> {
                     };
                     self.step(StepKindTag::Event, text, Some(i), place)
                 }
+                Note::Beyond {
+                    text, plan, reason, ..
+                } => {
+                    let place = self.plan_place(plan);
+                    self.step(
+                        StepKindTag::Belief,
+                        format!("{text} leaves the model: {reason}"),
+                        None,
+                        Some(place),
+                    )
+                }
                 Note::Finished(_) | Note::NoApplicablePlan(_) | Note::Printed(_) => continue,
             };
             self.steps.push(step);

@@ -138,6 +138,19 @@ pub enum Note {
     Finished(Origin),
     /// A goal event had no applicable plan (whether or not a failure plan then handles it).
     NoApplicablePlan(EventTrigger),
+    /// The step needs what the finite model does not have (a mental note with a number
+    /// outside `[bounds] numbers`, or with a free variable): the run leaves the model here,
+    /// and the search does not follow it (it is incomplete, never failed).
+    Beyond {
+        /// The step, as it would run.
+        text: String,
+        /// The plan.
+        plan: u32,
+        /// The step.
+        span: Span,
+        /// What the model lacks.
+        reason: String,
+    },
     /// What `.print`/`.println` printed (stdlib `println.argsToString`: strings without
     /// quotes, other terms as Jason writes them, unbound variables as `X<no-value>`).
     Printed(String),

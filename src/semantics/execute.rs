@@ -535,16 +535,25 @@ impl Semantics<'_> {
                             added.retain(|x| !removed.contains(x));
                         }
                         None => {
-                            let int = std::mem::replace(int, empty_intention(origin));
-                            let text = format!("+{lit}");
-                            let why = match &self.project.manifest.bounds.numbers {
+                            // Jason would add it: the run goes where the model cannot follow.
+                            let reason = match &self.project.manifest.bounds.numbers {
                                 Some(n) => format!(
-                                    "the belief is not a ground atom of the model (its numbers are {} to {}, `[bounds] numbers`)",
+                                    "the belief is not an atom of the model (a free variable, or a number outside {} to {}, `[bounds] numbers`)",
                                     n.value.0, n.value.1
                                 ),
-                                None => "the belief is not a ground atom of the model".into(),
+                                None => "the belief is not an atom of the model (a free variable, or a number: declare `[bounds] numbers`)".into(),
                             };
-                            return fail(self, s, int, &text, why, notes);
+                            // The transition is not followed: leave the beliefs as
+                            // they were, so both representations agree on it.
+                            removed.iter().for_each(|a| s.beliefs.insert(*a));
+                            notes.push(Note::Beyond {
+                                text: format!("+{lit}"),
+                                plan,
+                                span: step.span,
+                                reason,
+                            });
+                            *int = empty_intention(origin);
+                            return Flow::Gone;
                         }
                     }
                 }

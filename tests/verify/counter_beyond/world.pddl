@@ -1,0 +1,8 @@
+(define (domain world)
+  (:requirements :strips :typing :negative-preconditions)
+  (:types place)
+  (:predicates (at ?p - place) (dirty ?p - place))
+  (:action goTo :parameters (?p - place) :precondition (not (at ?p))
+     :effect (and (at ?p)))
+  (:action wipe :parameters (?p - place) :precondition (and (at ?p) (dirty ?p))
+     :effect (not (dirty ?p))))
