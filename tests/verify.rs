@@ -637,3 +637,55 @@ fn a_counter_past_its_bound_makes_the_search_incomplete_not_failed() {
         );
     }
 }
+
+#[test]
+fn every_run_a_report_holds_replays_to_its_violation() {
+    // Every error with a run, of every kind (static checks a run settled, dynamic checks,
+    // explanation properties), replays to its violation on the unchanged project; a note
+    // or an undecided warning has no run, and replaying it is refused, never called fixed.
+    let projects = [
+        "specs/paper",
+        "specs/misleading-content",
+        "tests/verify/goal_failure",
+        "tests/verify/failing_failure_plan",
+        "tests/verify/handled_failure",
+        "tests/verify/invariant",
+        "tests/verify/control",
+        "tests/verify/livelock",
+        "tests/verify/eventually",
+        "tests/verify/wait_early",
+        "tests/verify/random",
+        "tests/verify/explain_untruthful",
+    ];
+    for dir in projects {
+        let (_, r, file) = verify_json(dir, "replay_all");
+        let runs: Vec<&serde_json::Value> = r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| {
+                f["status"] == "fail" && f["severity"] == "error" && !f["counterexample"].is_null()
+            })
+            .collect();
+        let o = bdi_check(&["replay", file.to_str().unwrap()]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(out.lines().count(), runs.len(), "{dir}: {out}");
+        assert!(
+            out.lines()
+                .all(|l| l.contains(": still reaches its violation")),
+            "{dir}: {out}"
+        );
+        assert_eq!(o.status.code(), Some(i32::from(!runs.is_empty())), "{dir}");
+        for f in r["findings"].as_array().unwrap() {
+            if f["status"] == "fail" && f["severity"] == "note" && !f["counterexample"].is_null() {
+                let id = f["id"].as_str().unwrap();
+                let o = bdi_check(&["replay", file.to_str().unwrap(), "--finding", id]);
+                assert_eq!(o.status.code(), Some(2), "{dir}: {id}");
+                assert!(
+                    String::from_utf8_lossy(&o.stderr).contains("has no run to replay"),
+                    "{dir}: {id}"
+                );
+            }
+        }
+    }
+}

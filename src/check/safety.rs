@@ -104,8 +104,8 @@ impl Checker<'_> {
                 PropertyKind::Eventually => {}
             }
         }
-        // Deadlock: a state with nothing to do that is not a finished run. Such states cannot
-        // arise from this semantics' rules; the check guards them.
+        // Deadlock: a state with nothing to do that is not a finished run: an intention in a
+        // `.wait` that nothing will wake.
         let stuck = (0..n as u32).find(|&i| {
             self.graph.successors(i).is_some_and(|e| e.is_empty()) && !bit(&facts.idle, i)
         });

@@ -10,6 +10,7 @@ use crate::model::formula;
 use crate::model::project::{load_project, Project};
 use crate::report::replay::{render, Replayed};
 use crate::semantics::{Note, Semantics, State};
+use crate::syntax::ast::{TriggerKind, TriggerOp};
 use crate::syntax::{Diagnostic, SourceMap, Span};
 use serde::Deserialize;
 use std::collections::HashSet;
@@ -38,6 +39,10 @@ struct FindingIn {
     id: String,
     check: String,
     status: String,
+    #[serde(default)]
+    severity: String,
+    #[serde(default)]
+    message: String,
     location: Option<LocationIn>,
     counterexample: Option<CounterexampleIn>,
 }
@@ -100,12 +105,21 @@ pub fn replay(
         .iter()
         .filter(|f| match finding {
             Some(id) => f.id == id,
-            None => f.status == "fail" && f.counterexample.is_some(),
+            None => has_run(f).is_ok(),
         })
         .collect();
     if let Some(id) = finding {
-        if selected.is_empty() {
+        let Some(f) = selected.first() else {
             return Err((map, bad(format!("the report has no finding `{id}`"))));
+        };
+        // Saying "no longer reaches" of a finding that never had a run would call it fixed.
+        if let Err(why) = has_run(f) {
+            return Err((
+                map,
+                bad(format!(
+                    "the finding `{id}` has no run to replay: {why}; run `verify` again to re-check it"
+                )),
+            ));
         }
     }
     Ok(selected
@@ -113,6 +127,31 @@ pub fn replay(
         .map(|f| replay_one(&project, &sem, f))
         .collect())
 }
+
+/// Whether a finding comes with a run that reaches its violation, or why not: a note
+/// is a state no run reaches, a warning of the static checks a state lint found that no
+/// run was seen to reach (only an error of theirs carries a run), and a passing finding
+/// has nothing to reach.
+fn has_run(f: &FindingIn) -> Result<(), &'static str> {
+    if f.status != "fail" {
+        return Err("it does not fail");
+    }
+    if f.counterexample.is_none() {
+        return Err("it has no counterexample (a static finding)");
+    }
+    match f.severity.as_str() {
+        "note" => Err("it is a note: no run reaches it"),
+        "error" | "" => Ok(()),
+        _ if STATIC_WITNESSES.contains(&f.check.as_str()) => Err(
+            "its counterexample is a state the static checks found, which no run was seen to reach",
+        ),
+        _ => Ok(()),
+    }
+}
+
+/// Static checks whose counterexample is a run only once `verify` saw one reach it (the
+/// finding is then an error).
+const STATIC_WITNESSES: &[&str] = &["precondition", "coverage-gap", "action-breaks-invariant"];
 
 fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
     let no = |detail: &str| Replayed {
@@ -174,6 +213,13 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
         }
         let succ = sem.successors(&state);
         if succ.is_empty() {
+            if matches!(check, Check::Deadlock) && !state.is_idle() {
+                return Replayed {
+                    id: f.id.clone(),
+                    reached: true,
+                    detail: format!("the agent is stuck after {} steps", builder.steps().len()),
+                };
+            }
             if matches!(check, Check::Eventually(_)) {
                 return Replayed {
                     id: f.id.clone(),
@@ -324,6 +370,11 @@ enum Check {
         kind: &'static str,
         place: Option<(String, usize)>,
     },
+    /// `coverage-gap`: an event for the goal of the plans at this place has no
+    /// applicable plan.
+    Coverage(Option<(TriggerOp, TriggerKind, String, usize)>),
+    /// `deadlock`: a state with no step that is not a finished run.
+    Deadlock,
     Liveness,
     Unknown,
 }
@@ -341,6 +392,32 @@ impl Check {
                 kind: "goal",
                 place,
             },
+            // A precondition that does not hold, reached: the action fails there.
+            "precondition" => Check::Note {
+                kind: "action",
+                place,
+            },
+            "coverage-gap" => Check::Coverage(place.and_then(|(file, line)| {
+                let p = project.plans.plans.iter().find(|p| {
+                    let loc = project.map.location(p.span);
+                    loc.file == file && loc.line == line
+                })?;
+                let t = &p.trigger;
+                Some((
+                    t.op,
+                    t.kind,
+                    t.literal.functor()?.to_string(),
+                    t.literal.arity(),
+                ))
+            })),
+            "deadlock" => Check::Deadlock,
+            // The invariant the action breaks is named in the message.
+            "action-breaks-invariant" => f
+                .message
+                .split_once("invariant `")
+                .and_then(|(_, rest)| rest.split_once('`'))
+                .and_then(|(name, _)| project.invariants.iter().find(|(n, _)| n == name))
+                .map_or(Check::Unknown, |(_, c)| Check::State(c.clone(), true)),
             "livelock" | "request-not-completed" => Check::Liveness,
             "invariant" => project
                 .invariants
@@ -389,6 +466,14 @@ impl Check {
 
     /// A failure of the finding's kind at the finding's place (`file:line`).
     fn note_violates(&self, n: &Note, project: &Project) -> bool {
+        if let (Check::Coverage(goal), Note::NoApplicablePlan(t)) = (self, n) {
+            return goal.as_ref().is_some_and(|(op, kind, f, arity)| {
+                t.op == *op
+                    && t.kind == *kind
+                    && t.literal.functor() == Some(f.as_str())
+                    && t.literal.arity() == *arity
+            });
+        }
         let Check::Note { kind, place } = self else {
             return false;
         };
