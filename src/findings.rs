@@ -211,7 +211,8 @@ pub struct Shard {
 
 impl Report {
     /// A report whose verdict is derived from its findings.
-    pub fn new(project: impl Into<String>, findings: Vec<Finding>) -> Report {
+    pub fn new(project: impl Into<String>, mut findings: Vec<Finding>) -> Report {
+        unique_ids(&mut findings);
         Report {
             tool: Tool::default(),
             project: project.into(),
@@ -251,6 +252,34 @@ impl Finding {
     }
 }
 
+/// Makes every id unique, for `replay --finding` and SARIF fingerprints: findings that
+/// share `check:file:line` get their column, or, where columns are alike too, their
+/// position among them (findings come in a fixed order, so ids are stable).
+pub fn unique_ids(findings: &mut [Finding]) {
+    let mut groups: std::collections::BTreeMap<String, Vec<usize>> = Default::default();
+    for (i, f) in findings.iter().enumerate() {
+        groups.entry(f.id.clone()).or_default().push(i);
+    }
+    for (id, members) in groups.into_iter().filter(|(_, m)| m.len() > 1) {
+        let columns: Vec<Option<usize>> = members
+            .iter()
+            .map(|&i| findings[i].location.as_ref().map(|l| l.column))
+            .collect();
+        let distinct = columns
+            .iter()
+            .collect::<std::collections::BTreeSet<_>>()
+            .len()
+            == columns.len()
+            && columns.iter().all(Option::is_some);
+        for (n, &i) in members.iter().enumerate() {
+            findings[i].id = match columns[n] {
+                Some(c) if distinct => format!("{id}:{c}"),
+                _ => format!("{id}#{}", n + 1),
+            };
+        }
+    }
+}
+
 /// The verdict of a set of findings: `error` if an input finding is an error, else `fail` if
 /// any finding of severity error failed, else `incomplete` if any is unknown, else `pass`.
 pub fn verdict_of(findings: &[Finding]) -> Verdict {
@@ -282,6 +311,27 @@ mod tests {
             span: None,
             related: Vec::new(),
         }
+    }
+
+    #[test]
+    fn shared_ids_get_their_column_or_their_position() {
+        let at = |id: &str, column: usize| Finding {
+            id: id.into(),
+            location: Some(Location {
+                file: "a.asl".into(),
+                line: 2,
+                column,
+            }),
+            ..finding("goal-failure", Severity::Error, Status::Fail)
+        };
+        let mut fs = vec![at("g:a.asl:2", 1), at("g:a.asl:2", 9), at("h:a.asl:2", 1)];
+        unique_ids(&mut fs);
+        let ids: Vec<&str> = fs.iter().map(|f| f.id.as_str()).collect();
+        assert_eq!(ids, ["g:a.asl:2:1", "g:a.asl:2:9", "h:a.asl:2"]);
+        let mut fs = vec![at("g:a.asl:2", 1), at("g:a.asl:2", 1)];
+        unique_ids(&mut fs);
+        let ids: Vec<&str> = fs.iter().map(|f| f.id.as_str()).collect();
+        assert_eq!(ids, ["g:a.asl:2#1", "g:a.asl:2#2"]);
     }
 
     #[test]

@@ -689,3 +689,50 @@ fn every_run_a_report_holds_replays_to_its_violation() {
         }
     }
 }
+
+#[test]
+fn goal_failures_point_at_the_source_at_fault_and_ids_are_unique() {
+    let (code, r, _) = verify_json("tests/verify/goal_places", "goal_places");
+    assert_eq!(code, 1, "{r:#}");
+    let mut places: Vec<(String, u64)> = failing(&r, "goal-failure")
+        .iter()
+        .map(|f| {
+            let l = &f["location"];
+            (
+                l["file"]
+                    .as_str()
+                    .unwrap()
+                    .rsplit('/')
+                    .next()
+                    .unwrap()
+                    .to_string(),
+                l["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    places.sort();
+    assert_eq!(
+        places,
+        [
+            ("agent.asl".to_string(), 3),
+            ("agent.asl".to_string(), 4),
+            ("bdi-check.toml".to_string(), 12)
+        ],
+        "{r:#}"
+    );
+    for dir in [
+        "tests/verify/goal_places",
+        "specs/kitchen-explaining",
+        "tests/verify/control",
+    ] {
+        let (_, r, _) = verify_json(dir, "unique_ids");
+        let ids: Vec<&str> = r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["id"].as_str().unwrap())
+            .collect();
+        let set: std::collections::BTreeSet<&&str> = ids.iter().collect();
+        assert_eq!(set.len(), ids.len(), "{dir}: {ids:?}");
+    }
+}

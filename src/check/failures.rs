@@ -4,7 +4,9 @@
 
 use super::checker::Checker;
 use crate::findings::{Finding, Status};
-use crate::semantics::Note;
+use crate::semantics::{EventTrigger, Note, Origin};
+use crate::syntax::ast::TriggerOp;
+use crate::syntax::Span;
 use std::collections::BTreeMap;
 
 /// The first (hence shallowest-source) transition of each failure, keyed by place.
@@ -72,6 +74,47 @@ pub(super) struct Failure {
 }
 
 impl Checker<'_> {
+    /// Where a goal that failed with no step to blame is at fault: its plans (none of
+    /// which applied), or, when it has none, the request or initial goal that posted it.
+    fn goal_place(&self, cause: &EventTrigger, origin: &Origin) -> Span {
+        let sem = self.agent.sem;
+        let goal_event = EventTrigger {
+            op: TriggerOp::Add,
+            ..cause.clone()
+        };
+        if let Some(&p) = sem.relevant_plans(&goal_event).first() {
+            return self.project.plans.plans[p as usize].span;
+        }
+        match *origin {
+            Origin::Request(r) => {
+                let t = &sem.requests[r as usize];
+                let matches = |e: &crate::syntax::ast::Expr| match &e.kind {
+                    crate::syntax::ast::ExprKind::Literal(l) => {
+                        Some(l.functor.as_str()) == t.functor() && l.args.len() == t.arity()
+                    }
+                    _ => false,
+                };
+                if let Some(g) = self
+                    .project
+                    .manifest
+                    .requests
+                    .goals
+                    .iter()
+                    .find(|g| matches(&g.expr))
+                {
+                    return g.span;
+                }
+            }
+            Origin::InitialGoal(k) => {
+                if let Some((_, span)) = self.project.plans.initial_goals.get(k as usize) {
+                    return *span;
+                }
+            }
+            Origin::Spawned => {}
+        }
+        self.project.manifest.agent.plans.written.span
+    }
+
     pub(super) fn failures(
         &self,
         out: &mut Vec<Finding>,
@@ -126,10 +169,11 @@ impl Checker<'_> {
                 cause,
                 span: at,
                 reason,
+                origin,
                 ..
             } = &x.note
             {
-                let place = at.unwrap_or(span);
+                let place = at.unwrap_or_else(|| self.goal_place(cause, origin));
                 let loc = self.location(place);
                 let what = if goal == cause {
                     format!("goal {goal} fails ({reason})")

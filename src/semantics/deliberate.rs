@@ -11,7 +11,9 @@ use crate::model::{unify, Substitution};
 use crate::syntax::ast::{TriggerKind, TriggerOp};
 
 impl Semantics<'_> {
-    pub(super) fn relevant_plans(&self, t: &EventTrigger) -> &[u32] {
+    /// The plans whose trigger has the event's operator, kind, functor and arity, in
+    /// source order: Jason's candidates (`PlanLibrary.getCandidatePlans`).
+    pub fn relevant_plans(&self, t: &EventTrigger) -> &[u32] {
         self.relevant
             .get(&(
                 op_key(t.op),
