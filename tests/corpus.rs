@@ -7,6 +7,9 @@
 //!   `// expect: LINE:COLUMN <substring of the message>` line per diagnostic (line and
 //!   column 1-based, in the file itself).
 //! * Jason's own example agents, when a copy is present at `/tmp/jason/asl`, parse unchanged.
+//! * With a checkout of jason-lang/jason (`BDI_CHECK_JASON=/path/to/jason`), its example and
+//!   demo agents go through `bdi-check verify` on a generated stub of their environment, and
+//!   as many load as README.md says (`-- --nocapture` prints the table of refusals).
 //!
 //! In both folders, a file whose first line starts with `// included-only` is a library
 //! loaded only through an `include` of another file, never on its own.
@@ -780,9 +783,7 @@ fn a_file_with_three_errors_reports_all_three() {
 fn jason_examples_parse_unchanged() {
     // A checkout of jason-lang/jason (`BDI_CHECK_JASON=/path/to/jason`), or a copy of its
     // examples in the old place. Every `.asl` loads with its includes resolved as Jason
-    // resolves them: beside the file, then along a source path (the folders above it, up
-    // to the checkout, as a project's `aslSourcePath` would give), and `$jasonJar/...`
-    // from the jar's sources (`src/main/resources`, `src` of the interpreter).
+    // resolves them: beside the file, then along `jason_source_path`.
     let root = std::env::var_os("BDI_CHECK_JASON").map(PathBuf::from);
     let dirs: Vec<PathBuf> = match &root {
         Some(r) => vec![r.clone()],
@@ -791,26 +792,9 @@ fn jason_examples_parse_unchanged() {
     let mut report = String::new();
     let mut checked = 0;
     for dir in dirs.iter().filter(|d| d.is_dir()) {
-        // The jar's sources, and the folder Jason's own test agents take `tester_agent.asl`
-        // from (the source path its unit-test runner sets).
-        let jar: Vec<PathBuf> = [
-            "jason-interpreter/src/main/resources",
-            "jason-interpreter/src",
-            "jason-interpreter/src/test/jason/inc",
-        ]
-        .iter()
-        .map(|p| dir.join(p))
-        .filter(|p| p.is_dir())
-        .collect();
         for path in asl_files(dir) {
             checked += 1;
-            let mut source_path: Vec<PathBuf> = path
-                .ancestors()
-                .skip(1)
-                .take_while(|a| a.starts_with(dir))
-                .map(Path::to_path_buf)
-                .collect();
-            source_path.extend(jar.iter().cloned());
+            let source_path = jason_source_path(dir, &path);
             let mut map = SourceMap::new();
             if let Err(diags) = load_agent_with(&path, &mut map, &source_path) {
                 let _ = writeln!(report, "{}", render_all(&diags, &map));
@@ -821,4 +805,698 @@ fn jason_examples_parse_unchanged() {
         eprintln!("parsed {checked} Jason agents");
     }
     assert!(report.is_empty(), "Jason's agents did not load:\n{report}");
+}
+
+// ----- (d) Jason's example agents in `verify` ----------------------------------------------
+
+/// What README.md says this test measures; the numbers follow it (`N of the M example and
+/// demo agents`). The README holds the figure and the test reads it from there, so there
+/// is one copy of it and the test fails when the text and the measurement disagree.
+const README_CLAIM: &str = "Given a PDDL stub of their actions,";
+
+/// The search bounds of each run: enough to load the agent and run its reasoning cycle,
+/// not to finish (a cut-short search is exit 3, which counts as accepted).
+const VERIFY_ARGS: &[&str] = &["--max-states", "2000", "--timeout", "10", "--threads", "1"];
+
+/// How long one `verify` may take before the test gives up on it (the bounds above end it
+/// long before, unless something hangs).
+const VERIFY_WALL: std::time::Duration = std::time::Duration::from_secs(120);
+
+#[test]
+fn jason_examples_in_verify_match_the_readme() {
+    // Every agent of the checkout's `examples/` and `demos/` gets a generated project (a
+    // PDDL stub of its environment, see `Stub`) and goes through `bdi-check verify`: it is
+    // accepted when it loads and runs (exit 0, 1 or 3), refused with exit 2.
+    let Some(root) = std::env::var_os("BDI_CHECK_JASON").map(PathBuf::from) else {
+        return;
+    };
+    let agents = jason_agents(&root);
+    assert!(
+        !agents.is_empty(),
+        "no agents under {}/examples and demos",
+        root.display()
+    );
+    let work = std::env::temp_dir().join(format!("bdi-check-jason-verify-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&work);
+    let started = std::time::Instant::now();
+    let mut accepted = Vec::new();
+    let mut refused: Vec<(PathBuf, String)> = Vec::new();
+    let mut broken = String::new();
+    for (i, path) in agents.iter().enumerate() {
+        let rel = path.strip_prefix(&root).unwrap_or(path);
+        let dir = work.join(format!("{i:03}"));
+        let source_path = jason_source_path(&root, path);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut map = SourceMap::new();
+        let agent = load_agent_with(path, &mut map, &source_path).unwrap_or_else(|d| {
+            panic!(
+                "{} does not parse:\n{}",
+                rel.display(),
+                render_all(&d, &map)
+            )
+        });
+        let stub = Stub::of(&agent);
+        std::fs::write(dir.join("stub.pddl"), stub.pddl(rel)).unwrap();
+        std::fs::write(
+            dir.join("bdi-check.toml"),
+            stub.manifest(rel, path, &source_path),
+        )
+        .unwrap();
+        match run_verify(&dir) {
+            Ok((code @ (0 | 1 | 3), _)) => accepted.push((rel.to_path_buf(), code)),
+            Ok((2, message)) => refused.push((rel.to_path_buf(), message)),
+            Ok((code, message)) => {
+                let _ = writeln!(
+                    broken,
+                    "{} (project {}): exit {code}: {message}",
+                    rel.display(),
+                    dir.display()
+                );
+            }
+            Err(e) => {
+                let _ = writeln!(broken, "{} (project {}): {e}", rel.display(), dir.display());
+            }
+        }
+    }
+
+    // The table: the accepted agents, then the refusals grouped by reason, most common first.
+    let mut groups: Vec<(String, Vec<&PathBuf>)> = Vec::new();
+    for (path, message) in &refused {
+        let reason = refusal_reason(message);
+        match groups.iter_mut().find(|(r, _)| *r == reason) {
+            Some((_, paths)) => paths.push(path),
+            None => groups.push((reason, vec![path])),
+        }
+    }
+    groups.sort_by(|a, b| b.1.len().cmp(&a.1.len()).then_with(|| a.0.cmp(&b.0)));
+    let mut table = format!(
+        "{} of {} agents accepted by `verify` ({:.1}s)\n",
+        accepted.len(),
+        agents.len(),
+        started.elapsed().as_secs_f64()
+    );
+    for (p, code) in &accepted {
+        let _ = writeln!(table, "  accepted (exit {code})  {}", p.display());
+    }
+    let _ = writeln!(table, "{} refused:", refused.len());
+    for (reason, paths) in &groups {
+        let _ = writeln!(table, "  {:3}  {reason}", paths.len());
+        for p in paths {
+            let _ = writeln!(table, "         {}", p.display());
+        }
+    }
+    eprint!("{table}");
+    for (path, message) in &refused {
+        eprintln!("refused {}: {message}", path.display());
+    }
+    assert!(
+        broken.is_empty(),
+        "bdi-check did not answer properly:\n{broken}"
+    );
+
+    let readme = read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"));
+    let (said, of) = readme_claim(&readme).unwrap_or_else(|| {
+        panic!("README.md has no `{README_CLAIM} N of the M example and demo agents`")
+    });
+    assert_eq!(
+        (said, of),
+        (accepted.len(), agents.len()),
+        "README.md says {said} of the {of} agents load in `verify`; measured {} of {}: update README.md (the projects are in {})",
+        accepted.len(),
+        agents.len(),
+        work.display()
+    );
+    let _ = std::fs::remove_dir_all(&work);
+}
+
+/// The source path Jason would give `path`: the folders above it up to the checkout (a
+/// project's `aslSourcePath`), then what `$jasonJar/...` names: the jar's sources
+/// (`src/main/resources`, `src` of the interpreter) and the folder Jason's own test agents
+/// take `tester_agent.asl` from (the source path its unit-test runner sets).
+fn jason_source_path(root: &Path, path: &Path) -> Vec<PathBuf> {
+    let mut out: Vec<PathBuf> = path
+        .ancestors()
+        .skip(1)
+        .take_while(|a| a.starts_with(root))
+        .map(Path::to_path_buf)
+        .collect();
+    out.extend(
+        [
+            "jason-interpreter/src/main/resources",
+            "jason-interpreter/src",
+            "jason-interpreter/src/test/jason/inc",
+        ]
+        .iter()
+        .map(|p| root.join(p))
+        .filter(|p| p.is_dir()),
+    );
+    out
+}
+
+/// The agents of `examples/` and `demos/`: every `.asl` there but those another one
+/// includes (`{ include("f.asl") }`, or `.include("f.asl")` at run time). Jason's projects
+/// name their agents in `.mas2j` files, which bdi-check does not read; in this checkout
+/// every file some other includes is a library of plans and no agent of a project.
+fn jason_agents(root: &Path) -> Vec<PathBuf> {
+    let files: Vec<PathBuf> = ["examples", "demos"]
+        .iter()
+        .map(|d| root.join(d))
+        .filter(|d| d.is_dir())
+        .flat_map(|d| asl_files(&d))
+        .collect();
+    let mut included = BTreeSet::new();
+    for path in &files {
+        let mut map = SourceMap::new();
+        let Ok(agent) = load_agent_with(path, &mut map, &jason_source_path(root, path)) else {
+            continue; // `jason_examples_parse_unchanged` reports it
+        };
+        for inc in &agent.included {
+            included.insert(canonical(&map.file(inc.file).path));
+        }
+        let dir = path.parent().unwrap_or(root);
+        for name in Stub::of(&agent).runtime_includes {
+            included.insert(canonical(&dir.join(name)));
+        }
+    }
+    files
+        .into_iter()
+        .filter(|p| !included.contains(&canonical(p)))
+        .collect()
+}
+
+fn canonical(p: &Path) -> PathBuf {
+    p.canonicalize().unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// Runs `bdi-check verify` on the project in `dir`: the exit code, and the first error's
+/// message (exit 2) or the start of stderr (an unexpected exit).
+fn run_verify(dir: &Path) -> Result<(i32, String), String> {
+    let report = dir.join("report.json");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_bdi-check"))
+        .arg("verify")
+        .arg(dir)
+        .args(["--format", "json", "-o"])
+        .arg(&report)
+        .args(VERIFY_ARGS)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot run bdi-check: {e}"))?;
+    let started = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().map_err(|e| e.to_string())? {
+            break s;
+        }
+        if started.elapsed() > VERIFY_WALL {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!("no answer in {}s", VERIFY_WALL.as_secs()));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let mut stderr = String::new();
+    if let Some(mut e) = child.stderr.take() {
+        let _ = std::io::Read::read_to_string(&mut e, &mut stderr);
+    }
+    let Some(code) = status.code() else {
+        return Err(format!("killed by a signal ({status}): {stderr}"));
+    };
+    let first_error = std::fs::read_to_string(&report)
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|r| {
+            r["findings"].as_array()?.iter().find_map(|f| {
+                (f["severity"] == "error" && f["check"] == "input")
+                    .then(|| f["message"].as_str().map(str::to_string))
+                    .flatten()
+            })
+        });
+    let message = match first_error {
+        Some(m) if code == 2 => m,
+        _ => stderr.lines().take(3).collect::<Vec<_>>().join(" | "),
+    };
+    Ok((code, message))
+}
+
+/// A refusal's reason, for grouping: an unmodelled internal action or function of Jason's
+/// by its name (a library's by its package, `.set.*`), the project's own (written in Java,
+/// no dot in front) together, and any other message with the names in backquotes left out.
+fn refusal_reason(message: &str) -> String {
+    const OWN: &str = "internal actions and functions in Java of the agent's own project";
+    if let Some(rest) = message.strip_prefix("internal action `") {
+        let name = rest.split('`').next().unwrap_or_default();
+        return match name.strip_prefix('.') {
+            Some(n) => match n.split_once('.') {
+                Some((lib, _)) => format!("internal action `.{lib}.*`"),
+                None => format!("internal action `{name}`"),
+            },
+            None => OWN.to_string(),
+        };
+    }
+    if let Some((name, _)) = message
+        .strip_prefix('`')
+        .and_then(|m| m.split_once("` is not an arithmetic function"))
+    {
+        return if name.starts_with("math.") || name == "system.time" {
+            format!("function `{name}`")
+        } else {
+            OWN.to_string()
+        };
+    }
+    let mut out = String::new();
+    for (i, part) in message.split('`').enumerate() {
+        out.push_str(if i % 2 == 0 { part } else { "…" });
+    }
+    // The explanation after the colon is the same for every name.
+    match out.split_once(": ") {
+        Some((reason, _)) => reason.to_string(),
+        None => out,
+    }
+}
+
+/// `N` and `M` of README's `Given a PDDL stub of their actions, N of the M example and demo
+/// agents`, whatever the line breaks.
+fn readme_claim(readme: &str) -> Option<(usize, usize)> {
+    let text = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let rest = &text[text.find(README_CLAIM)? + README_CLAIM.len()..];
+    let words: Vec<&str> = rest.split_whitespace().take(6).collect();
+    match words.as_slice() {
+        [n, "of", "the", m, "example", "and"] => Some((n.parse().ok()?, m.parse().ok()?)),
+        _ => None,
+    }
+}
+
+/// A stub of an agent's environment, read off its plans: what a project needs for
+/// `verify` to load the agent, and nothing that would hide a construct bdi-check refuses.
+///
+/// * every environment action its plans call, by name and with the arity of its first
+///   call, its parameters of type `object`, always possible and changing nothing;
+/// * every belief it reads (in a context, a rule, a condition, a trigger, a `.findall`,
+///   `.count` or `.wait`) but never adds itself: in Jason those come from the environment,
+///   so the stub declares them as PDDL predicates (percepts, false in every state);
+///   strongly negated `~p` gives `p` (unless `p` is a mental note); a belief only tested
+///   (`?b`) or deleted is left undeclared, as bdi-check does not need it to load;
+/// * an object for every atom in an argument of a belief, goal, rule or action, and
+///   `[bounds] numbers` spanning the integers there (`[bounds] random`, a few values, when
+///   a plan draws a random number);
+/// * `[requests]`: the goals it has plans for but never posts itself (in Jason another
+///   agent or the user asks for them), at most one per run. Initial goals are the agent's.
+#[derive(Default)]
+struct Stub {
+    /// Environment actions, name and arity, in order of first call.
+    actions: Vec<(String, usize)>,
+    /// Beliefs read (`~p` for a strongly negated one), name and arity, first read first.
+    reads: Vec<(String, usize)>,
+    /// Beliefs the agent adds (or believes initially).
+    added: BTreeSet<String>,
+    /// Rule heads.
+    rules: BTreeSet<String>,
+    /// Goals with a `+!g` plan, in order.
+    handled: Vec<(String, usize)>,
+    /// Goals the agent posts itself (subgoals, initial goals).
+    posted: BTreeSet<(String, usize)>,
+    objects: BTreeSet<String>,
+    /// The least and greatest integer argument.
+    ints: Option<(i64, i64)>,
+    /// Files loaded by `.include("f.asl")`.
+    runtime_includes: Vec<String>,
+    /// Whether a plan draws a random number (`.random(X)`, not from a list).
+    random: bool,
+}
+
+impl Stub {
+    fn of(agent: &bdi_check::syntax::LoadedAgent) -> Stub {
+        let mut s = Stub::default();
+        for item in agent.items() {
+            s.item(item);
+        }
+        s
+    }
+
+    /// The PDDL domain.
+    fn pddl(&self, agent: &Path) -> String {
+        let params = |n: usize| -> String { (1..=n).map(|i| format!(" ?x{i} - object")).collect() };
+        let mut out = format!(
+            ";; A stub of the environment of {} (generated by tests/corpus.rs): the actions it\n\
+             ;; calls, always possible and changing nothing; the beliefs it reads and never adds.\n\
+             (define (domain stub)\n  (:requirements :strips :typing)\n",
+            agent.display()
+        );
+        let percepts = self.percepts();
+        if !percepts.is_empty() {
+            out.push_str("  (:predicates");
+            for (name, n) in &percepts {
+                let _ = write!(out, "\n    ({name}{})", params(*n));
+            }
+            out.push_str(")\n");
+        }
+        for (name, n) in &self.actions {
+            let _ = writeln!(
+                out,
+                "  (:action {name} :parameters ({}) :precondition (and) :effect (and))",
+                params(*n).trim_start()
+            );
+        }
+        out.push_str(")\n");
+        out
+    }
+
+    /// `bdi-check.toml`, for the agent at `path` (absolute; `rel` names it).
+    fn manifest(&self, rel: &Path, path: &Path, source_path: &[PathBuf]) -> String {
+        let list = |items: &mut dyn Iterator<Item = String>| -> String {
+            items
+                .map(|s| format!("{s:?}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let mut out = format!(
+            "# A stub project for {} (generated by tests/corpus.rs).\n\n[agent]\nplans = {:?}\nactions = \"stub.pddl\"\nsource_path = [{}]\n",
+            rel.display(),
+            path.display().to_string(),
+            list(&mut source_path.iter().map(|p| p.display().to_string()))
+        );
+        if !self.objects.is_empty() {
+            let _ = write!(
+                out,
+                "\n[objects]\nobject = [{}]\n",
+                list(&mut self.objects.iter().cloned())
+            );
+        }
+        let requests: Vec<String> = self
+            .handled
+            .iter()
+            .filter(|g| !self.posted.contains(g))
+            .map(|(name, n)| {
+                if *n == 0 {
+                    name.clone()
+                } else {
+                    let vars: Vec<String> = (1..=*n).map(|i| format!("X{i}")).collect();
+                    format!("{name}({})", vars.join(", "))
+                }
+            })
+            .collect();
+        let _ = write!(
+            out,
+            "\n[requests]\ngoals = [{}]\nmax = {}\narrival = \"idle\"\n",
+            list(&mut requests.iter().cloned()),
+            usize::from(!requests.is_empty())
+        );
+        if self.ints.is_some() || self.random {
+            out.push_str("\n[bounds]\n");
+        }
+        if let Some((lo, hi)) = self.ints {
+            // The widest range bdi-check takes: a number beyond it is refused by bdi-check
+            // itself, where the agent has it.
+            let hi = hi.min(lo + bdi_check::syntax::manifest::MAX_NUMBERS - 1);
+            let _ = writeln!(out, "numbers = [{lo}, {hi}]");
+        }
+        if self.random {
+            // What `.random(X)` may give: the model needs a few values, any will load.
+            out.push_str("random = [0.0, 0.5, 0.9]\n");
+        }
+        out
+    }
+
+    /// The beliefs the stub declares as PDDL predicates.
+    fn percepts(&self) -> Vec<(String, usize)> {
+        let mut out: Vec<(String, usize)> = Vec::new();
+        for (name, n) in &self.reads {
+            let base = name.trim_start_matches('~');
+            let skip = self.added.contains(name)
+                || self.rules.contains(name)
+                || (base != name && (self.added.contains(base) || self.rules.contains(base)))
+                || base.starts_with('\'');
+            if !skip && !out.iter().any(|(p, _)| p == base) {
+                out.push((base.to_string(), *n));
+            }
+        }
+        out
+    }
+
+    fn item(&mut self, item: &Item) {
+        match item {
+            Item::Belief(b) => {
+                self.added.insert(b.literal.belief_name().into_owned());
+                self.args(&b.literal, true);
+            }
+            Item::Rule(r) => self.rule(r),
+            Item::InitialGoal(g) => {
+                self.posted
+                    .insert((g.literal.functor.clone(), g.literal.args.len()));
+                self.args(&g.literal, false);
+            }
+            Item::Plan(p) => self.plan(p),
+            Item::Directive(_) => {}
+        }
+    }
+
+    fn rule(&mut self, r: &Rule) {
+        self.rules.insert(r.head.belief_name().into_owned());
+        self.args(&r.head, false);
+        self.formula(&r.body, true);
+    }
+
+    fn plan(&mut self, p: &Plan) {
+        self.trigger(&p.trigger);
+        for c in [&p.context, &p.goal_condition].into_iter().flatten() {
+            self.formula(c, true);
+        }
+        if let Some(b) = p.jason_body() {
+            self.body(&b);
+        }
+        for sp in &p.sub_plans {
+            self.plan(sp);
+        }
+    }
+
+    fn trigger(&mut self, t: &Trigger) {
+        let ExprKind::Literal(l) = &t.literal.kind else {
+            return;
+        };
+        match t.kind {
+            TriggerKind::Achieve if t.op == TriggerOp::Add => {
+                let g = (l.functor.clone(), l.args.len());
+                if !self.handled.contains(&g) {
+                    self.handled.push(g);
+                }
+            }
+            TriggerKind::Belief => self.read(l),
+            _ => {}
+        }
+        self.args(l, t.kind == TriggerKind::Belief);
+    }
+
+    fn body(&mut self, b: &Body) {
+        for s in &b.steps {
+            self.step(s);
+        }
+    }
+
+    fn step(&mut self, s: &Step) {
+        let lit = |e: &Expr| match &e.kind {
+            ExprKind::Literal(l) => Some(l.clone()),
+            _ => None,
+        };
+        match &s.kind {
+            StepKind::Action(e) => match lit(e) {
+                Some(l) if l.is_internal_action() => self.internal(&l),
+                Some(l) => {
+                    if !self.actions.iter().any(|(a, _)| *a == l.functor) {
+                        self.actions.push((l.functor.clone(), l.args.len()));
+                    }
+                    self.args(&l, true);
+                }
+                None => {}
+            },
+            StepKind::Achieve(e) | StepKind::AchieveNewFocus(e) => {
+                if let Some(l) = lit(e) {
+                    self.posted.insert((l.functor.clone(), l.args.len()));
+                    self.args(&l, false);
+                }
+            }
+            StepKind::Test(e) => self.formula(e, false),
+            StepKind::AddBel(e)
+            | StepKind::AddBelEnd(e)
+            | StepKind::AddBelNewFocus(e)
+            | StepKind::DelAddBel(e) => match lit(e) {
+                Some(l) => {
+                    self.added.insert(l.belief_name().into_owned());
+                    self.args(&l, true);
+                }
+                None => self.term(e),
+            },
+            StepKind::DelBel(e) | StepKind::DelBelNewFocus(e) => match lit(e) {
+                Some(l) => self.args(&l, true),
+                None => self.term(e),
+            },
+            StepKind::Constraint(e) => self.formula(e, true),
+            StepKind::If {
+                branches,
+                else_body,
+            } => {
+                for (c, b) in branches {
+                    self.formula(c, true);
+                    self.body(b);
+                }
+                if let Some(b) = else_body {
+                    self.body(b);
+                }
+            }
+            StepKind::While { cond, body } | StepKind::For { cond, body } => {
+                self.formula(cond, true);
+                self.body(body);
+            }
+            StepKind::Fork { branches, .. } => branches.iter().for_each(|b| self.body(b)),
+            StepKind::Group(b) => self.body(b),
+        }
+    }
+
+    /// A logical formula; `reading`: its literals are belief queries (not in a test goal).
+    fn formula(&mut self, e: &Expr, reading: bool) {
+        match &e.kind {
+            ExprKind::Literal(l) if l.is_internal_action() => self.internal(l),
+            ExprKind::Literal(l) if matches!(l.functor.as_str(), "true" | "false") => {}
+            ExprKind::Literal(l) => {
+                if reading {
+                    self.read(l);
+                }
+                self.args(l, true);
+            }
+            ExprKind::Not(x) => self.formula(x, reading),
+            ExprKind::And(a, b) | ExprKind::Or(a, b) => {
+                self.formula(a, reading);
+                self.formula(b, reading);
+            }
+            _ => self.term(e),
+        }
+    }
+
+    /// A term: only the queries and plans inside it matter.
+    fn term(&mut self, e: &Expr) {
+        match &e.kind {
+            ExprKind::Literal(l) if l.functor == ".count" && l.args.len() == 1 => {
+                self.formula(&l.args[0], true)
+            }
+            ExprKind::Literal(l) if l.is_internal_action() => {
+                l.args.iter().for_each(|a| self.term(a))
+            }
+            ExprKind::Literal(l) => l.args.iter().for_each(|a| self.term(a)),
+            ExprKind::List(le) => {
+                le.elems.iter().for_each(|a| self.term(a));
+                if let Some(t) = &le.tail {
+                    self.term(t);
+                }
+            }
+            ExprKind::Unary(_, a) | ExprKind::Not(a) => self.term(a),
+            ExprKind::Arith(_, a, b)
+            | ExprKind::Rel(_, a, b)
+            | ExprKind::And(a, b)
+            | ExprKind::Or(a, b) => {
+                self.term(a);
+                self.term(b);
+            }
+            ExprKind::PlanTerm(pt) => match &pt.kind {
+                PlanTermKind::Plan(p) => self.plan(p),
+                PlanTermKind::Trigger(t) => self.trigger(t),
+                PlanTermKind::Body(b) => self.body(b),
+                PlanTermKind::Rule(r) => self.rule(r),
+            },
+            ExprKind::Var(_) | ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Str(_) => {}
+        }
+    }
+
+    /// An internal action: the queries among its arguments are reads.
+    fn internal(&mut self, l: &Literal) {
+        match (l.functor.as_str(), l.args.as_slice()) {
+            (".findall", [t, q, r]) => {
+                self.term(t);
+                self.formula(q, true);
+                self.term(r);
+            }
+            (".count", [q, n]) => {
+                self.formula(q, true);
+                self.term(n);
+            }
+            (".wait", args) => {
+                for a in args {
+                    match &a.kind {
+                        ExprKind::Literal(_)
+                        | ExprKind::Not(_)
+                        | ExprKind::And(..)
+                        | ExprKind::Or(..)
+                        | ExprKind::Rel(..) => self.formula(a, true),
+                        _ => self.term(a),
+                    }
+                }
+            }
+            (".random", [x, rest @ ..]) => {
+                self.random |= !matches!(x.kind, ExprKind::List(_));
+                self.term(x);
+                rest.iter().for_each(|a| self.term(a));
+            }
+            (".include", [f, ..]) => {
+                if let ExprKind::Str(name) = &f.kind {
+                    self.runtime_includes.push(name.clone());
+                }
+            }
+            (_, args) => args.iter().for_each(|a| self.term(a)),
+        }
+    }
+
+    fn read(&mut self, l: &Literal) {
+        let name = l.belief_name();
+        if !self.reads.iter().any(|(r, _)| *r == name) {
+            self.reads.push((name.into_owned(), l.args.len()));
+        }
+    }
+
+    /// The arguments of a belief, goal, rule head or action: their atoms are objects, also
+    /// inside lists and structures (from where the plans may pass them to an action); an
+    /// integer widens the numbers where bdi-check wants objects (`strict`: beliefs and
+    /// actions; a goal's or rule's argument may be any term).
+    fn args(&mut self, l: &Literal, strict: bool) {
+        for a in &l.args {
+            match &a.kind {
+                ExprKind::Int(i) if strict => self.int(*i),
+                ExprKind::Unary(UnaryOp::Neg, x) if strict => {
+                    if let ExprKind::Int(i) = x.kind {
+                        self.int(-i);
+                    }
+                }
+                _ => {
+                    self.atoms_in(a);
+                    self.term(a);
+                }
+            }
+        }
+    }
+
+    fn atoms_in(&mut self, e: &Expr) {
+        match &e.kind {
+            ExprKind::Literal(x) if x.is_internal_action() || x.functor.starts_with('\'') => {}
+            ExprKind::Literal(x)
+                if x.args.is_empty()
+                    && x.annots.is_none()
+                    && !x.negated
+                    && !matches!(x.functor.as_str(), "true" | "false") =>
+            {
+                self.objects.insert(x.functor.clone());
+            }
+            ExprKind::Literal(x) => x.args.iter().for_each(|a| self.atoms_in(a)),
+            ExprKind::List(le) => {
+                le.elems.iter().for_each(|a| self.atoms_in(a));
+                if let Some(t) = &le.tail {
+                    self.atoms_in(t);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn int(&mut self, i: i64) {
+        self.ints = Some(match self.ints {
+            Some((lo, hi)) => (lo.min(i), hi.max(i)),
+            None => (i, i),
+        });
+    }
 }
