@@ -198,6 +198,34 @@ pub struct Report {
     /// `merge` can check it has each part of one run exactly once.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shard: Option<Shard>,
+    /// The project's files the run read, each with its SHA-256, so `replay` can tell a
+    /// project that changed since from a report that was altered.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sources: Vec<Source>,
+}
+
+/// One file a report was made from.
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct Source {
+    /// How reports name it.
+    pub file: String,
+    /// The SHA-256 of its text, in hex.
+    pub sha256: String,
+}
+
+/// Every file of a loaded project, as [`Report::sources`] names them.
+pub fn sources_of(map: &SourceMap) -> Vec<Source> {
+    use sha2::Digest;
+    map.files()
+        .iter()
+        .map(|f| Source {
+            file: f.name.clone(),
+            sha256: sha2::Sha256::digest(f.text.as_bytes())
+                .iter()
+                .map(|b| format!("{b:02x}"))
+                .collect(),
+        })
+        .collect()
 }
 
 /// One part of a sharded run: the `index`-th (from 1) of `count`.
@@ -222,6 +250,7 @@ impl Report {
             stats: None,
             warnings: Vec::new(),
             shard: None,
+            sources: Vec::new(),
         }
     }
 }

@@ -382,6 +382,18 @@ fn merge_takes_each_shard_of_one_run_once() {
     }
     let out = bdi_check(&["merge", &a, &b]);
     assert!(matches!(out.status.code(), Some(0 | 1)));
+    // Shards made from different versions of the project are not one run.
+    let mut other: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&b).unwrap()).unwrap();
+    other["sources"][0]["sha256"] = serde_json::json!("0".repeat(64));
+    let changed = dir.join(format!(
+        "bdi-check-once-changed-{}.json",
+        std::process::id()
+    ));
+    std::fs::write(&changed, other.to_string()).expect("writable");
+    let out = bdi_check(&["merge", &a, changed.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("made from other files"));
 }
 
 #[test]

@@ -12,6 +12,17 @@
 //! intentions is round-robin, which is fair, so every loop of the graph is a run the agent
 //! can really take.
 
+/// The dynamic checks, by name.
+pub const CHECKS: &[&str] = &[
+    "invariant",
+    "property",
+    "action-failure",
+    "goal-failure",
+    "deadlock",
+    "livelock",
+    "request-not-completed",
+];
+
 pub mod explanation;
 pub mod explore;
 pub mod model;

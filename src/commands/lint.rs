@@ -53,7 +53,8 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
             }
         }
     }
-    let report = Report::new(name, findings.iter().map(|f| f.finding.clone()).collect());
+    let mut report = Report::new(name, findings.iter().map(|f| f.finding.clone()).collect());
+    report.sources = crate::findings::sources_of(&project.map);
     LintRun {
         report,
         map: project.map,

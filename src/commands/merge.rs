@@ -84,6 +84,12 @@ pub fn merge(reports: &[serde_json::Value]) -> Result<serde_json::Value, String>
                 project
             ));
         }
+        if r.get("sources") != first.get("sources") {
+            return Err(format!(
+                "report {} was made from other files than report 1 (the project changed between the shards): merge the shards of one run",
+                n + 1
+            ));
+        }
         for f in findings {
             let id = f
                 .get("id")

@@ -21,17 +21,43 @@ use std::path::Path;
 pub fn command(report: &Path, finding: Option<&str>) -> Output {
     match replay(report, finding) {
         Err((map, errs)) => Output::refused(crate::report::diagnostics(&errs, &map, false)),
-        Ok(results) => {
+        Ok(Replay { results, notice }) => {
             let reached = results.iter().any(|r| r.reached);
-            Output::report(render(&results), i32::from(reached))
+            let mut out = Output::report(render(&results), i32::from(reached));
+            out.stderr = notice;
+            out
         }
     }
+}
+
+/// The outcome of a replay: one result per finding, and what the user must know about
+/// the report (the project changed since it was made, or it says nothing of that).
+pub struct Replay {
+    /// One per replayed finding.
+    pub results: Vec<Replayed>,
+    /// For stderr; empty when the project is the one the report was made from.
+    pub notice: String,
 }
 
 #[derive(Deserialize)]
 struct ReportIn {
     project: String,
     findings: Vec<FindingIn>,
+    #[serde(default)]
+    tool: Option<ToolIn>,
+    #[serde(default)]
+    sources: Vec<SourceIn>,
+}
+
+#[derive(Deserialize)]
+struct ToolIn {
+    version: String,
+}
+
+#[derive(Deserialize)]
+struct SourceIn {
+    file: String,
+    sha256: String,
 }
 
 #[derive(Deserialize)]
@@ -73,7 +99,7 @@ struct StepIn {
 pub fn replay(
     report: &Path,
     finding: Option<&str>,
-) -> Result<Vec<Replayed>, (SourceMap, Vec<Diagnostic>)> {
+) -> Result<Replay, (SourceMap, Vec<Diagnostic>)> {
     let mut map = SourceMap::new();
     let bad =
         |msg: String| vec![Diagnostic::error("input", msg).in_file(report.display().to_string())];
@@ -98,8 +124,44 @@ pub fn replay(
             .with_label(Span::new(id, start, end), "here");
         (map.clone(), vec![d])
     })?;
+    if let Some(f) = r.findings.iter().find(|f| !known_check(&f.check)) {
+        return Err((
+            map,
+            bad(format!(
+                "the report's finding `{}` has the check `{}`, which bdi-check does not have: the report was altered, or made by another tool",
+                f.id, f.check
+            )),
+        ));
+    }
     let project = load_project(Path::new(&r.project)).map_err(|e| (e.map, e.diagnostics))?;
     let sem = Semantics::new(&project).map_err(|d| (project.map.clone(), d))?;
+    // What changed since the report: with its files' digests, an unchanged project must
+    // give back every run (a run that no longer reaches its violation on it means the
+    // report is not the one the project gave).
+    let now = crate::findings::sources_of(&project.map);
+    let changed: Vec<&str> = r
+        .sources
+        .iter()
+        .filter(|s| !now.iter().any(|n| n.file == s.file && n.sha256 == s.sha256))
+        .map(|s| s.file.as_str())
+        .chain(
+            now.iter()
+                .filter(|n| !r.sources.iter().any(|s| s.file == n.file))
+                .map(|n| n.file.as_str()),
+        )
+        .collect();
+    let unchanged = !r.sources.is_empty() && changed.is_empty();
+    let notice = if r.sources.is_empty() {
+        "note: the report does not name the files it was made from (an older bdi-check made it): whether the project changed since is not known\n".to_string()
+    } else if changed.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "note: the project changed since the report was made: {}\n",
+            changed.join(", ")
+        )
+    };
+    let version = r.tool.as_ref().map(|t| t.version.as_str());
     let selected: Vec<&FindingIn> = r
         .findings
         .iter()
@@ -122,10 +184,36 @@ pub fn replay(
             ));
         }
     }
-    Ok(selected
+    let results: Vec<Replayed> = selected
         .into_iter()
         .map(|f| replay_one(&project, &sem, f))
-        .collect())
+        .collect();
+    if unchanged {
+        if let Some(lost) = results.iter().find(|x| !x.reached) {
+            let other = match version {
+                Some(v) if v != env!("CARGO_PKG_VERSION") => {
+                    format!(" (it was made by bdi-check {v}; this is {})", env!("CARGO_PKG_VERSION"))
+                }
+                _ => String::new(),
+            };
+            return Err((
+                map,
+                bad(format!(
+                    "the report does not match the project it was made from: its files are unchanged, yet `{}` no longer reaches its violation ({}){other}; the report was altered",
+                    lost.id, lost.detail
+                )),
+            ));
+        }
+    }
+    Ok(Replay { results, notice })
+}
+
+/// Whether a check name is one of bdi-check's.
+fn known_check(name: &str) -> bool {
+    crate::smt::lint::CHECKS.contains(&name)
+        || crate::check::explanation::CHECKS.contains(&name)
+        || crate::check::CHECKS.contains(&name)
+        || name == "input"
 }
 
 /// Whether a finding comes with a run that reaches its violation, or why not: a note
@@ -139,18 +227,26 @@ fn has_run(f: &FindingIn) -> Result<(), &'static str> {
     if f.counterexample.is_none() {
         return Err("it has no counterexample (a static finding)");
     }
-    match f.severity.as_str() {
-        "note" => Err("it is a note: no run reaches it"),
-        "error" | "" => Ok(()),
-        _ if STATIC_WITNESSES.contains(&f.check.as_str()) => Err(
-            "its counterexample is a state the static checks found, which no run was seen to reach",
-        ),
-        _ => Ok(()),
+    if f.severity == "note" {
+        return Err("it is a note: no run reaches it");
     }
+    let check = f.check.as_str();
+    let steps = f.counterexample.as_ref().map_or(0, |c| c.steps.len());
+    if STATIC_WITNESSES.contains(&check) {
+        // Lint's own witness is a state (no steps); a run `verify` saw has steps.
+        if f.severity != "error" || steps == 0 {
+            return Err(
+                "its counterexample is a state the static checks found, which no run was seen to reach",
+            );
+        }
+    } else if crate::smt::lint::CHECKS.contains(&check) {
+        return Err("it is a static finding: its counterexample is a state, not a run");
+    }
+    Ok(())
 }
 
-/// Static checks whose counterexample is a run only once `verify` saw one reach it (the
-/// finding is then an error).
+/// Static checks whose counterexample is a run once `verify` saw one reach it (the
+/// finding is then an error, and its counterexample has steps).
 const STATIC_WITNESSES: &[&str] = &["precondition", "coverage-gap", "action-breaks-invariant"];
 
 fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {

@@ -102,6 +102,7 @@ pub fn run(
                 }
             }
             report.stats = Some(v.stats);
+            report.sources = crate::findings::sources_of(&project.map);
             report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
             VerifyRun {
                 report,
