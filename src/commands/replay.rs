@@ -192,7 +192,10 @@ pub fn replay(
         if let Some(lost) = results.iter().find(|x| !x.reached) {
             let other = match version {
                 Some(v) if v != env!("CARGO_PKG_VERSION") => {
-                    format!(" (it was made by bdi-check {v}; this is {})", env!("CARGO_PKG_VERSION"))
+                    format!(
+                        " (it was made by bdi-check {v}; this is {})",
+                        env!("CARGO_PKG_VERSION")
+                    )
                 }
                 _ => String::new(),
             };
@@ -296,7 +299,15 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
     // agent run on (as far as the recorded run went, plus a loop's length) to see whether
     // the violation still happens.
     let budget = recorded.len() + loop_len + 64;
-    for _ in 0..budget {
+    let next = |s: &State| -> Vec<(Vec<Note>, State)> {
+        sem.successors(s)
+            .into_iter()
+            .map(|t| (t.notes, t.next))
+            .collect()
+    };
+    let run = find_run(&state, &recorded, &next, &|n| shown(project, sem, n));
+    let budget = budget + run.as_ref().map_or(0, Vec::len);
+    for turn in 0..budget {
         if check.settles(&state) {
             return no("the property now holds on this run");
         }
@@ -329,10 +340,15 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
             break;
         }
         let at = builder.steps().len();
-        let pick = succ
-            .iter()
-            .position(|t| follows(project, sem, &t.notes, &recorded[at.min(recorded.len())..]))
-            .unwrap_or(0);
+        let pick = match run.as_ref().and_then(|r| r.get(turn)) {
+            Some(&k) => k,
+            // The recorded run is over, or the project no longer gives it: follow it as
+            // far as it goes, then the first successor.
+            None => succ
+                .iter()
+                .position(|t| follows(project, sem, &t.notes, &recorded[at.min(recorded.len())..]))
+                .unwrap_or(0),
+        };
         let t = &succ[pick];
         if t.notes.iter().any(|n| check.note_violates(n, project)) {
             builder.push(t.notes.clone());
@@ -392,23 +408,34 @@ fn replay_explained(
     let place = f.location.as_ref().map(|l| (l.file.as_str(), l.line));
     let mut builder = Builder::new(project, sem);
     let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
-    for _ in 0..recorded.len() + 64 {
+    let next = |s: &crate::check::explanation::ExplainedState| {
+        model
+            .next_states(s)
+            .into_iter()
+            .map(|(step, t)| (step.notes, t))
+            .collect::<Vec<_>>()
+    };
+    let run = find_run(&state, &recorded, &next, &|n| shown(project, sem, n));
+    for turn in 0..recorded.len() + 64 + run.as_ref().map_or(0, Vec::len) {
         let succ = model.next_states(&state);
         if succ.is_empty() {
             break;
         }
         let at = builder.steps().len();
-        let pick = succ
-            .iter()
-            .position(|(step, _)| {
-                follows(
-                    project,
-                    sem,
-                    &step.notes,
-                    &recorded[at.min(recorded.len())..],
-                )
-            })
-            .unwrap_or(0);
+        let pick = match run.as_ref().and_then(|r| r.get(turn)) {
+            Some(&k) => k,
+            None => succ
+                .iter()
+                .position(|(step, _)| {
+                    follows(
+                        project,
+                        sem,
+                        &step.notes,
+                        &recorded[at.min(recorded.len())..],
+                    )
+                })
+                .unwrap_or(0),
+        };
         let (step, next) = succ.into_iter().nth(pick).expect("a successor was picked");
         builder.push(step.notes.clone());
         let hit = step.violations.iter().any(|v| {
@@ -429,6 +456,70 @@ fn replay_explained(
         }
     }
     no("the run no longer reaches the violation")
+}
+
+/// Most transitions in a row that show no step (a cycle whose act only posts a subgoal,
+/// say) which a recorded run may hide between two of its steps.
+const MAX_SILENT: usize = 4;
+
+/// A state's successors with their notes.
+type Next<'a, S> = &'a dyn Fn(&S) -> Vec<(Vec<Note>, S)>;
+/// The steps notes show, as `(kind, text)`.
+type Shown<'a> = &'a dyn Fn(&[Note]) -> Vec<(&'static str, String)>;
+
+/// The successor to take at each transition so that the run shows exactly the recorded
+/// steps, silent transitions taken where the recording hides them (a depth-first search:
+/// a request and a silent cycle may both fit the next step, and only the rest of the run
+/// tells them apart). `None` when the project no longer gives that run.
+fn find_run<S: Clone>(
+    start: &S,
+    recorded: &[(&str, &str)],
+    next: Next<'_, S>,
+    shown: Shown<'_>,
+) -> Option<Vec<usize>> {
+    fn go<S: Clone>(
+        s: &S,
+        pos: usize,
+        silent: usize,
+        recorded: &[(&str, &str)],
+        next: Next<'_, S>,
+        shown: Shown<'_>,
+        path: &mut Vec<usize>,
+    ) -> bool {
+        if pos == recorded.len() {
+            return true;
+        }
+        for (k, (notes, t)) in next(s).into_iter().enumerate() {
+            let steps = shown(&notes);
+            let fits = steps.len() <= recorded.len() - pos
+                && steps
+                    .iter()
+                    .zip(&recorded[pos..])
+                    .all(|((a, b), (c, d))| a == c && b == d);
+            if !fits || (steps.is_empty() && silent == MAX_SILENT) {
+                continue;
+            }
+            path.push(k);
+            let silent = if steps.is_empty() { silent + 1 } else { 0 };
+            if go(&t, pos + steps.len(), silent, recorded, next, shown, path) {
+                return true;
+            }
+            path.pop();
+        }
+        false
+    }
+    let mut path = Vec::new();
+    go(start, 0, 0, recorded, next, shown, &mut path).then_some(path)
+}
+
+/// The steps notes show, as `(kind, text)`.
+fn shown(project: &Project, sem: &Semantics, notes: &[Note]) -> Vec<(&'static str, String)> {
+    let mut b = Builder::new(project, sem);
+    b.push(notes.to_vec());
+    b.steps()
+        .iter()
+        .map(|s| (kind_name(s.kind), s.text.clone()))
+        .collect()
 }
 
 /// Whether a transition's notes render as the next recorded steps (`(kind, text)`).
