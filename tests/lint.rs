@@ -329,14 +329,19 @@ fn human_output_shows_the_plan_under_the_message() {
         "{out}"
     );
     assert!(out.contains("  state: robotAt(table), holding(none), cupAt(cup1,table), used(cup1), dishwasherDoor(open)"), "{out}");
-    assert!(
-        out.contains("note[unused-action]: no plan calls the action `wipe`"),
-        "{out}"
-    );
+    // Notes only with `-v`; without, a line says how many there are. Warnings come
+    // before notes.
+    assert!(!out.contains("note[unused-action]"), "{out}");
+    assert!(out.contains(" notes not shown (`-v` shows them)"), "{out}");
     assert!(!out.contains("passed["), "{out}");
     let verbose =
         String::from_utf8_lossy(&bdi_check(&["lint", "specs/paper", "-v"]).stdout).into_owned();
     assert!(verbose.contains("passed[dead-plan]"), "{verbose}");
+    let note = verbose
+        .find("note[unused-action]: no plan calls the action `wipe`")
+        .expect("the note with -v");
+    let warning = verbose.find("warning[coverage-gap]").expect("the warning");
+    assert!(warning < note, "{verbose}");
 }
 
 #[test]

@@ -800,3 +800,25 @@ fn replay_tells_a_changed_project_from_an_altered_report() {
     assert!(out.contains("no longer reaches"), "{out}");
     assert_eq!(code, 1, "the paper's demand finding is left: {out}");
 }
+
+#[test]
+fn the_human_report_puts_errors_first_and_notes_behind_v() {
+    let o = bdi_check(&["verify", "specs/kitchen"]);
+    assert_eq!(o.status.code(), Some(0));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(!out.contains("note["), "{out}");
+    assert!(out.contains("notes not shown (`-v` shows them)"), "{out}");
+    assert!(
+        out.lines().last().unwrap().starts_with("verdict: pass"),
+        "{out}"
+    );
+    let o = bdi_check(&["verify", "specs/paper", "-v"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    let first = |what: &str| out.find(what).unwrap_or_else(|| panic!("{what}: {out}"));
+    assert!(first("error[") < first("note["), "{out}");
+    // A note is not a run: it says so instead of showing a "counterexample".
+    assert!(
+        out.contains("a state where this holds, which no run reaches: "),
+        "{out}"
+    );
+}

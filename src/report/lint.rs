@@ -41,7 +41,15 @@ pub fn render(run: &LintRun, format: Format, detail: Detail, color: bool) -> (St
 pub fn render_human(run: &LintRun, detail: Detail, color: bool) -> String {
     let mut out = String::new();
     if detail != Detail::Quiet {
-        for f in &run.findings {
+        let verbose = detail == Detail::Verbose;
+        let mut shown: Vec<&LintFinding> = run
+            .findings
+            .iter()
+            .filter(|f| verbose || super::verify::rank(&f.finding) < 2)
+            .collect();
+        // Errors first, then warnings; notes and passes only with `-v`.
+        shown.sort_by_key(|f| super::verify::rank(&f.finding));
+        for f in shown {
             match f.finding.status {
                 Status::Pass if detail == Detail::Verbose => {
                     let p = &f.finding;
@@ -58,6 +66,14 @@ pub fn render_human(run: &LintRun, detail: Detail, color: bool) -> String {
                     out.push('\n');
                 }
             }
+        }
+        let hidden = run
+            .findings
+            .iter()
+            .filter(|f| super::verify::rank(&f.finding) == 2)
+            .count();
+        if hidden > 0 && !verbose {
+            out.push_str(&super::verify::hidden_notes(hidden));
         }
     }
     out.push_str(&summary(&run.report));

@@ -102,6 +102,11 @@ fn result(f: &Finding, rule_index: usize, project: &str) -> Value {
         // SARIF §3.27.9-10: an undecided check is `kind: open`, whose level must be `none`.
         r["kind"] = json!("open");
         r["level"] = json!("none");
+    } else if f.severity == Severity::Note {
+        // A note fails nothing (a warning no run reaches, an unused action): informational,
+        // so that code scanning opens no alert on a correct library.
+        r["kind"] = json!("informational");
+        r["level"] = json!("none");
     } else {
         r["kind"] = json!("fail");
         r["level"] = json!(level(f.severity));

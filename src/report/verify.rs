@@ -43,13 +43,21 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
     if detail != Detail::Quiet {
         out.push_str(&super::diagnostics(&run.diagnostics, &run.map, color));
         if run.diagnostics.is_empty() {
-            for f in &r.findings {
-                let shown = f.status != Status::Pass || detail == Detail::Verbose;
-                if !shown {
-                    continue;
-                }
+            let verbose = detail == Detail::Verbose;
+            let mut shown: Vec<&Finding> = r
+                .findings
+                .iter()
+                .filter(|f| verbose || rank(f) < 2)
+                .collect();
+            // Errors first, then warnings; notes and passes only with `-v`.
+            shown.sort_by_key(|f| rank(f));
+            for f in shown {
                 out.push_str(&render_finding(f, &run.map, color));
                 out.push('\n');
+            }
+            let hidden = r.findings.iter().filter(|f| rank(f) == 2).count();
+            if hidden > 0 && !verbose {
+                out.push_str(&hidden_notes(hidden));
             }
         }
         if let Some(s) = &r.stats {
@@ -61,6 +69,23 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
     }
     out.push_str(&summary(r));
     out
+}
+
+/// Where a finding goes in the human report: 0 failing errors, 1 failing warnings and
+/// undecided checks, 2 notes, 3 passes.
+pub fn rank(f: &Finding) -> u8 {
+    match (f.status, f.severity) {
+        (Status::Fail, Severity::Error) => 0,
+        (Status::Fail, Severity::Warning) | (Status::Unknown, _) => 1,
+        (Status::Fail, Severity::Note) => 2,
+        (Status::Pass, _) => 3,
+    }
+}
+
+/// The line that says how many notes `-v` would show.
+pub fn hidden_notes(n: usize) -> String {
+    let s = if n == 1 { "" } else { "s" };
+    format!("{n} note{s} not shown (`-v` shows them)\n")
 }
 
 fn render_finding(f: &Finding, map: &SourceMap, color: bool) -> String {
@@ -96,7 +121,15 @@ fn render_finding(f: &Finding, map: &SourceMap, color: bool) -> String {
     };
     if f.status == Status::Fail {
         if let Some(c) = &f.counterexample {
-            out.push_str(&render_counterexample(c));
+            if f.severity == Severity::Note {
+                // No run reaches it: the state is lint's example, not a run's end.
+                out.push_str(&format!(
+                    "  a state where this holds, which no run reaches: {}\n",
+                    c.initial.join(", ")
+                ));
+            } else {
+                out.push_str(&render_counterexample(c));
+            }
         }
     }
     out
