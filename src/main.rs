@@ -137,6 +137,9 @@ enum Command {
         /// with `bdi-check merge`).
         #[arg(long, value_name = "K/N", value_parser = parse_shard)]
         shard: Option<(u32, u32)>,
+        /// `--deny warnings`: failing warnings (static warnings no run settled) fail the run.
+        #[arg(long, value_name = "LEVEL", value_parser = ["warnings"])]
+        deny: Option<String>,
         #[command(flatten)]
         out: Output,
     },
@@ -225,6 +228,7 @@ fn main() -> ExitCode {
             threads,
             no_symmetry,
             shard,
+            deny,
             out,
         } => {
             let bar = Progress::new();
@@ -240,6 +244,7 @@ fn main() -> ExitCode {
                 max_states,
                 max_depth,
                 timeout,
+                deny_warnings: deny.is_some(),
             };
             let done = commands::verify::command(
                 &project,

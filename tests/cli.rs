@@ -444,3 +444,43 @@ fn an_input_larger_than_bdi_check_reads_is_refused_where_it_is_named() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn an_agent_given_as_the_project_is_named_for_what_it_is() {
+    let o = bdi_check(&["verify", "specs/kitchen/kitchen.asl"]);
+    assert_eq!(o.status.code(), Some(2));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("`specs/kitchen/kitchen.asl` is not a project: PROJECT is a folder holding a `bdi-check.toml`"),
+        "{out}"
+    );
+    assert!(!out.contains("TOML"), "{out}");
+}
+
+#[test]
+fn quiet_still_shows_bad_input() {
+    let o = bdi_check(&["verify", "tests/project/unknown_type", "-q"]);
+    assert_eq!(o.status.code(), Some(2));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("`mug` is not a type of the PDDL domain"),
+        "{out}"
+    );
+}
+
+#[test]
+fn verify_denies_warnings_as_lint_does() {
+    // The counter's coverage gap is a warning no run settles (the search is cut short).
+    let o = bdi_check(&["verify", "tests/verify/counter_beyond", "-q"]);
+    assert_eq!(o.status.code(), Some(3));
+    let o = bdi_check(&[
+        "verify",
+        "tests/verify/counter_beyond",
+        "-q",
+        "--deny",
+        "warnings",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let o = bdi_check(&["verify", "specs/kitchen", "-q", "--deny", "warnings"]);
+    assert_eq!(o.status.code(), Some(0));
+}

@@ -309,7 +309,13 @@ fn check_junit(doc: &str, report: &serde_json::Value, suite: &str) {
     let suites: Vec<_> = elements.iter().filter(|e| e.0 == "testsuite").collect();
     assert_eq!(suites.len(), 1);
     let s = suites[0];
-    assert_eq!(attr(s, "name"), suite);
+    // Suites are named by project, so documents of several projects merge apart.
+    let name = format!("{suite} {}", report["project"].as_str().unwrap())
+        .replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;");
+    assert_eq!(attr(s, "name"), name);
     assert_eq!(attr(s, "tests"), count("testcase").to_string());
     assert_eq!(count("testcase"), findings.len());
     assert_eq!(attr(s, "failures"), count("failure").to_string());

@@ -23,6 +23,8 @@ pub struct Bounds {
     pub max_depth: Option<u64>,
     /// `--timeout`, in seconds.
     pub timeout: Option<f64>,
+    /// `--deny warnings`: failing warnings (static warnings no run settled) are errors.
+    pub deny_warnings: bool,
 }
 
 /// `verify PROJECT`: the report, and one scenario file per counterexample into
@@ -36,7 +38,10 @@ pub fn command(
     style: &Style,
     progress: impl FnMut(usize, u32, f64),
 ) -> Output {
-    let run = run(project, bounds, opts, progress);
+    let mut run = run(project, bounds, opts, progress);
+    if bounds.deny_warnings {
+        deny_warnings(&mut run.report);
+    }
     if let Some(dir) = scenarios {
         if let Err(e) = write_scenarios(&run.report, dir) {
             return Output::refused(format!(
@@ -53,6 +58,21 @@ pub fn command(
         (None, Format::Human) => render_human(&run, style.detail, style.color),
     };
     Output::report(text, run.report.verdict.exit_code())
+}
+
+/// `--deny warnings`, as rustc's `-D warnings`: a failing warning is an error, and fails
+/// the verdict.
+fn deny_warnings(report: &mut Report) {
+    for f in &mut report.findings {
+        if f.status == crate::findings::Status::Fail
+            && f.severity == crate::syntax::Severity::Warning
+        {
+            f.severity = crate::syntax::Severity::Error;
+        }
+    }
+    if crate::findings::verdict_of(&report.findings) == Verdict::Fail {
+        report.verdict = Verdict::Fail;
+    }
 }
 
 /// The limits of a project's search: the manifest's `[bounds]`, overridden by options.

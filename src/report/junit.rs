@@ -34,7 +34,8 @@ fn outcome(f: &Finding) -> Outcome {
 }
 
 /// The report of `command` (`lint` or `verify`) as a JUnit XML document with one
-/// `<testsuite name="bdi-check COMMAND">`.
+/// `<testsuite name="bdi-check COMMAND PROJECT">`: suites of several projects merged into
+/// one document stay apart.
 pub fn render(report: &Report, command: &str) -> String {
     let outcomes: Vec<Outcome> = report.findings.iter().map(outcome).collect();
     let count = |o: Outcome| outcomes.iter().filter(|x| **x == o).count();
@@ -44,11 +45,12 @@ pub fn render(report: &Report, command: &str) -> String {
         count(Outcome::Error),
         count(Outcome::Skipped),
     );
-    let suite = format!("bdi-check {command}");
+    let tool = format!("bdi-check {command}");
+    let suite = format!("{tool} {}", report.project);
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     out.push_str(&format!(
         "<testsuites name=\"{}\" tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\" skipped=\"{skipped}\">\n",
-        attr(&suite)
+        attr(&tool)
     ));
     out.push_str(&format!(
         "  <testsuite name=\"{}\" tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\" skipped=\"{skipped}\">\n",

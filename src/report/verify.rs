@@ -40,8 +40,9 @@ pub fn collision_probability(n: usize) -> f64 {
 pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
     let mut out = String::new();
     let r = &run.report;
+    // Bad input is always shown, even with `-q`: the verdict alone does not say what to fix.
+    out.push_str(&super::diagnostics(&run.diagnostics, &run.map, color));
     if detail != Detail::Quiet {
-        out.push_str(&super::diagnostics(&run.diagnostics, &run.map, color));
         if run.diagnostics.is_empty() {
             let verbose = detail == Detail::Verbose;
             let mut shown: Vec<&Finding> = r

@@ -69,6 +69,26 @@ pub fn load_manifest(path: &Path, map: &mut SourceMap) -> Result<Manifest, Vec<D
         }
         p
     } else {
+        // An agent or a domain given for the project: say what PROJECT is, rather than
+        // report its text as broken TOML.
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if path.is_file() && ["asl", "mas2j", "pddl"].contains(&ext) {
+            return Err(vec![Diagnostic::error(
+                "input",
+                format!(
+                    "`{}` is not a project: PROJECT is a folder holding a `{MANIFEST_NAME}`, or that `{MANIFEST_NAME}` itself",
+                    path.display()
+                ),
+            )
+            .in_file(path.display().to_string())
+            .with_help(format!(
+                "name the folder (`{}`), whose `{MANIFEST_NAME}` lists the agent and its PDDL domain",
+                path.parent()
+                    .map(|d| d.display().to_string())
+                    .filter(|d| !d.is_empty())
+                    .unwrap_or_else(|| ".".into())
+            ))]);
+        }
         path.to_path_buf()
     };
     let file = read_into(&file_path, map)?;
