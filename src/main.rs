@@ -27,8 +27,23 @@ fn seconds(s: &str) -> Result<f64, String> {
 #[derive(Parser, Debug)]
 #[command(name = "bdi-check", version, about, long_about = None)]
 struct Cli {
+    /// When to colour the output: `auto` does for a terminal, unless `NO_COLOR` is set or
+    /// `TERM=dumb` (`CLICOLOR_FORCE` forces it).
+    #[arg(long, global = true, value_enum, default_value = "auto")]
+    color: ColorArg,
     #[command(subcommand)]
     command: Command,
+}
+
+/// `--color`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum ColorArg {
+    /// For a terminal, as the environment allows.
+    Auto,
+    /// Always.
+    Always,
+    /// Never.
+    Never,
 }
 
 /// Output formats.
@@ -81,7 +96,7 @@ impl Output {
             format,
             ci,
             detail,
-            color: self.output.is_none() && std::io::stdout().is_terminal(),
+            color: self.output.is_none() && stdout_color(),
             stderr_color: stderr_color(),
         }
     }
@@ -206,6 +221,11 @@ fn main() -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
+    anstream::ColorChoice::write_global(match cli.color {
+        ColorArg::Auto => anstream::ColorChoice::Auto,
+        ColorArg::Always => anstream::ColorChoice::Always,
+        ColorArg::Never => anstream::ColorChoice::Never,
+    });
     let (done, output) = match cli.command {
         Command::Parse {
             files,
@@ -307,8 +327,14 @@ fn main() -> ExitCode {
     }
 }
 
+// Whether a stream gets colour: `--color`, set as anstream's global choice, with the
+// environment's `NO_COLOR`, `CLICOLOR_FORCE` and `TERM` under `auto`.
+fn stdout_color() -> bool {
+    anstream::AutoStream::choice(&std::io::stdout()) != anstream::ColorChoice::Never
+}
+
 fn stderr_color() -> bool {
-    std::io::stderr().is_terminal()
+    anstream::AutoStream::choice(&std::io::stderr()) != anstream::ColorChoice::Never
 }
 
 /// Parses `K/N` with `1 <= K <= N`.

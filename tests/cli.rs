@@ -484,3 +484,31 @@ fn verify_denies_warnings_as_lint_does() {
     let o = bdi_check(&["verify", "specs/kitchen", "-q", "--deny", "warnings"]);
     assert_eq!(o.status.code(), Some(0));
 }
+
+#[test]
+fn colour_follows_the_flag_and_the_environment() {
+    let run = |args: &[&str], env: &[(&str, &str)]| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_bdi-check"));
+        c.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
+        c.env_remove("NO_COLOR")
+            .env_remove("CLICOLOR_FORCE")
+            .env_remove("CLICOLOR");
+        for (k, v) in env {
+            c.env(k, v);
+        }
+        let o = c.output().expect("runs");
+        String::from_utf8_lossy(&o.stdout).contains('\u{1b}')
+    };
+    let paper = ["verify", "specs/paper"];
+    assert!(run(&[&paper[..], &["--color", "always"]].concat(), &[]));
+    assert!(!run(&[&paper[..], &["--color", "never"]].concat(), &[]));
+    // Not a terminal: no colour, unless forced; `NO_COLOR` wins.
+    assert!(!run(&paper, &[]));
+    assert!(run(&paper, &[("CLICOLOR_FORCE", "1")]));
+    assert!(!run(&paper, &[("CLICOLOR_FORCE", "1"), ("NO_COLOR", "1")]));
+    // A report written to a file never holds escapes.
+    let dir = std::env::temp_dir().join(format!("bdi-check-colour-{}.txt", std::process::id()));
+    let f = dir.to_str().unwrap();
+    run(&[&paper[..], &["--color", "always", "-o", f]].concat(), &[]);
+    assert!(!std::fs::read_to_string(&dir).unwrap().contains('\u{1b}'));
+}

@@ -76,7 +76,11 @@ pub fn render_human(run: &LintRun, detail: Detail, color: bool) -> String {
             out.push_str(&super::verify::hidden_notes(hidden));
         }
     }
-    out.push_str(&summary(&run.report));
+    out.push_str(&super::verify::paint_verdict(
+        &summary(&run.report),
+        run.report.verdict,
+        color,
+    ));
     out
 }
 

@@ -141,7 +141,9 @@ impl Diagnostic {
         }
         out.push_str(&format!(
             "{}[{}]: {}\n",
-            self.severity, self.code, self.message
+            paint(&self.severity.to_string(), self.severity, color),
+            self.code,
+            self.message
         ));
         if let Some(span) = self.span {
             if let Some(file) = map.get(span.file) {
@@ -152,6 +154,20 @@ impl Diagnostic {
         }
         out
     }
+}
+
+/// `text` in the colour of `severity` (bold red, yellow, cyan), when colour is on.
+pub fn paint(text: &str, severity: Severity, color: bool) -> String {
+    if !color {
+        return text.to_string();
+    }
+    let c = match severity {
+        Severity::Error => anstyle::AnsiColor::Red,
+        Severity::Warning => anstyle::AnsiColor::Yellow,
+        Severity::Note => anstyle::AnsiColor::Cyan,
+    };
+    let style = anstyle::Style::new().bold().fg_color(Some(c.into()));
+    format!("{style}{text}{style:#}")
 }
 
 impl fmt::Display for Diagnostic {
