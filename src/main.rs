@@ -35,6 +35,15 @@ struct Cli {
     command: Command,
 }
 
+/// `merge --format`: the merged report is JSON (or its human summary).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum MergeFormat {
+    /// The failing findings and the verdict line.
+    Human,
+    /// The merged report.
+    Json,
+}
+
 /// `--color`.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum ColorArg {
@@ -163,9 +172,10 @@ enum Command {
         /// The JSON reports, one per shard.
         #[arg(required = true)]
         reports: Vec<PathBuf>,
-        /// Output format (`human`: the verdict line; `json`: the merged report).
+        /// Output format (`human`: the failing findings and the verdict line; `json`: the
+        /// merged report, which `lint`/`verify`'s SARIF and JUnit are made from).
         #[arg(long, value_enum, default_value = "json")]
-        format: FormatArg,
+        format: MergeFormat,
         /// Write the merged report to this file instead of stdout.
         #[arg(short = 'o', long = "output")]
         output: Option<PathBuf>,
@@ -307,11 +317,8 @@ fn main() -> ExitCode {
             output,
         } => {
             let done = match format {
-                FormatArg::Json => commands::merge::command(&reports, Format::Json),
-                FormatArg::Human => commands::merge::command(&reports, Format::Human),
-                FormatArg::Sarif | FormatArg::Junit => {
-                    commands::Output::refused("error: `merge` writes `human` or `json`\n".into())
-                }
+                MergeFormat::Json => commands::merge::command(&reports, Format::Json),
+                MergeFormat::Human => commands::merge::command(&reports, Format::Human),
             };
             (done, output)
         }

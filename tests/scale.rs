@@ -421,3 +421,29 @@ fn bad_shards_and_merges_are_refused() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("one project"));
 }
+
+#[test]
+fn merge_in_human_lists_the_failing_findings() {
+    let dir = std::env::temp_dir();
+    let shard = |k: u32| {
+        let (r, _) = verify_json(Path::new("specs/paper"), &["--shard", &format!("{k}/2")]);
+        let f = dir.join(format!("bdi-check-human-{k}-{}.json", std::process::id()));
+        std::fs::write(&f, r.to_string()).expect("writable");
+        f.to_str().expect("UTF-8").to_string()
+    };
+    let (a, b) = (shard(1), shard(2));
+    let out = bdi_check(&["merge", &a, &b, "--format", "human"]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("specs/paper/paper.asl:12:7: error[goal-failure]: "),
+        "{text}"
+    );
+    assert!(
+        text.lines().last().unwrap().starts_with("verdict: fail"),
+        "{text}"
+    );
+    // Only the formats merge writes are offered.
+    let out = bdi_check(&["merge", &a, &b, "--format", "sarif"]);
+    assert_eq!(out.status.code(), Some(2));
+}

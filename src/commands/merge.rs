@@ -34,11 +34,32 @@ pub fn command(reports: &[PathBuf], format: Format) -> Output {
             };
             let text = match format {
                 Format::Json => serde_json::to_string_pretty(&merged).unwrap_or_default() + "\n",
-                Format::Human => format!(
-                    "verdict: {verdict} (merged {} reports, {} checks)\n",
-                    reports.len(),
-                    merged["findings"].as_array().map_or(0, |f| f.len())
-                ),
+                Format::Human => {
+                    // The failing errors, one line each, then the verdict.
+                    let mut out = String::new();
+                    for f in merged["findings"].as_array().into_iter().flatten() {
+                        if f["status"] != "fail" || f["severity"] != "error" {
+                            continue;
+                        }
+                        let l = &f["location"];
+                        if let (Some(file), Some(line), Some(col)) =
+                            (l["file"].as_str(), l["line"].as_u64(), l["column"].as_u64())
+                        {
+                            out.push_str(&format!("{file}:{line}:{col}: "));
+                        }
+                        out.push_str(&format!(
+                            "error[{}]: {}\n",
+                            f["check"].as_str().unwrap_or(""),
+                            f["message"].as_str().unwrap_or("")
+                        ));
+                    }
+                    out.push_str(&format!(
+                        "verdict: {verdict} (merged {} reports, {} checks)\n",
+                        reports.len(),
+                        merged["findings"].as_array().map_or(0, |f| f.len())
+                    ));
+                    out
+                }
             };
             Output::report(text, code)
         }
