@@ -228,6 +228,7 @@ impl Fixture {
                 }),
             }),
             requested,
+            library: s.library.clone(),
         }
     }
 }

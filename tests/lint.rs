@@ -888,6 +888,7 @@ impl<'p> World<'p> {
                 Some(".count") => self.with_answers(&Formula::Call(t.clone()), configs),
                 _ => configs,
             },
+            BodyStep::Library { .. } => configs,
             BodyStep::Achieve { goal, new_focus } => {
                 let eff = self
                     .sum

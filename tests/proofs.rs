@@ -570,6 +570,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 intentions: Vec::new(),
                 pending: None,
                 requested: 0,
+                library: None,
             };
             (fp(&c), Some(c))
         })

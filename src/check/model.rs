@@ -179,6 +179,7 @@ impl AgentState for Packed<'_> {
             intentions: Vec::new(),
             pending: None,
             requested: 0,
+            library: None,
         };
         sem.applicable(&beliefs, trigger, false)
     }

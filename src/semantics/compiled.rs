@@ -279,6 +279,8 @@ impl Hash for Packed<'_> {
             self.intentions.iter().map(|i| i.hash),
             self.pending.map(|p| p.hash),
             self.requested,
+            // An agent that changes its plan library is not local, so never compiled.
+            None,
         );
     }
 }
@@ -469,6 +471,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             intentions: p.intentions.iter().map(|i| i.value.clone()).collect(),
             pending: p.pending.map(|x| x.value.clone()),
             requested: p.requested,
+            library: None,
         }
     }
 
@@ -628,6 +631,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             intentions: intention.into_iter().cloned().collect(),
             pending: None,
             requested: 0,
+            library: None,
         }
     }
 

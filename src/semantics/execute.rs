@@ -210,6 +210,8 @@ impl Semantics<'_> {
             let error = match step.kind {
                 BodyStep::Test(_) => "test_goal_failed",
                 BodyStep::Constraint(..) => "constraint_failed",
+                // A JasonException's default error (`JasonException.defaultError`).
+                BodyStep::Library { .. } => "internal_action",
                 BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
                     "belief_revision_failed"
                 }
@@ -385,6 +387,17 @@ impl Semantics<'_> {
                 }
                 notes.push(Note::Internal { text, plan, origin });
             }
+            BodyStep::Library { change, text } => {
+                notes.push(Note::Internal {
+                    text: text.clone(),
+                    plan,
+                    origin,
+                });
+                if let Err(why) = self.change_library(s, change) {
+                    let int = std::mem::replace(int, empty_intention(origin));
+                    return fail(self, s, int, text, why, notes);
+                }
+            }
             BodyStep::Achieve { goal, new_focus } => {
                 let literal = subgoal_literal(&value!(goal), depth);
                 let trigger = EventTrigger {
@@ -415,7 +428,7 @@ impl Semantics<'_> {
                                 kind: TriggerKind::Test,
                                 literal: subgoal_literal(&frame.subst.apply(t), depth),
                             };
-                            if !self.relevant_plans(&trigger).is_empty() {
+                            if !self.relevant_in(s.library.as_deref(), &trigger).is_empty() {
                                 return self.post_subgoal(s, int, trigger, (plan, step.span));
                             }
                         }

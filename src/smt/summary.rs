@@ -129,7 +129,10 @@ impl Summaries {
                 BodyStep::While(_, b) | BodyStep::For(_, b) => {
                     out.absorb(&self.steps(project, b));
                 }
-                BodyStep::Internal(_) | BodyStep::Test(_) | BodyStep::Constraint(..) => {}
+                BodyStep::Internal(_)
+                | BodyStep::Test(_)
+                | BodyStep::Constraint(..)
+                | BodyStep::Library { .. } => {}
             }
         }
         out

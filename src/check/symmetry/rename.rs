@@ -212,6 +212,8 @@ impl Symmetry {
                 }),
             }),
             requested,
+            // Plans name no interchangeable object (`Symmetry::new` refuses them).
+            library: s.library.clone(),
         }
     }
 }

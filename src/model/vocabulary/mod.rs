@@ -246,6 +246,8 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".fail",
     ".my_name",
     ".abolish",
+    ".add_plan",
+    ".remove_plan",
 ];
 
 /// Whether the reasoning cycle models the internal action `name` (those above, and the
