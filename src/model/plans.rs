@@ -99,6 +99,10 @@ pub enum BodyStep {
         change: LibraryChange,
         /// The step as Jason text, for traces.
         text: String,
+        /// Whether it is written as a call (`.add_plan(...)`): the parser builds the call
+        /// of `+{P}`, `+>{P}` and `-{P}` with no place, so their failure events say
+        /// `code_line(no_code)` (AS2JavaParser.jj, `body_formula`; `Literal.addSourceInfoAsAnnots`).
+        call: bool,
     },
 }
 
@@ -417,8 +421,9 @@ fn steps(
         if changes_library(s) {
             let change = library_step(s, added)?;
             let text = crate::syntax::printer::print_step(s);
+            let call = matches!(s.kind, StepKind::Action(_));
             out.push(Step {
-                kind: BodyStep::Library { change, text },
+                kind: BodyStep::Library { change, text, call },
                 span: s.span,
             });
             continue;

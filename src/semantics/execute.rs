@@ -5,6 +5,7 @@
 //! `applySelInt` and `applyExecInt` (with the stdlib `.while`/`.foreach` loops).
 
 use super::cycle::{with_source, FrameView, Note, Semantics};
+use super::library::no_code;
 use super::query::{eval, relation};
 use super::state::{
     ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
@@ -387,7 +388,7 @@ impl Semantics<'_> {
                 }
                 notes.push(Note::Internal { text, plan, origin });
             }
-            BodyStep::Library { change, text } => {
+            BodyStep::Library { change, text, call } => {
                 notes.push(Note::Internal {
                     text: text.clone(),
                     plan,
@@ -395,7 +396,12 @@ impl Semantics<'_> {
                 });
                 if let Err(why) = self.change_library(s, change) {
                     let int = std::mem::replace(int, empty_intention(origin));
-                    return fail(self, s, int, text, why, notes);
+                    let queued = s.events.len();
+                    let flow = fail(self, s, int, text, why, notes);
+                    if !call {
+                        s.events.iter_mut().skip(queued).for_each(no_code);
+                    }
+                    return flow;
                 }
             }
             BodyStep::Achieve { goal, new_focus } => {

@@ -5,9 +5,23 @@
 //! (`relPlans`) keep the same order, a plan added at the beginning going first in both.
 
 use super::cycle::{kind_key, op_key, Semantics};
-use super::state::{EventTrigger, InLibrary, State};
+use super::state::{Event, EventTrigger, InLibrary, State};
 use crate::model::library::LibraryChange;
+use crate::model::term::Term;
 use std::borrow::Cow;
+
+/// The failure event of a step with no place in the source (`+{P}`, `+>{P}`): its
+/// `code_line` is `no_code` (`Literal.addSourceInfoAsAnnots` with no source info).
+pub(super) fn no_code(ev: &mut Event) {
+    let lit = &ev.trigger.literal;
+    let annots = lit.annots().iter().map(|a| match a.functor() {
+        Some("code_line") => Term::structure("code_line", vec![Term::atom("no_code")]),
+        _ => a.clone(),
+    });
+    if let Some(l) = lit.without_annots().add_annots(annots.collect::<Vec<_>>()) {
+        ev.trigger.literal = l;
+    }
+}
 
 impl Semantics<'_> {
     /// The plans relevant for `t` in library `lib` (`None`: the agent's own plans), in the

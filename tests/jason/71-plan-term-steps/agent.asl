@@ -2,7 +2,9 @@
 // removes the plan with P's label (the parser writes them as .add_plan(P, self, begin),
 // .add_plan(P, self, end) and .remove_plan(P): AS2JavaParser.jj, body_formula); a plan for
 // a belief event added at run time handles the events that come after it; an added plan
-// adds another when it runs.
+// adds another when it runs. A plan term with a label in use fails the step, and since the
+// parser builds the call with no place, the failure says code_line(no_code)
+// (Literal.addSourceInfoAsAnnots).
 
 +!go <- mark(a);
         +>{ @late +!w <- act(c) };
@@ -14,4 +16,7 @@
         mark(b);
         +{ @maker +!make <- .add_plan({ @made +!made <- act(a) }) };
         !make;
-        !made.
+        !made;
+        +{ @late +!w <- act(a) }.
+
+-!go[error(E), code_line(L)] <- .print(E, " ", L).
