@@ -236,6 +236,7 @@ impl Fixture {
                 })
                 .collect(),
             requested,
+            library: s.library.clone(),
         }
     }
 }

@@ -111,13 +111,7 @@ fn cases() -> Vec<PathBuf> {
 
 /// Scenarios where bdi-check is known to differ from Jason, each with why; the test fails
 /// when one of them starts to agree (so that this list only ever shrinks with the facts).
-const KNOWN: &[(&str, &str, &str)] = &[
-    (
-        "44-add-remove-plan",
-        "go",
-        "refused: `.add_plan`/`.remove_plan` change the plan library at run time, which the model does not",
-    ),
-];
+const KNOWN: &[(&str, &str, &str)] = &[];
 
 #[test]
 fn every_recorded_jason_run_is_reproduced() {

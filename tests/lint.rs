@@ -491,6 +491,46 @@ fn a_budget_too_small_gives_unknown_never_a_wrong_answer() {
 }
 
 #[test]
+fn plans_that_change_at_run_time_are_judged_by_the_libraries_they_may_be_in() {
+    let path = "tests/lint/dynamic_plans";
+    let fs = run_lint(&project(path));
+    let at = |check: &str, status: Status| -> Vec<String> {
+        fs.iter()
+            .filter(|f| f.finding.check == check && f.finding.status == status)
+            .map(place)
+            .collect()
+    };
+    // Hidden only by @s1, always there and before them; not @h2 (@h1 is removed), not
+    // @early (added at the beginning).
+    assert_eq!(
+        at("shadowed-plan", Status::Fail),
+        ["agent.asl:7", "agent.asl:13"]
+    );
+    assert_eq!(at("dead-plan", Status::Fail), ["agent.asl:15"]);
+    // !k is covered by @s1; !g has a gap with every plan it may have; !h is covered only
+    // while @h1 is there.
+    assert!(at("coverage-gap", Status::Pass).contains(&"agent.asl:6".to_string()));
+    assert_eq!(at("coverage-gap", Status::Fail), ["agent.asl:10"]);
+    assert_eq!(at("coverage-gap", Status::Unknown), ["agent.asl:8"]);
+    // verify settles !h by its runs: one removes @h1 and then meets the gap.
+    let o = bdi_check(&["verify", path, "--format", "json"]);
+    let v = json(&o);
+    let gaps: Vec<&serde_json::Value> = v["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["check"] == "coverage-gap" && f["status"] == "fail")
+        .collect();
+    let h = gaps
+        .iter()
+        .find(|f| f["location"]["line"] == 8)
+        .unwrap_or_else(|| panic!("{gaps:#?}"));
+    assert_eq!(h["severity"], "error");
+    let steps = h["counterexample"]["steps"].to_string();
+    assert!(steps.contains(".remove_plan(h1)"), "{steps}");
+}
+
+#[test]
 fn lint_is_deterministic() {
     let p = project("tests/lint/constructs");
     let a = run_lint(&p);
@@ -893,6 +933,7 @@ impl<'p> World<'p> {
                 Some(".count") => self.with_answers(&Formula::Call(t.clone()), configs),
                 _ => configs,
             },
+            BodyStep::Library { .. } => configs,
             BodyStep::Achieve { goal, new_focus } => {
                 let eff = self
                     .sum

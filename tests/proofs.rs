@@ -571,6 +571,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 pending: None,
                 waiting: Vec::new(),
                 requested: 0,
+                library: None,
             };
             (fp(&c), Some(c))
         })

@@ -188,6 +188,19 @@ fn naming_an_interchangeable_object_is_refused_where_it_is_named() {
         String::from_utf8_lossy(&out.stderr)
     );
 
+    // A plan that a step adds at run time is part of the library too.
+    let dir = kitchen_copy("added", |file, text| {
+        if file.ends_with(".asl") {
+            text + "\n+!learn <- .add_plan({ +!recall : used(cup2) <- .print(\"cup\") }).\n"
+        } else {
+            text
+        }
+    });
+    let out = bdi_check(&["verify", dir.to_str().expect("UTF-8")]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stdout);
+    assert!(err.contains("names `cup2`"), "{err}");
+
     // A property about one cup is not symmetric; one about both cups alike is.
     let dir = kitchen_copy("property", |file, text| {
         if file == "bdi-check.toml" {

@@ -362,6 +362,12 @@ fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
         "{dot}"
     );
     assert_eq!(dot.matches(" -> ").count(), 3, "{dot}");
+    assert!(!dot.contains("added at run time"), "{dot}");
+    // A plan that `.add_plan` adds is drawn as such.
+    let o = bdi_check(&["graph", "tests/jason/44-add-remove-plan", "--plans"]);
+    let dot = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(dot.matches("(added at run time)").count(), 1, "{dot}");
+    assert!(dot.contains("@extra"), "{dot}");
     // The paper's state graph is small enough to draw whole: 14 states, 12 transitions.
     let o = bdi_check(&["graph", "specs/paper", "--states"]);
     let dot = String::from_utf8_lossy(&o.stdout);

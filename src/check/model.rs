@@ -203,6 +203,7 @@ impl AgentState for Packed<'_> {
             pending: None,
             waiting: Vec::new(),
             requested: 0,
+            library: None,
         };
         sem.applicable(&beliefs, trigger, false)
     }

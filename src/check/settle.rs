@@ -6,6 +6,7 @@ use super::checker::Checker;
 use super::failures::Failure;
 use crate::findings::{Counterexample, Finding, Status};
 use crate::model::project::Project;
+use crate::semantics::Note;
 use crate::syntax::{Severity, Span};
 use std::collections::BTreeMap;
 
@@ -126,11 +127,31 @@ impl Checker<'_> {
         action_failures: &BTreeMap<(u32, u32), Failure>,
         no_plan: &BTreeMap<(String, usize), Failure>,
     ) -> Finding {
+        let plan_at = |sp: Span| self.project.plans.plans.iter().position(|p| p.span == sp);
+        if f.check == "coverage-gap" && f.status == Status::Unknown {
+            // Undecided by lint, decided by a run that meets the gap (the pass, when none
+            // does, is `settle_undecided`'s).
+            let reached = f.span.and_then(plan_at).and_then(|i| {
+                let t = &self.project.plans.plans[i].trigger.literal;
+                no_plan.get(&(t.functor().unwrap_or("").to_string(), t.arity()))
+            });
+            let mut g = f.clone();
+            if let Some(x) = reached {
+                let Note::NoApplicablePlan(t) = &x.note else {
+                    return g;
+                };
+                g.status = Status::Fail;
+                g.severity = Severity::Error;
+                g.message = format!("no plan for {t} is applicable in a state a run reaches");
+                let path = self.graph.path_to(x.src);
+                g.counterexample = Some(self.counterexample(&path, Some(x), &[]));
+            }
+            return g;
+        }
         if !settles(f) {
             return f.clone();
         }
         let Some(span) = f.span else { return f.clone() };
-        let plan_at = |sp: Span| self.project.plans.plans.iter().position(|p| p.span == sp);
         let reached: Option<Reach> = match f.check.as_str() {
             "precondition" => action_failures
                 .get(&(span.file.0, span.start))

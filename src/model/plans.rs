@@ -9,6 +9,7 @@
 //! users cannot write such functors unquoted, so they never clash with a literal.
 
 use super::from_ast::{ConvertError, Converter};
+use super::library::{changes_library, Collector, LibraryChange, LibraryChanges};
 use super::term::Term;
 use crate::syntax::ast::{
     self, Expr, ExprKind, Item, RelOp, StepKind, TriggerKind, TriggerOp, UnaryOp,
@@ -102,6 +103,18 @@ pub enum BodyStep {
         /// The timeout in milliseconds, as written (evaluated when the step runs).
         timeout: Option<Term>,
     },
+    /// `.add_plan`, `.remove_plan`, `+{P}`, `+>{P}` or `-{P}`, its plans and labels written
+    /// in the step (see [`super::library`]).
+    Library {
+        /// What it changes.
+        change: LibraryChange,
+        /// The step as Jason text, for traces.
+        text: String,
+        /// Whether it is written as a call (`.add_plan(...)`): the parser builds the call
+        /// of `+{P}`, `+>{P}` and `-{P}` with no place, so their failure events say
+        /// `code_line(no_code)` (AS2JavaParser.jj, `body_formula`; `Literal.addSourceInfoAsAnnots`).
+        call: bool,
+    },
 }
 
 /// A body step with its place.
@@ -174,23 +187,31 @@ pub struct Rule {
 /// The plan library, in source order (includes expanded where they stand).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PlanLibrary {
-    /// Every plan.
+    /// Every plan: the agent's own, then those its steps may add at run time (see
+    /// [`PlanLibrary::changes`]).
     pub plans: Vec<Plan>,
     /// The rules of the belief base, in source order.
     pub rules: Vec<Rule>,
     /// The agent's initial goals `!g.`, in order.
     pub initial_goals: Vec<(Term, Span)>,
+    /// What adding and removing plans at run time needs, when some step does.
+    pub changes: Option<LibraryChanges>,
 }
 
 impl PlanLibrary {
-    /// Compiles the plans of a loaded agent. Constructs the model checker does not model
-    /// (forks, plan terms, goal conditions, sub-plans) are refused with a located error.
+    /// Compiles the plans of a loaded agent, and the plans its steps add (see
+    /// [`super::library`]). Constructs the model checker does not model (forks, goal
+    /// conditions, sub-plans, plans added that are not written in the step) are refused with
+    /// a located error.
     pub fn compile(agent: &LoadedAgent) -> Result<PlanLibrary, Vec<Diagnostic>> {
         let mut lib = PlanLibrary::default();
         let mut errors = Vec::new();
-        for item in agent.items() {
+        let items = agent.items();
+        let own = items.iter().filter(|i| matches!(i, Item::Plan(_))).count();
+        let mut added = Collector::new(own);
+        for item in items {
             match item {
-                Item::Plan(p) => match compile_plan(lib.plans.len(), p) {
+                Item::Plan(p) => match compile_plan(lib.plans.len(), p, false, &mut added) {
                     Ok(plan) => lib.plans.push(plan),
                     Err(d) => errors.push(d),
                 },
@@ -217,11 +238,39 @@ impl PlanLibrary {
                 _ => {}
             }
         }
-        if errors.is_empty() {
-            Ok(lib)
-        } else {
-            Err(errors)
+        errors.extend(added.refusals(agent, &lib.plans));
+        if !errors.is_empty() {
+            return Err(errors);
         }
+        let (more, changes) = added.finish(agent, &lib.plans)?;
+        lib.plans.extend(more);
+        lib.changes = changes;
+        Ok(lib)
+    }
+
+    /// Whether plan `i` is only in the library once a step adds it (`.add_plan`).
+    pub fn is_added(&self, i: usize) -> bool {
+        self.changes.as_ref().is_some_and(|c| c.is_added(i))
+    }
+
+    /// Whether whether plan `i` is in the library, or where, can change at run time: it is
+    /// added by a step, or a `.remove_plan` names its label.
+    pub fn may_change(&self, i: usize) -> bool {
+        self.changes.as_ref().is_some_and(|c| {
+            c.is_added(i)
+                || self.plans[i]
+                    .label
+                    .as_ref()
+                    .is_some_and(|l| c.removed.contains(l))
+        })
+    }
+
+    /// Whether some step adds plan `i` at the beginning of the library (before the agent's
+    /// own plans).
+    pub fn added_at_begin(&self, i: usize) -> bool {
+        self.changes
+            .as_ref()
+            .is_some_and(|c| c.at_begin.contains(&(i as u32)))
     }
 
     /// The plans relevant for a trigger kind and functor/arity, in source order.
@@ -255,7 +304,16 @@ fn unsupported(span: Span, what: &str) -> Diagnostic {
         .with_help("rewrite this part of the plan without it, or leave the plan out of the checked library")
 }
 
-fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
+/// Compiles plan `p` as plan `index`: one of the agent's own, or (`term`) a plan term a
+/// step adds, whose body is kept as written (the parser drops a leading `true` only from
+/// the agent's own plans). The plans its steps add go to `added`.
+pub(super) fn compile_plan(
+    index: usize,
+    p: &ast::Plan,
+    term: bool,
+    added: &mut Collector,
+) -> Result<Plan, Diagnostic> {
+    let first_added = added.mark();
     if p.goal_condition.is_some() {
         return Err(unsupported(p.span, "goal conditions (`<:`)"));
     }
@@ -291,11 +349,12 @@ fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
         None => Formula::True,
     };
     // `<- true` is the empty body (see `ast::Plan::jason_body`).
-    let body = match &p.jason_body() {
-        Some(b) => steps(&mut c, &b.steps)?,
+    let body = if term { p.body.clone() } else { p.jason_body() };
+    let body = match &body {
+        Some(b) => steps(&mut c, &b.steps, added)?,
         None => Vec::new(),
     };
-    Ok(Plan {
+    let plan = Plan {
         index,
         label: p.label.as_ref().and_then(|l| l.name.clone()),
         trigger: Trigger {
@@ -307,7 +366,9 @@ fn compile_plan(index: usize, p: &ast::Plan) -> Result<Plan, Diagnostic> {
         body,
         span: p.span,
         context_span: p.context.as_ref().map(|e| e.span),
-    })
+    };
+    added.check_shared(&plan, first_added)?;
+    Ok(plan)
 }
 
 /// A term, or an arithmetic expression kept as an operator structure.
@@ -446,9 +507,23 @@ pub fn formula(c: &mut Converter, e: &Expr) -> Result<Formula, Diagnostic> {
     })
 }
 
-fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnostic> {
+fn steps(
+    c: &mut Converter,
+    steps_in: &[ast::Step],
+    added: &mut Collector,
+) -> Result<Vec<Step>, Diagnostic> {
     let mut out = Vec::new();
     for s in steps_in {
+        if changes_library(s) {
+            let change = library_step(s, added)?;
+            let text = crate::syntax::printer::print_step(s);
+            let call = matches!(s.kind, StepKind::Action(_));
+            out.push(Step {
+                kind: BodyStep::Library { change, text, call },
+                span: s.span,
+            });
+            continue;
+        }
         let lit = |c: &mut Converter, e: &Expr| -> Result<Term, Diagnostic> {
             match &e.kind {
                 ExprKind::Literal(l) => c.literal(l).map_err(convert_error),
@@ -477,17 +552,9 @@ fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnos
             },
             StepKind::Test(e) => BodyStep::Test(formula(c, e)?),
             StepKind::AddBel(e) | StepKind::AddBelEnd(e) | StepKind::AddBelNewFocus(e) => {
-                if matches!(e.kind, ExprKind::PlanTerm(_)) {
-                    return Err(unsupported(s.span, "plans added at run time"));
-                }
                 BodyStep::AddBel(lit(c, e)?)
             }
-            StepKind::DelBel(e) | StepKind::DelBelNewFocus(e) => {
-                if matches!(e.kind, ExprKind::PlanTerm(_)) {
-                    return Err(unsupported(s.span, "plans removed at run time"));
-                }
-                BodyStep::DelBel(lit(c, e)?)
-            }
+            StepKind::DelBel(e) | StepKind::DelBelNewFocus(e) => BodyStep::DelBel(lit(c, e)?),
             StepKind::DelAddBel(e) => BodyStep::DelAddBel(lit(c, e)?),
             StepKind::Constraint(e) => match &e.kind {
                 ExprKind::Rel(op, a, b) => BodyStep::Constraint(*op, value(c, a)?, value(c, b)?),
@@ -499,26 +566,41 @@ fn steps(c: &mut Converter, steps_in: &[ast::Step]) -> Result<Vec<Step>, Diagnos
             } => BodyStep::If {
                 branches: branches
                     .iter()
-                    .map(|(cond, body)| Ok((formula(c, cond)?, steps(c, &body.steps)?)))
+                    .map(|(cond, body)| Ok((formula(c, cond)?, steps(c, &body.steps, added)?)))
                     .collect::<Result<Vec<_>, Diagnostic>>()?,
                 else_body: match else_body {
-                    Some(b) => steps(c, &b.steps)?,
+                    Some(b) => steps(c, &b.steps, added)?,
                     None => Vec::new(),
                 },
             },
             StepKind::While { cond, body } => {
-                BodyStep::While(formula(c, cond)?, steps(c, &body.steps)?)
+                BodyStep::While(formula(c, cond)?, steps(c, &body.steps, added)?)
             }
             StepKind::For { cond, body } => {
-                BodyStep::For(formula(c, cond)?, steps(c, &body.steps)?)
+                BodyStep::For(formula(c, cond)?, steps(c, &body.steps, added)?)
             }
             StepKind::Fork { .. } => return Err(unsupported(s.span, "forks (`|&|`, `|||`)")),
             StepKind::Group(b) => {
-                out.extend(steps(c, &b.steps)?);
+                out.extend(steps(c, &b.steps, added)?);
                 continue;
             }
         };
         out.push(Step { kind, span: s.span });
     }
     Ok(out)
+}
+
+/// A step that changes the plan library (see [`changes_library`]).
+fn library_step(s: &ast::Step, added: &mut Collector) -> Result<LibraryChange, Diagnostic> {
+    match &s.kind {
+        StepKind::Action(e) => match &e.kind {
+            ExprKind::Literal(l) if l.functor == ".add_plan" => added.add_plan(l, s.span),
+            ExprKind::Literal(l) => added.remove_plan(l, s.span),
+            _ => unreachable!("changes_library holds for these steps only"),
+        },
+        StepKind::AddBel(e) => added.add_term(e, true),
+        StepKind::AddBelEnd(e) => added.add_term(e, false),
+        StepKind::DelBel(e) => added.remove_term(e),
+        _ => unreachable!("changes_library holds for these steps only"),
+    }
 }

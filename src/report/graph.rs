@@ -56,7 +56,7 @@ pub fn plans_dot(p: &Project) -> String {
     let mut goal = |g: &mut DiGraph<String, String>, key: String| {
         *goals.entry(key.clone()).or_insert_with(|| g.add_node(key))
     };
-    for plan in &p.plans.plans {
+    for (i, plan) in p.plans.plans.iter().enumerate() {
         let t = &plan.trigger;
         let (op, kind) = (t.op.symbol(), t.kind.symbol());
         let event = format!(
@@ -66,8 +66,14 @@ pub fn plans_dot(p: &Project) -> String {
         );
         let from = goal(&mut g, event);
         let loc = p.map.location(plan.span);
+        // A plan a step adds is only in the library once it has been added.
+        let added = if p.plans.is_added(i) {
+            "\n(added at run time)"
+        } else {
+            ""
+        };
         let node = g.add_node(format!(
-            "{}\n: {}\n{}:{}",
+            "{}\n: {}\n{}:{}{added}",
             plan.name(),
             formula_text(&plan.context),
             loc.file,

@@ -281,6 +281,8 @@ impl Hash for Packed<'_> {
             // Agents that `.wait` are not compiled (their library is not local).
             std::iter::empty(),
             self.requested,
+            // An agent that changes its plan library is not local, so never compiled.
+            None,
         );
     }
 }
@@ -472,6 +474,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             pending: p.pending.map(|x| x.value.clone()),
             waiting: Vec::new(),
             requested: p.requested,
+            library: None,
         }
     }
 
@@ -632,6 +635,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             pending: None,
             waiting: Vec::new(),
             requested: 0,
+            library: None,
         }
     }
 

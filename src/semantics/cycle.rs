@@ -218,7 +218,11 @@ pub struct Semantics<'p> {
     pub requests: Vec<Term>,
     environment: Vec<bool>,
     pub(super) blocks: Vec<Blocks<'p>>,
+    /// Per trigger signature: every plan that may be relevant, in index order (the agent's
+    /// own in source order, then those steps may add).
     pub(super) relevant: HashMap<(u8, u8, String, usize), Vec<u32>>,
+    /// How many plans are the agent's own (the library a run starts with).
+    pub(super) own_plans: usize,
     max_requests: u32,
     arrival_any: bool,
     pub(super) select_any: bool,
@@ -308,6 +312,11 @@ impl<'p> Semantics<'p> {
             environment,
             blocks,
             relevant,
+            own_plans: project
+                .plans
+                .changes
+                .as_ref()
+                .map_or(project.plans.plans.len(), |c| c.initial),
             max_requests: m.requests.max,
             arrival_any: m.requests.arrival == Arrival::Any,
             select_any: m.bounds.plan_selection == PlanSelection::Any,
@@ -316,11 +325,13 @@ impl<'p> Semantics<'p> {
                 .as_ref()
                 .and_then(|e| e.emitted_by.as_ref())
                 .map(|e| e.value.clone()),
-            local: project
-                .plans
-                .plans
-                .iter()
-                .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
+            // A library that changes makes deliberation depend on more than the event.
+            local: project.plans.changes.is_none()
+                && project
+                    .plans
+                    .plans
+                    .iter()
+                    .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
             rule_reads: HashMap::new(),
             ordered: Vec::new(),
             jhash: Vec::new(),
@@ -422,6 +433,7 @@ impl<'p> Semantics<'p> {
             pending: None,
             waiting: Vec::new(),
             requested: 0,
+            library: None,
         };
         let notes = &self.project.initial.agent_beliefs;
         let noted: Vec<AtomId> = notes.iter().rev().copied().collect();

@@ -11,8 +11,8 @@ use crate::model::{unify, Substitution};
 use crate::syntax::ast::{TriggerKind, TriggerOp};
 
 impl Semantics<'_> {
-    /// The plans whose trigger has the event's operator, kind, functor and arity, in
-    /// source order: Jason's candidates (`PlanLibrary.getCandidatePlans`).
+    /// Every plan that may be relevant for `t`, in any library a run can reach (for the
+    /// library of a state, [`Semantics::relevant_in`]).
     pub fn relevant_plans(&self, t: &EventTrigger) -> &[u32] {
         self.relevant
             .get(&(
@@ -35,7 +35,10 @@ impl Semantics<'_> {
                 notes.push(Note::NoApplicablePlan(ev.trigger.clone()));
             }
             if ev.trigger.op == TriggerOp::Add && ev.trigger.kind != TriggerKind::Belief {
-                let reason = if self.relevant_plans(&ev.trigger).is_empty() {
+                let reason = if self
+                    .relevant_in(s.library.as_deref(), &ev.trigger)
+                    .is_empty()
+                {
                     "no relevant plan"
                 } else {
                     "no applicable plan"
@@ -168,7 +171,7 @@ impl Semantics<'_> {
         first_only: bool,
     ) -> Vec<(u32, Substitution)> {
         let mut out = Vec::new();
-        for &pi in self.relevant_plans(trigger) {
+        for &pi in self.relevant_in(b.state.library.as_deref(), trigger).iter() {
             let plan = &self.project.plans.plans[pi as usize];
             let mut u = Substitution::new();
             if !unify(&plan.trigger.literal, &trigger.literal, &mut u) {

@@ -5,6 +5,7 @@
 //! `applySelInt` and `applyExecInt` (with the stdlib `.while`/`.foreach` loops).
 
 use super::cycle::{with_source, FrameView, Note, Semantics};
+use super::library::no_code;
 use super::query::{eval, relation};
 use super::state::{
     ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
@@ -246,6 +247,8 @@ impl Semantics<'_> {
             let error = match step.kind {
                 BodyStep::Test(_) => "test_goal_failed",
                 BodyStep::Constraint(..) => "constraint_failed",
+                // A JasonException's default error (`JasonException.defaultError`).
+                BodyStep::Library { .. } => "internal_action",
                 BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
                     "belief_revision_failed"
                 }
@@ -457,6 +460,22 @@ impl Semantics<'_> {
                 }
                 notes.push(Note::Internal { text, plan, origin });
             }
+            BodyStep::Library { change, text, call } => {
+                notes.push(Note::Internal {
+                    text: text.clone(),
+                    plan,
+                    origin,
+                });
+                if let Err(why) = self.change_library(s, change) {
+                    let int = std::mem::replace(int, empty_intention(origin));
+                    let queued = s.events.len();
+                    let flow = fail(self, s, int, text, why, notes);
+                    if !call {
+                        s.events.iter_mut().skip(queued).for_each(no_code);
+                    }
+                    return flow;
+                }
+            }
             BodyStep::Achieve { goal, new_focus } => {
                 let literal = subgoal_literal(&value!(goal), depth);
                 let trigger = EventTrigger {
@@ -490,7 +509,7 @@ impl Semantics<'_> {
                                 kind: TriggerKind::Test,
                                 literal: subgoal_literal(&frame.subst.apply(t), depth),
                             };
-                            if !self.relevant_plans(&trigger).is_empty() {
+                            if !self.relevant_in(s.library.as_deref(), &trigger).is_empty() {
                                 return self.post_subgoal(s, int, trigger, (plan, step.span));
                             }
                         }

@@ -6,7 +6,7 @@
 //! `TransitionSystem.applyClrInt`.
 
 use super::cycle::{Note, Semantics};
-use super::state::{Event, EventTrigger, Frame, Intention, State};
+use super::state::{Event, EventTrigger, Frame, InLibrary, Intention, State};
 use crate::model::term::Term;
 use crate::model::unify;
 use crate::syntax::ast::{TriggerKind, TriggerOp};
@@ -32,8 +32,11 @@ impl Semantics<'_> {
         let fail = ev
             .intention
             .as_ref()
-            .and_then(|int| self.find_event_for_failure(int, &ev.trigger));
-        let error = if self.relevant_plans(&ev.trigger).is_empty() {
+            .and_then(|int| self.find_event_for_failure(s.library.as_deref(), int, &ev.trigger));
+        let error = if self
+            .relevant_in(s.library.as_deref(), &ev.trigger)
+            .is_empty()
+        {
             "no_relevant"
         } else {
             "no_applicable"
@@ -62,13 +65,14 @@ impl Semantics<'_> {
         }
     }
 
-    /// Jason's `Intention.findEventForFailure`: the failure event for `tevent`, the
-    /// trigger that failed (the top plan's, or a subgoal event's that had no applicable
-    /// plan). From the top of the stack down, the first goal with a relevant `-` plan gets
-    /// it. When a failure plan itself failed (`tevent` is `-!g`), the search starts below
-    /// the frames of `g`; if `g` is the bottom of the stack, `-!g` is posted again.
+    /// Jason's `Intention.findEventForFailure`, in library `lib`: the failure event for
+    /// `tevent`, the trigger that failed (the top plan's, or a subgoal event's that had no
+    /// applicable plan). From the top of the stack down, the first goal with a relevant `-`
+    /// plan gets it. When a failure plan itself failed (`tevent` is `-!g`), the search starts
+    /// below the frames of `g`; if `g` is the bottom of the stack, `-!g` is posted again.
     pub(super) fn find_event_for_failure(
         &self,
+        lib: Option<&[InLibrary]>,
         int: &Intention,
         tevent: &EventTrigger,
     ) -> Option<EventTrigger> {
@@ -100,12 +104,12 @@ impl Semantics<'_> {
             literal: t.literal.clone(),
         };
         let mut fail = del(&tevent);
-        while self.relevant_plans(&fail).is_empty() && next > 0 {
+        while self.relevant_in(lib, &fail).is_empty() && next > 0 {
             next -= 1;
             tevent = frames[next].trigger.clone();
             fail = del(&tevent);
         }
-        (tevent.kind != TriggerKind::Belief && !self.relevant_plans(&fail).is_empty())
+        (tevent.kind != TriggerKind::Belief && !self.relevant_in(lib, &fail).is_empty())
             .then_some(fail)
     }
 
@@ -130,7 +134,7 @@ impl Semantics<'_> {
             .frames
             .last()
             .map_or_else(|| failed.clone(), |f| f.trigger.clone());
-        if let Some(fail) = self.find_event_for_failure(&int, &tevent) {
+        if let Some(fail) = self.find_event_for_failure(s.library.as_deref(), &int, &tevent) {
             let origin = int.origin;
             self.post_event(
                 s,

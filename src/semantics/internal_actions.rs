@@ -166,7 +166,7 @@ impl Semantics<'_> {
             kind: TriggerKind::Achieve,
             literal: g.clone(),
         };
-        match self.find_event_for_failure(&int, &tevent) {
+        match self.find_event_for_failure(s.library.as_deref(), &int, &tevent) {
             Some(fail) => {
                 if current {
                     if let Some(top) = int.frames.last_mut() {

@@ -14,6 +14,7 @@ mod execute;
 mod failure;
 mod internal_actions;
 pub mod java_hash;
+mod library;
 mod perceive;
 pub mod query;
 mod reads;
@@ -22,4 +23,4 @@ mod wait;
 
 pub use compiled::{Compiled, Notes, Packed};
 pub use cycle::{FrameView, Note, Semantics, Transition};
-pub use state::{Event, EventTrigger, Frame, Intention, Origin, State};
+pub use state::{Event, EventTrigger, Frame, InLibrary, Intention, Origin, State};

@@ -49,9 +49,10 @@ impl Semantics<'_> {
 
     /// Whether one reasoning cycle's phases depend only on their own part of the state:
     /// deliberation on the event and the beliefs, acting on the intention and the beliefs.
-    /// True unless some plan uses `.desire`, `.intend` (which read the other intentions) or
+    /// True unless some plan uses `.desire`, `.intend` (which read the other intentions),
     /// `.succeed_goal`, `.fail_goal`, `.drop_desire`, `.drop_intention` (which change
-    /// them). The compiled search ([`super::compiled::Compiled`]) relies on it.
+    /// them), or changes the plan library (which deliberation reads). The compiled search
+    /// ([`super::compiled::Compiled`]) relies on it.
     pub fn is_local(&self) -> bool {
         self.local
     }
@@ -141,7 +142,7 @@ impl Semantics<'_> {
                     out.insert(a);
                 }
             }
-            BodyStep::Achieve { .. } | BodyStep::Constraint(..) => {}
+            BodyStep::Achieve { .. } | BodyStep::Constraint(..) | BodyStep::Library { .. } => {}
         }
         out
     }
@@ -336,5 +337,8 @@ pub(super) fn step_is_local(s: &Step) -> bool {
         | BodyStep::DelBel(_)
         | BodyStep::DelAddBel(_)
         | BodyStep::Constraint(..) => true,
+        // It changes what deliberation reads, the library: `Semantics::new` makes any
+        // library with such a step not local.
+        BodyStep::Library { .. } => true,
     }
 }

@@ -8,6 +8,7 @@ use crate::syntax::ast::{TriggerKind, TriggerOp};
 use crate::syntax::Span;
 use std::fmt;
 use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 /// A triggering event's content: `+!g`, `-!g`, `+b`, `-b`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -171,6 +172,16 @@ pub struct Waiting {
     pub woken: bool,
 }
 
+/// A plan in the library of an agent that adds or removes plans: its index, and the sources
+/// its label carries (bit `i`: [`crate::model::library::LibraryChanges::sources`]`[i]`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct InLibrary {
+    /// The plan.
+    pub plan: u32,
+    /// Its sources (never none: a plan with no source left is removed).
+    pub sources: u64,
+}
+
 /// The whole agent state.
 ///
 /// Its hash is built from the hashes of its parts ([`part_hash`] of the beliefs, of each
@@ -196,6 +207,9 @@ pub struct State {
     pub waiting: Vec<Waiting>,
     /// Bit `i`: request `i` has been made in this run.
     pub requested: u64,
+    /// The plan library in Jason's order, when steps have made it differ from the agent's
+    /// own plans (`None`: those, in source order, as loaded).
+    pub library: Option<Arc<[InLibrary]>>,
 }
 
 /// The hash of one part of a state: std's SipHash with fixed keys, so it is the same in
@@ -208,6 +222,7 @@ pub fn part_hash<T: Hash>(x: &T) -> u64 {
 
 /// Feeds a state's part hashes to `h`: the one definition of a state's hash, whatever holds
 /// the parts.
+#[allow(clippy::too_many_arguments)]
 pub fn hash_parts<H: Hasher>(
     h: &mut H,
     beliefs: u64,
@@ -216,6 +231,7 @@ pub fn hash_parts<H: Hasher>(
     pending: Option<u64>,
     waiting: impl ExactSizeIterator<Item = u64>,
     requested: u64,
+    library: Option<u64>,
 ) {
     h.write_u64(beliefs);
     h.write_usize(events.len());
@@ -231,6 +247,10 @@ pub fn hash_parts<H: Hasher>(
         waiting.for_each(|w| h.write_u64(w));
     }
     h.write_u64(requested);
+    // Only for agents that change their library: every other state hashes as before.
+    if let Some(l) = library {
+        h.write_u64(l);
+    }
 }
 
 impl Hash for State {
@@ -243,6 +263,7 @@ impl Hash for State {
             self.pending.as_ref().map(part_hash),
             self.waiting.iter().map(part_hash),
             self.requested,
+            self.library.as_ref().map(part_hash),
         );
     }
 }

@@ -238,6 +238,8 @@ impl Exec<'_, '_> {
                 else_body,
             } => self.branch(branches, else_body, st, env, p, s.span),
             BodyStep::While(c, body) => self.repeat(c, body, true, st, env, p, s.span),
+            // The plan library is no part of the beliefs.
+            BodyStep::Library { .. } => Ok((st, p)),
             BodyStep::For(c, body) => self.repeat(c, body, false, st, env, p, s.span),
             // While it waits, other intentions run, as between any two steps; what the
             // event or condition binds is left unconstrained.

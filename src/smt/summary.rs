@@ -132,7 +132,8 @@ impl Summaries {
                 BodyStep::Internal(_)
                 | BodyStep::Test(_)
                 | BodyStep::Constraint(..)
-                | BodyStep::Wait { .. } => {}
+                | BodyStep::Wait { .. }
+                | BodyStep::Library { .. } => {}
             }
         }
         out

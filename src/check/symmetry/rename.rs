@@ -220,6 +220,8 @@ impl Symmetry {
                 })
                 .collect(),
             requested,
+            // Plans name no interchangeable object (`Symmetry::new` refuses them).
+            library: s.library.clone(),
         }
     }
 }

@@ -74,13 +74,15 @@ impl Checker<'_> {
                     self.goal_literal(&mut cl, &g.literal, Role::Use, Scope::Agent);
                     self.clauses.push(cl);
                 }
-                Item::Plan(p) => self.plan(p),
+                Item::Plan(p) => self.plan(p, false),
                 Item::Directive(_) => {}
             }
         }
     }
 
-    fn plan(&mut self, p: &Plan) {
+    /// A plan of the agent, or (`term`) a plan term a step adds (its body as written): a
+    /// clause of its own (an added plan shares no variable with the plan that adds it).
+    pub(super) fn plan(&mut self, p: &Plan, term: bool) {
         let mut cl = Clause::default();
         let t = &p.trigger;
         match (&t.literal.kind, t.kind) {
@@ -117,12 +119,13 @@ impl Checker<'_> {
         if let Some(c) = &p.goal_condition {
             self.formula(&mut cl, c, Scope::Agent, Usage::Query);
         }
-        if let Some(b) = &p.jason_body() {
+        let body = if term { p.body.clone() } else { p.jason_body() };
+        if let Some(b) = &body {
             self.body(&mut cl, b);
         }
         self.clauses.push(cl);
         for sp in &p.sub_plans {
-            self.plan(sp);
+            self.plan(sp, term);
         }
     }
 
@@ -146,6 +149,15 @@ impl Checker<'_> {
                 _ => self.unsupported(e.span, "a goal held in a variable", "variable goal"),
             },
             StepKind::Test(e) => self.formula(cl, e, Scope::Agent, Usage::Test),
+            // `+{P}`, `+>{P}`: `.add_plan`; `-{P}`: `.remove_plan`, which reads its label only.
+            StepKind::AddBel(e) | StepKind::AddBelEnd(e)
+                if matches!(e.kind, ExprKind::PlanTerm(_)) =>
+            {
+                for p in super::declare::added_plans(e) {
+                    self.plan(p, true);
+                }
+            }
+            StepKind::DelBel(e) if matches!(e.kind, ExprKind::PlanTerm(_)) => {}
             StepKind::AddBel(e) | StepKind::AddBelEnd(e) | StepKind::AddBelNewFocus(e) => {
                 self.update(cl, e, Usage::Add)
             }
@@ -188,13 +200,9 @@ impl Checker<'_> {
     fn update(&mut self, cl: &mut Clause, e: &Expr, usage: Usage) {
         match &e.kind {
             ExprKind::Literal(l) => self.belief_literal(cl, l, usage, Scope::Agent),
-            ExprKind::PlanTerm(_) => self.diags.push(
-                Diagnostic::error(
-                    "input",
-                    "adding or removing plans at run time (`+{ ... }`) is not modelled by bdi-check",
-                )
-                .with_label(e.span, "plan term"),
-            ),
+            // `step` takes `+{P}`, `+>{P}` and `-{P}`, the only places the parser allows a
+            // plan term in (AS2JavaParser.jj, `body_formula`).
+            ExprKind::PlanTerm(_) => {}
             _ => self.unsupported(e.span, "a belief update held in a variable", "variable"),
         }
     }

@@ -31,7 +31,7 @@ impl Checker<'_> {
                 Item::InitialGoal(g) => {
                     self.declare_goal(&g.literal, g.literal.span, false);
                 }
-                Item::Plan(p) => self.declare_plan(p),
+                Item::Plan(p) => self.declare_plan(p, false),
                 Item::Directive(_) => {}
             }
         }
@@ -65,7 +65,8 @@ impl Checker<'_> {
         }
     }
 
-    fn declare_plan(&mut self, p: &Plan) {
+    /// A plan of the agent, or (`term`) a plan term a step adds (its body as written).
+    fn declare_plan(&mut self, p: &Plan, term: bool) {
         if let ExprKind::Literal(l) = &p.trigger.literal.kind {
             match p.trigger.kind {
                 TriggerKind::Achieve => {
@@ -78,11 +79,12 @@ impl Checker<'_> {
                 TriggerKind::Belief => {}
             }
         }
-        if let Some(b) = &p.jason_body() {
+        let body = if term { p.body.clone() } else { p.jason_body() };
+        if let Some(b) = &body {
             self.declare_body(b);
         }
         for sp in &p.sub_plans {
-            self.declare_plan(sp);
+            self.declare_plan(sp, term);
         }
     }
 
@@ -93,7 +95,18 @@ impl Checker<'_> {
                     if let ExprKind::Literal(l) = &e.kind {
                         if !l.is_internal_action() {
                             self.called.insert(l.functor.clone());
+                        } else if l.functor == ".add_plan" {
+                            for p in l.args.first().map(added_plans).unwrap_or_default() {
+                                self.declare_plan(p, true);
+                            }
                         }
+                    }
+                }
+                StepKind::AddBel(e) | StepKind::AddBelEnd(e)
+                    if matches!(e.kind, ExprKind::PlanTerm(_)) =>
+                {
+                    for p in added_plans(e) {
+                        self.declare_plan(p, true);
                     }
                 }
                 StepKind::Achieve(e) | StepKind::AchieveNewFocus(e) => {
@@ -177,5 +190,18 @@ impl Checker<'_> {
         if is_plan && self.goals[id].plan_span.is_none() {
             self.goals[id].plan_span = Some(span);
         }
+    }
+}
+
+/// The plans of plan terms that `.add_plan`'s first argument (or `+{P}`) holds: one, or
+/// those of a list.
+pub(super) fn added_plans(e: &Expr) -> Vec<&Plan> {
+    match &e.kind {
+        ExprKind::PlanTerm(t) => match &t.kind {
+            PlanTermKind::Plan(p) => vec![p],
+            _ => Vec::new(),
+        },
+        ExprKind::List(l) => l.elems.iter().flat_map(added_plans).collect(),
+        _ => Vec::new(),
     }
 }

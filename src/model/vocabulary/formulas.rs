@@ -15,6 +15,13 @@ impl Checker<'_> {
     /// A logical formula.
     pub(super) fn formula(&mut self, cl: &mut Clause, e: &Expr, scope: Scope, usage: Usage) {
         match &e.kind {
+            ExprKind::Literal(l) if matches!(l.functor.as_str(), ".add_plan" | ".remove_plan") => {
+                self.unsupported(
+                    e.span,
+                    "changing the plan library in a formula",
+                    "not a body step",
+                )
+            }
             ExprKind::Literal(l) if l.is_internal_action() => self.internal(cl, l, scope),
             ExprKind::Literal(l)
                 if l.args.is_empty()
@@ -209,6 +216,8 @@ impl Checker<'_> {
             ".count" => &[2],
             ".findall" => &[3],
             ".drop_intention" => &[0, 1],
+            ".add_plan" => &[1, 2, 3],
+            ".remove_plan" => &[1, 2],
             ".fail" => &[0],
             // The third (the time waited) is refused where the step is compiled.
             ".wait" => &[1, 2, 3],
@@ -300,6 +309,14 @@ impl Checker<'_> {
                         .with_label(l.args[0].span, "not a belief literal"),
                 ),
             },
+            // The added plans are clauses of their own; the other arguments, and the labels
+            // of `.remove_plan`, are read when the plans are compiled (`model::library`).
+            ".add_plan" => {
+                for p in super::declare::added_plans(&l.args[0]) {
+                    self.plan(p, true);
+                }
+            }
+            ".remove_plan" => {}
             _ if GOAL_ACTIONS.contains(&name) => {
                 if let Some(g) = l.args.first() {
                     match &g.kind {

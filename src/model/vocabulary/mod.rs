@@ -248,6 +248,8 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".abolish",
     ".wait",
     ".random",
+    ".add_plan",
+    ".remove_plan",
 ];
 
 /// Whether the reasoning cycle models the internal action `name` (those above, and the

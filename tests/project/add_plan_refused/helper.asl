@@ -1,0 +1,2 @@
+// Included into a namespace by agent.asl.
++!helper <- act(b).
