@@ -45,6 +45,16 @@ pub(super) fn settle_undecided(
                 f.status = Status::Pass;
                 f.message = format!("no earlier plan hides {}: a run adopts it", plan.name());
             }
+            // Decided for the model, not for every state: no run adopts the plan. True and
+            // worth saying, but a warning (a bound such as `[requests] max` may be why).
+            "dead-plan" | "shadowed-plan" if complete && !applied.contains(&(i as u32)) => {
+                f.status = Status::Fail;
+                f.severity = Severity::Warning;
+                f.message = format!(
+                    "no run adopts {} (lint could not decide whether some state makes it applicable, but every reachable state was explored)",
+                    plan.name()
+                );
+            }
             "coverage-gap" if complete => {
                 let t = &plan.trigger.literal;
                 let key = (t.functor().unwrap_or("").to_string(), t.arity());
@@ -107,6 +117,54 @@ pub(super) fn settle_non_inductive(findings: &mut [Finding], project: &Project, 
     }
 }
 
+impl Checker<'_> {
+    /// A precondition lint could not decide from a step on (arithmetic it does not model):
+    /// a run whose action of that plan, there or later, fails settles it as an error with
+    /// that run; a complete search with none, as a pass.
+    fn settle_undecided_precondition(
+        &self,
+        f: &Finding,
+        action_failures: &BTreeMap<(u32, u32), Failure>,
+    ) -> Finding {
+        let mut g = f.clone();
+        let Some(from) = f.span else { return g };
+        let Some(i) = self.project.plans.plans.iter().position(|p| {
+            p.span.file == from.file && p.span.start <= from.start && from.start < p.span.end
+        }) else {
+            return g;
+        };
+        let plan = &self.project.plans.plans[i];
+        let failed = action_failures.values().find(|x| {
+            matches!(&x.note, Note::ActionFailed { plan: p, span, .. }
+                if *p as usize == i && span.file == from.file && span.start >= from.start)
+        });
+        match failed {
+            Some(x) => {
+                let Note::ActionFailed { text, reason, .. } = &x.note else {
+                    return g;
+                };
+                g.status = Status::Fail;
+                g.severity = Severity::Error;
+                g.message = format!(
+                    "`{text}` in {} fails in a run ({reason}), after a step lint could not decide",
+                    plan.name()
+                );
+                g.counterexample =
+                    Some(self.counterexample(&self.graph.path_to(x.src), Some(x), &[]));
+            }
+            None if self.graph.complete() => {
+                g.status = Status::Pass;
+                g.message = format!(
+                    "no run of {} attempts an action from here on when its precondition does not hold",
+                    plan.name()
+                );
+            }
+            None => {}
+        }
+        g
+    }
+}
+
 /// Whether a lint finding is one that exploration settles.
 pub(super) fn settles(f: &Finding) -> bool {
     matches!(
@@ -147,6 +205,9 @@ impl Checker<'_> {
                 g.counterexample = Some(self.counterexample(&path, Some(x), &[]));
             }
             return g;
+        }
+        if f.check == "precondition" && f.status == Status::Unknown {
+            return self.settle_undecided_precondition(f, action_failures);
         }
         if !settles(f) {
             return f.clone();

@@ -1,0 +1,6 @@
+(define (domain rooms)
+  (:requirements :strips :typing :negative-preconditions)
+  (:types room)
+  (:predicates (at ?r - room) (dirty ?r - room))
+  (:action goTo :parameters (?r - room) :precondition (not (at ?r)) :effect (at ?r))
+  (:action wipe :parameters (?r - room) :precondition (and (at ?r) (dirty ?r)) :effect (not (dirty ?r))))
