@@ -75,16 +75,13 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
 /// The verdict line in its colour (green pass, yellow incomplete, red fail or error), when
 /// colour is on.
 pub fn paint_verdict(line: &str, verdict: Verdict, color: bool) -> String {
-    if !color {
-        return line.to_string();
-    }
     let c = match verdict {
         Verdict::Pass => anstyle::AnsiColor::Green,
         Verdict::Incomplete => anstyle::AnsiColor::Yellow,
         Verdict::Fail | Verdict::Error => anstyle::AnsiColor::Red,
     };
-    let style = anstyle::Style::new().bold().fg_color(Some(c.into()));
-    format!("{style}{}{style:#}\n", line.trim_end_matches('\n'))
+    let text = crate::syntax::diagnostic::bold(line.trim_end_matches('\n'), c, color);
+    format!("{text}\n")
 }
 
 /// Where a finding goes in the human report: 0 failing errors, 1 failing warnings and

@@ -278,6 +278,18 @@ impl Semantics<'_> {
                 }
             };
         }
+        // An internal action with no answer: noted, then the plan fails.
+        macro_rules! no_answer {
+            ($text:expr) => {{
+                notes.push(Note::Internal {
+                    text: $text.clone(),
+                    plan,
+                    origin,
+                });
+                let int = std::mem::replace(int, empty_intention(origin));
+                return fail(self, s, int, &$text, "it has no answer".into(), notes);
+            }};
+        }
         match &step.kind {
             BodyStep::Action(t) if self.is_emission(t) => {
                 // The agent's own explanation: said, not done; the world does not change.
@@ -406,13 +418,7 @@ impl Semantics<'_> {
                             _ => false,
                         };
                         if !bound {
-                            notes.push(Note::Internal {
-                                text: text.clone(),
-                                plan,
-                                origin,
-                            });
-                            let int = std::mem::replace(int, empty_intention(origin));
-                            return fail(self, s, int, &text, "it has no answer".into(), notes);
+                            no_answer!(text);
                         }
                         frame.subst = u;
                         let text = frame.subst.apply(t).to_string();
@@ -446,15 +452,7 @@ impl Semantics<'_> {
                         let f = Formula::Call(t.clone());
                         match self.beliefs(s).answers(&f, &frame.subst).into_iter().next() {
                             Some(a) => frame.subst = a,
-                            None => {
-                                notes.push(Note::Internal {
-                                    text: text.clone(),
-                                    plan,
-                                    origin,
-                                });
-                                let int = std::mem::replace(int, empty_intention(origin));
-                                return fail(self, s, int, &text, "it has no answer".into(), notes);
-                            }
+                            None => no_answer!(text),
                         }
                     }
                 }

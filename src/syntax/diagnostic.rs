@@ -158,14 +158,19 @@ impl Diagnostic {
 
 /// `text` in the colour of `severity` (bold red, yellow, cyan), when colour is on.
 pub fn paint(text: &str, severity: Severity, color: bool) -> String {
-    if !color {
-        return text.to_string();
-    }
     let c = match severity {
         Severity::Error => anstyle::AnsiColor::Red,
         Severity::Warning => anstyle::AnsiColor::Yellow,
         Severity::Note => anstyle::AnsiColor::Cyan,
     };
+    bold(text, c, color)
+}
+
+/// `text` in bold `c`, when colour is on.
+pub fn bold(text: &str, c: anstyle::AnsiColor, color: bool) -> String {
+    if !color {
+        return text.to_string();
+    }
     let style = anstyle::Style::new().bold().fg_color(Some(c.into()));
     format!("{style}{text}{style:#}")
 }
