@@ -512,3 +512,31 @@ fn colour_follows_the_flag_and_the_environment() {
     run(&[&paper[..], &["--color", "always", "-o", f]].concat(), &[]);
     assert!(!std::fs::read_to_string(&dir).unwrap().contains('\u{1b}'));
 }
+
+#[test]
+fn the_catalogues_scenarios_paste_into_a_scenario_file() {
+    let o = bdi_check(&["explain", "specs/paper"]);
+    assert_eq!(o.status.code(), Some(0));
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.trim() == "scenario:")
+        .expect("a scenario");
+    let sentence = lines[at - 1].trim().trim_matches('"').to_string();
+    let file = std::env::temp_dir().join(format!("bdi-check-pasted-{}.toml", std::process::id()));
+    let toml = format!("{}\n{}\n", lines[at + 1].trim(), lines[at + 2].trim());
+    std::fs::write(&file, toml).unwrap();
+    let o = bdi_check(&[
+        "explain",
+        "specs/paper",
+        "--scenario",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains(&sentence), "{}", stdout(&o));
+    // `-q`: the count per user only.
+    let q = stdout(&bdi_check(&["explain", "specs/paper", "-q"]));
+    assert_eq!(q.lines().count(), 1, "{q}");
+    assert!(q.contains("distinct explanations"), "{q}");
+}

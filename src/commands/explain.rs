@@ -47,7 +47,11 @@ pub fn command(
                         });
                         serde_json::to_string_pretty(&v).unwrap_or_default() + "\n"
                     }
-                    Format::Human => render_catalogue(&entries, note.as_deref()),
+                    Format::Human => render_catalogue(
+                        &entries,
+                        note.as_deref(),
+                        style.detail == crate::report::verify::Detail::Quiet,
+                    ),
                 };
                 Output::report(text, 0)
             }

@@ -127,10 +127,18 @@ pub struct Scenario {
     pub requests: Vec<String>,
 }
 
-/// The catalogue for people: per user, each sentence with the action and a scenario.
-pub fn render_catalogue(entries: &[Entry], note: Option<&str>) -> String {
+/// The catalogue for people: per user, each sentence with the action and a scenario
+/// that gives it, as the lines of a scenario file (TOML, ready to paste). `quiet`: the
+/// count per user only.
+pub fn render_catalogue(entries: &[Entry], note: Option<&str>, quiet: bool) -> String {
     let mut out = String::new();
     let mut user = "";
+    let toml = |v: &[String]| {
+        v.iter()
+            .map(|s| serde_json::to_string(s).unwrap_or_default())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     for e in entries {
         if e.given.user != user {
             user = &e.given.user;
@@ -140,13 +148,16 @@ pub fn render_catalogue(entries: &[Entry], note: Option<&str>) -> String {
                 if count == 1 { "" } else { "s" }
             ));
         }
+        if quiet {
+            continue;
+        }
         out.push_str(&format!(
-            "  {} (after {})\n    \"{}\"\n    scenario: initial = [{}], requests = [{}]\n",
+            "  {} (after {})\n    \"{}\"\n    scenario:\n      initial = [{}]\n      requests = [{}]\n",
             e.given.action,
             e.given.after.as_deref().unwrap_or("the start"),
             e.given.text,
-            e.scenario.initial.join(", "),
-            e.scenario.requests.join(", ")
+            toml(&e.scenario.initial),
+            toml(&e.scenario.requests)
         ));
     }
     if let Some(n) = note {
