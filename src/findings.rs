@@ -154,6 +154,86 @@ pub struct TraceStep {
     pub explanation: Option<String>,
 }
 
+/// The agent's whole state at one point of a run, for people (`bdi-check trace`).
+#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+pub struct StateView {
+    /// Every belief, in the model's atom order.
+    pub beliefs: Vec<String>,
+    /// Pending events, the next one first, each with the intention it belongs to.
+    pub events: Vec<String>,
+    /// The intentions: those held by a subgoal's event, the running ones in round-robin
+    /// order (the first runs next), the one awaiting its action's feedback, and the ones
+    /// suspended by `.wait`.
+    pub intentions: Vec<IntentionView>,
+    /// Each user's expected successors, as learned so far on this run.
+    pub expected: Vec<ExpectedView>,
+}
+
+/// One intention of a [`StateView`].
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct IntentionView {
+    /// Its number in the run's steps (1-based).
+    pub intention: usize,
+    /// `held by its event`, `running`, `awaiting feedback` or `waiting`.
+    pub status: &'static str,
+    /// Its stack, top (running) frame first.
+    pub frames: Vec<MeansView>,
+}
+
+/// One intended means on an intention's stack.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct MeansView {
+    /// The instantiated trigger the plan was chosen for.
+    pub trigger: String,
+    /// `file:line` of the plan.
+    pub plan: String,
+    /// The bindings of the plan's variables, `X = value`.
+    pub bindings: Vec<String>,
+    /// The step it executes next (for a frame below the top: the subgoal it waits for),
+    /// as written; `None` when its body is done.
+    pub next: Option<String>,
+}
+
+/// A user's expected-successor relation `N` at one point of a run.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct ExpectedView {
+    /// The user.
+    pub user: String,
+    /// How many pattern pairs the manifest gives the user.
+    pub patterns: usize,
+    /// The pairs learned on this run so far, `(prev, next)`.
+    pub learned: Vec<String>,
+}
+
+/// A counterexample replayed step by step with the agent's state after each transition
+/// (`bdi-check trace`).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Trace {
+    /// The finding traced.
+    pub finding: String,
+    /// Its check.
+    pub check: String,
+    /// Its message, as the report gives it.
+    pub message: String,
+    /// The state the run starts from.
+    pub initial: StateView,
+    /// One entry per transition, in order.
+    pub transitions: Vec<TracedTransition>,
+    /// Whether the run still reaches the finding's violation on the project as it is.
+    pub reached: bool,
+    /// What happened at the end, for people.
+    pub outcome: String,
+}
+
+/// One transition of a [`Trace`]: the steps it shows and the state it leads to.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct TracedTransition {
+    /// The steps, numbered as the counterexample numbers them.
+    pub steps: Vec<TraceStep>,
+    /// The state after it.
+    pub state: StateView,
+}
+
 /// Search statistics of SPEC §3.
 #[derive(Clone, Debug, Serialize, PartialEq, Default)]
 pub struct Stats {

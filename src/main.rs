@@ -220,6 +220,18 @@ enum Command {
         #[arg(long)]
         finding: Option<String>,
     },
+    /// A counterexample step by step, with the agent's whole state after each transition.
+    ///
+    /// Exit 1 while the run still reaches its violation, 0 once it does not, 2 on bad input.
+    Trace {
+        /// A report written by `verify --format json`.
+        report: PathBuf,
+        /// The finding whose run to trace (its `id` in the report).
+        #[arg(long)]
+        finding: String,
+        #[command(flatten)]
+        out: Output,
+    },
 }
 
 fn main() -> ExitCode {
@@ -326,6 +338,14 @@ fn main() -> ExitCode {
             report: path,
             finding,
         } => (commands::replay::command(&path, finding.as_deref()), None),
+        Command::Trace {
+            report: path,
+            finding,
+            out,
+        } => (
+            commands::trace::command(&path, &finding, &out.style()),
+            out.output,
+        ),
     };
     eprint!("{}", done.stderr);
     match done.report {

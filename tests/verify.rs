@@ -861,3 +861,134 @@ fn a_new_users_agent_with_rules_a_counter_and_fail_verifies_with_no_false_error(
         .unwrap()
         .starts_with("no run adopts"));
 }
+
+#[test]
+fn trace_shows_the_state_after_each_step_of_every_run() {
+    // `trace` replays the run the report holds and shows each transition's steps with the
+    // whole state after it. Checked against the report: its steps are the counterexample's
+    // (the checker's explanation steps aside), and each state's beliefs are the previous
+    // ones changed exactly as the steps between them say.
+    for dir in [
+        "tests/verify/goal_failure",
+        "tests/verify/wait_early",
+        "tests/verify/livelock",
+        "tests/verify/explain_untruthful",
+    ] {
+        let (_, r, file) = verify_json(dir, "trace");
+        let runs = r["findings"].as_array().unwrap().iter().filter(|f| {
+            f["status"] == "fail" && f["severity"] == "error" && !f["counterexample"].is_null()
+        });
+        let mut traced = 0;
+        for f in runs {
+            let id = f["id"].as_str().unwrap();
+            let o = bdi_check(&[
+                "trace",
+                file.to_str().unwrap(),
+                "--finding",
+                id,
+                "--format",
+                "json",
+            ]);
+            assert_eq!(o.status.code(), Some(1), "{dir}: {id}");
+            let t: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+            assert_eq!(t["finding"], id);
+            assert_eq!(t["reached"], true);
+            let shown: Vec<(String, String)> = t["transitions"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .flat_map(|x| x["steps"].as_array().unwrap().iter())
+                .map(|s| (s["kind"].to_string(), s["text"].to_string()))
+                .collect();
+            let recorded: Vec<(String, String)> = f["counterexample"]["steps"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|s| s["kind"] != "explanation")
+                .map(|s| (s["kind"].to_string(), s["text"].to_string()))
+                .collect();
+            assert!(
+                shown.len() >= recorded.len() && shown[..recorded.len()] == recorded[..],
+                "{dir}: {id}:\n{shown:?}\n{recorded:?}"
+            );
+            let set = |v: &serde_json::Value| -> std::collections::BTreeSet<String> {
+                v.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|a| a.as_str().unwrap().to_string())
+                    .collect()
+            };
+            let mut beliefs = set(&t["initial"]["beliefs"]);
+            assert_eq!(beliefs, set(&f["counterexample"]["initial"]), "{dir}: {id}");
+            for x in t["transitions"].as_array().unwrap() {
+                for s in x["steps"].as_array().unwrap() {
+                    for a in set(&s["removed"]) {
+                        assert!(beliefs.remove(&a), "{dir}: {id}: {a} was not believed");
+                    }
+                    for a in set(&s["added"]) {
+                        assert!(beliefs.insert(a.clone()), "{dir}: {id}: {a} was believed");
+                    }
+                }
+                assert_eq!(beliefs, set(&x["state"]["beliefs"]), "{dir}: {id}: {x:#}");
+            }
+            if dir.ends_with("explain_untruthful") {
+                // The user learns each novel pair as Algorithm 1 does: N only grows.
+                let learned: Vec<usize> = t["transitions"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| {
+                        x["state"]["expected"][0]["learned"]
+                            .as_array()
+                            .unwrap()
+                            .len()
+                    })
+                    .collect();
+                assert!(learned.windows(2).all(|w| w[0] <= w[1]), "{learned:?}");
+                assert!(learned.last() > Some(&0), "{learned:?}");
+            }
+            let human = bdi_check(&["trace", file.to_str().unwrap(), "--finding", id]);
+            let text = String::from_utf8_lossy(&human.stdout);
+            assert!(text.contains("transition 1\n"), "{text}");
+            assert!(text.contains("  intention 1 ("), "{text}");
+            assert!(
+                text.ends_with(&format!(
+                    "{id}: still reaches its violation ({})\n",
+                    t["outcome"].as_str().unwrap()
+                )),
+                "{text}"
+            );
+            traced += 1;
+        }
+        assert!(traced > 0, "{dir}: no run to trace");
+        // Bad input: an unknown id, a finding without a run, a format trace has not.
+        let o = bdi_check(&["trace", file.to_str().unwrap(), "--finding", "nope"]);
+        assert_eq!(o.status.code(), Some(2), "{dir}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("has no finding `nope`"));
+        if let Some(note) = r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["severity"] == "note" && f["status"] == "fail")
+        {
+            let o = bdi_check(&[
+                "trace",
+                file.to_str().unwrap(),
+                "--finding",
+                note["id"].as_str().unwrap(),
+            ]);
+            assert_eq!(o.status.code(), Some(2), "{dir}");
+            assert!(String::from_utf8_lossy(&o.stderr).contains("has no run to replay"));
+        }
+    }
+    let (_, _, file) = verify_json("tests/verify/goal_failure", "trace_sarif");
+    let o = bdi_check(&[
+        "trace",
+        file.to_str().unwrap(),
+        "--finding",
+        "x",
+        "--format",
+        "sarif",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+}

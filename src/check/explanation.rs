@@ -78,6 +78,13 @@ pub struct ExplainedState {
     emitted: Option<Term>,
 }
 
+impl ExplainedState {
+    /// The user's expected successors `N`, as Algorithm 1 has updated them on the run so far.
+    pub fn expected(&self) -> &ExpectedSuccessors {
+        &self.n
+    }
+}
+
 /// A body action marked at adoption: the frame (by intention, depth and plan) and the
 /// action's position in the body.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]

@@ -9,10 +9,12 @@
 
 use super::explore::{fingerprint, Graph, Walk};
 use super::model::Agent;
-use crate::findings::{Counterexample, StepKindTag, TraceStep};
+use crate::findings::{
+    Counterexample, IntentionView, MeansView, StateView, StepKindTag, TraceStep,
+};
 use crate::model::atoms::AtomId;
 use crate::model::project::Project;
-use crate::semantics::{Note, Origin, Semantics};
+use crate::semantics::{Intention, Note, Origin, Semantics, State};
 use std::collections::HashMap;
 
 /// The last transition of a run: from state `src`, the `k`-th transition as exploration
@@ -162,6 +164,85 @@ impl<'a> Builder<'a> {
         s.added = self.atoms(added);
         s.removed = self.atoms(removed);
         s
+    }
+
+    /// The whole state `s`, its intentions (held by an event, running, awaiting feedback,
+    /// waiting) numbered as the steps so far number them (an
+    /// intention not seen in a step yet takes the next number).
+    pub fn state_view(&mut self, s: &State) -> StateView {
+        let events = s
+            .events
+            .iter()
+            .map(|e| match &e.intention {
+                Some(i) => format!("{} (intention {})", e.trigger, self.intention(i.origin)),
+                None => e.trigger.to_string(),
+            })
+            .collect();
+        let mut intentions: Vec<IntentionView> = Vec::new();
+        // An intention that posted a subgoal is held by the event until a plan is chosen.
+        for e in &s.events {
+            if let Some(i) = &e.intention {
+                intentions.push(self.intention_view(i, "held by its event", None));
+            }
+        }
+        for i in &s.intentions {
+            intentions.push(self.intention_view(i, "running", None));
+        }
+        if let Some(p) = &s.pending {
+            intentions.push(self.intention_view(&p.intention, "awaiting feedback", None));
+        }
+        for w in &s.waiting {
+            intentions.push(self.intention_view(&w.intention, "waiting", Some(w.step.3)));
+        }
+        StateView {
+            beliefs: s
+                .beliefs
+                .iter()
+                .map(|a| self.project.atoms.display(a, &self.project.universe))
+                .collect(),
+            events,
+            intentions,
+            expected: Vec::new(),
+        }
+    }
+
+    /// One intention, top frame first; `at` is the step it is suspended at, if any.
+    fn intention_view(
+        &mut self,
+        i: &Intention,
+        status: &'static str,
+        at: Option<crate::syntax::Span>,
+    ) -> IntentionView {
+        let text = |span| self.project.map.slice(span).trim().to_string();
+        let top = i.frames.len().saturating_sub(1);
+        let frames = i
+            .frames
+            .iter()
+            .enumerate()
+            .rev()
+            .map(|(k, f)| {
+                let next = match (&f.calling, at) {
+                    (_, Some(span)) if k == top => Some(text(span)),
+                    (Some(g), _) => Some(format!("!{g}")),
+                    _ => self.sem.next_step(f).map(text),
+                };
+                MeansView {
+                    trigger: f.trigger.to_string(),
+                    plan: self.plan_place(f.plan),
+                    bindings: f
+                        .subst
+                        .iter()
+                        .map(|(v, _)| format!("{v} = {}", f.subst.resolve(v)))
+                        .collect(),
+                    next,
+                }
+            })
+            .collect();
+        IntentionView {
+            intention: self.intention(i.origin),
+            status,
+            frames,
+        }
     }
 
     /// Appends the steps of one transition.

@@ -8,6 +8,7 @@ pub mod lint;
 pub mod merge;
 pub mod parse;
 pub mod replay;
+pub mod trace;
 pub mod verify;
 
 use crate::report::verify::Detail;

@@ -94,12 +94,25 @@ struct StepIn {
     text: String,
 }
 
-/// Replays the failing findings of a report (or the one named). Errors are bad input.
-/// Errors are bad input, with the files read (the report, or the project) for excerpts.
-pub fn replay(
-    report: &Path,
-    finding: Option<&str>,
-) -> Result<Replay, (SourceMap, Vec<Diagnostic>)> {
+/// Bad input, with the files read (the report, or the project) for excerpts.
+type Refusal = (SourceMap, Vec<Diagnostic>);
+
+/// A report read, and the project it names loaded as it is now.
+struct Opened {
+    /// The report's path, as given.
+    path: String,
+    /// The report's text, for excerpts.
+    map: SourceMap,
+    report: ReportIn,
+    project: Project,
+    /// For stderr: whether the project changed since the report was made.
+    notice: String,
+    /// The report names its files and none changed.
+    unchanged: bool,
+}
+
+/// Reads a report and loads its project. Errors are bad input.
+fn open(report: &Path) -> Result<Opened, Refusal> {
     let mut map = SourceMap::new();
     let bad =
         |msg: String| vec![Diagnostic::error("input", msg).in_file(report.display().to_string())];
@@ -134,7 +147,6 @@ pub fn replay(
         ));
     }
     let project = load_project(Path::new(&r.project)).map_err(|e| (e.map, e.diagnostics))?;
-    let sem = Semantics::new(&project).map_err(|d| (project.map.clone(), d))?;
     // What changed since the report: with its files' digests, an unchanged project must
     // give back every run (a run that no longer reaches its violation on it means the
     // report is not the one the project gave).
@@ -161,54 +173,140 @@ pub fn replay(
             changed.join(", ")
         )
     };
-    let version = r.tool.as_ref().map(|t| t.version.as_str());
-    let selected: Vec<&FindingIn> = r
-        .findings
-        .iter()
-        .filter(|f| match finding {
-            Some(id) => f.id == id,
-            None => has_run(f).is_ok(),
-        })
-        .collect();
-    if let Some(id) = finding {
-        let Some(f) = selected.first() else {
-            return Err((map, bad(format!("the report has no finding `{id}`"))));
-        };
-        // Saying "no longer reaches" of a finding that never had a run would call it fixed.
-        if let Err(why) = has_run(f) {
-            return Err((
-                map,
-                bad(format!(
-                    "the finding `{id}` has no run to replay: {why}; run `verify` again to re-check it"
-                )),
-            ));
-        }
+    Ok(Opened {
+        path: report.display().to_string(),
+        map,
+        report: r,
+        project,
+        notice,
+        unchanged,
+    })
+}
+
+/// The finding `id` of a report, if it has a run to replay (bad input otherwise: saying
+/// "no longer reaches" of a finding that never had a run would call it fixed).
+fn with_run<'r>(o: &'r Opened, id: &str) -> Result<&'r FindingIn, Refusal> {
+    let bad = |msg: String| {
+        let d = Diagnostic::error("input", msg).in_file(o.path.clone());
+        (o.map.clone(), vec![d])
+    };
+    let Some(f) = o.report.findings.iter().find(|f| f.id == id) else {
+        return Err(bad(format!("the report has no finding `{id}`")));
+    };
+    if let Err(why) = has_run(f) {
+        return Err(bad(format!(
+            "the finding `{id}` has no run to replay: {why}; run `verify` again to re-check it"
+        )));
     }
+    Ok(f)
+}
+
+/// On a project whose files are unchanged since the report, every run must come back:
+/// a lost one means the report was altered (or made by another version).
+fn check_unchanged(o: &Opened, results: &[&Replayed]) -> Result<(), Refusal> {
+    if !o.unchanged {
+        return Ok(());
+    }
+    let Some(lost) = results.iter().find(|x| !x.reached) else {
+        return Ok(());
+    };
+    let other = match o.report.tool.as_ref().map(|t| t.version.as_str()) {
+        Some(v) if v != env!("CARGO_PKG_VERSION") => {
+            format!(
+                " (it was made by bdi-check {v}; this is {})",
+                env!("CARGO_PKG_VERSION")
+            )
+        }
+        _ => String::new(),
+    };
+    let d = Diagnostic::error(
+        "input",
+        format!(
+            "the report does not match the project it was made from: its files are unchanged, yet `{}` no longer reaches its violation ({}){other}; the report was altered",
+            lost.id, lost.detail
+        ),
+    );
+    Err((o.map.clone(), vec![d.in_file(o.path.clone())]))
+}
+
+/// Replays the failing findings of a report (or the one named). Errors are bad input.
+pub fn replay(report: &Path, finding: Option<&str>) -> Result<Replay, Refusal> {
+    let o = open(report)?;
+    let sem = Semantics::new(&o.project).map_err(|d| (o.project.map.clone(), d))?;
+    let selected: Vec<&FindingIn> = match finding {
+        Some(id) => vec![with_run(&o, id)?],
+        None => o
+            .report
+            .findings
+            .iter()
+            .filter(|f| has_run(f).is_ok())
+            .collect(),
+    };
     let results: Vec<Replayed> = selected
         .into_iter()
-        .map(|f| replay_one(&project, &sem, f))
+        .map(|f| replay_one(&o.project, &sem, f, &mut Vec::new()))
         .collect();
-    if unchanged {
-        if let Some(lost) = results.iter().find(|x| !x.reached) {
-            let other = match version {
-                Some(v) if v != env!("CARGO_PKG_VERSION") => {
-                    format!(
-                        " (it was made by bdi-check {v}; this is {})",
-                        env!("CARGO_PKG_VERSION")
-                    )
-                }
-                _ => String::new(),
-            };
-            return Err((
-                map,
-                bad(format!(
-                    "the report does not match the project it was made from: its files are unchanged, yet `{}` no longer reaches its violation ({}){other}; the report was altered",
-                    lost.id, lost.detail
-                )),
-            ));
-        }
-    }
-    Ok(Replay { results, notice })
+    check_unchanged(&o, &results.iter().collect::<Vec<_>>())?;
+    Ok(Replay {
+        results,
+        notice: o.notice,
+    })
+}
+
+/// One transition of a replayed run: what it showed and the agent's state after it.
+pub struct Walked {
+    /// The transition's notes.
+    pub notes: Vec<Note>,
+    /// The state it led to.
+    pub state: State,
+}
+
+/// A finding's run as replayed on the project as it is now.
+pub struct Walk<'a> {
+    /// The finding's id, check and message, as the report gives them.
+    pub id: &'a str,
+    /// Its check.
+    pub check: &'a str,
+    /// Its message.
+    pub message: &'a str,
+    /// The state the run starts from.
+    pub initial: State,
+    /// The transitions taken, in order.
+    pub walked: Vec<Walked>,
+    /// Whether it still reaches its violation.
+    pub result: Replayed,
+}
+
+/// Replays the finding `id` of a report and hands its run to `f` with the project it ran
+/// on (`bdi-check trace`); also returns the notice for stderr. Errors are bad input.
+pub fn walk<R>(
+    report: &Path,
+    id: &str,
+    f: impl FnOnce(&Project, &Semantics, &Walk) -> R,
+) -> Result<(R, String), Refusal> {
+    let o = open(report)?;
+    let sem = Semantics::new(&o.project).map_err(|d| (o.project.map.clone(), d))?;
+    let finding = with_run(&o, id)?;
+    let mut walked = Vec::new();
+    let result = replay_one(&o.project, &sem, finding, &mut walked);
+    check_unchanged(&o, &[&result])?;
+    let Some(initial) = initial_state(&o.project, &sem, finding) else {
+        // `replay_one` found none either: nothing was walked.
+        let d = Diagnostic::error(
+            "input",
+            format!("`{id}` cannot be traced: {}", result.detail),
+        );
+        return Err((o.map.clone(), vec![d.in_file(o.path.clone())]));
+    };
+    let w = Walk {
+        id: &finding.id,
+        check: &finding.check,
+        message: &finding.message,
+        initial,
+        walked,
+        result,
+    };
+    Ok((f(&o.project, &sem, &w), o.notice.clone()))
 }
 
 /// Whether a check name is one of bdi-check's.
@@ -252,16 +350,11 @@ fn has_run(f: &FindingIn) -> Result<(), &'static str> {
 /// finding is then an error, and its counterexample has steps).
 const STATIC_WITNESSES: &[&str] = &["precondition", "coverage-gap", "action-breaks-invariant"];
 
-fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
-    let no = |detail: &str| Replayed {
-        id: f.id.clone(),
-        reached: false,
-        detail: detail.to_string(),
-    };
+/// The initial state a finding's run starts from, or why the project no longer has it.
+fn start_of(project: &Project, sem: &Semantics, f: &FindingIn) -> Result<State, &'static str> {
     let Some(c) = &f.counterexample else {
-        return no("the finding has no counterexample");
+        return Err("the finding has no counterexample");
     };
-    // The initial state, if it is still one.
     let mut atoms = AtomSet::empty(project.atoms.len());
     let names: HashSet<&str> = c.initial.iter().map(String::as_str).collect();
     for a in 0..project.atoms.len() as u32 {
@@ -271,17 +364,40 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
         }
     }
     if atoms.count() != names.len() {
-        return no("its initial state mentions atoms the project no longer has");
+        return Err("its initial state mentions atoms the project no longer has");
     }
-    let Some(mut state) = sem
-        .initial_states()
+    sem.initial_states()
         .into_iter()
         .find(|s| s.beliefs == atoms)
-    else {
-        return no("its initial state is no longer an initial state of the project");
+        .ok_or("its initial state is no longer an initial state of the project")
+}
+
+/// The initial state of a finding's run, if the project still has it.
+fn initial_state(project: &Project, sem: &Semantics, f: &FindingIn) -> Option<State> {
+    start_of(project, sem, f).ok()
+}
+
+/// Replays one finding's run, appending each transition taken to `walked`.
+fn replay_one(
+    project: &Project,
+    sem: &Semantics,
+    f: &FindingIn,
+    walked: &mut Vec<Walked>,
+) -> Replayed {
+    let no = |detail: &str| Replayed {
+        id: f.id.clone(),
+        reached: false,
+        detail: detail.to_string(),
+    };
+    let mut state = match start_of(project, sem, f) {
+        Ok(s) => s,
+        Err(why) => return no(why),
+    };
+    let Some(c) = &f.counterexample else {
+        return no("the finding has no counterexample");
     };
     if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
-        return replay_explained(project, sem, f, c, state);
+        return replay_explained(project, sem, f, c, state, walked);
     }
     let check = Check::of(project, f);
     let mut builder = Builder::new(project, sem);
@@ -350,6 +466,10 @@ fn replay_one(project: &Project, sem: &Semantics, f: &FindingIn) -> Replayed {
                 .unwrap_or(0),
         };
         let t = &succ[pick];
+        walked.push(Walked {
+            notes: t.notes.clone(),
+            state: t.next.clone(),
+        });
         if t.notes.iter().any(|n| check.note_violates(n, project)) {
             builder.push(t.notes.clone());
             return Replayed {
@@ -379,6 +499,7 @@ fn replay_explained(
     f: &FindingIn,
     c: &CounterexampleIn,
     agent: State,
+    walked: &mut Vec<Walked>,
 ) -> Replayed {
     use crate::check::explanation::Explained;
     use crate::check::model::Model;
@@ -438,6 +559,10 @@ fn replay_explained(
         };
         let (step, next) = succ.into_iter().nth(pick).expect("a successor was picked");
         builder.push(step.notes.clone());
+        walked.push(Walked {
+            notes: step.notes.clone(),
+            state: next.agent.clone(),
+        });
         let hit = step.violations.iter().any(|v| {
             let loc = project.map.location(v.span);
             v.check == f.check

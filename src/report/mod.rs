@@ -10,6 +10,7 @@ pub mod lint;
 pub mod outline;
 pub mod replay;
 pub mod sarif;
+pub mod trace;
 pub mod verify;
 
 use crate::findings::Report;

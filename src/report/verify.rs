@@ -2,7 +2,9 @@
 //! as numbered stories) and for machines (SPEC §3 JSON), and scenario files.
 
 use crate::check::explore::Bound;
-use crate::findings::{Counterexample, Finding, Report, Stats, Status, StepKindTag, Verdict};
+use crate::findings::{
+    Counterexample, Finding, Report, Stats, Status, StepKindTag, TraceStep, Verdict,
+};
 use crate::syntax::{Diagnostic, Severity, SourceMap};
 use std::path::Path;
 
@@ -160,35 +162,40 @@ pub fn render_counterexample(c: &Counterexample) -> String {
         if c.loop_start == Some(i) {
             out.push_str("    -- from here the run repeats forever --\n");
         }
-        let kind = match s.kind {
-            StepKindTag::Request => "request",
-            StepKindTag::Event => "event",
-            StepKindTag::Plan => "plan",
-            StepKindTag::Action => "action",
-            StepKindTag::Belief => "belief",
-            StepKindTag::Internal => "internal",
-            StepKindTag::Explanation => "explain",
-        };
-        let mut line = format!("    {:>3}. {kind:<8} {}", i + 1, s.text);
-        if let Some(p) = &s.plan {
-            line.push_str(&format!("  ({p})"));
-        }
-        if let Some(n) = s.intention {
-            line.push_str(&format!("  [intention {n}]"));
-        }
-        let changes: Vec<String> = s
-            .added
-            .iter()
-            .map(|a| format!("+{a}"))
-            .chain(s.removed.iter().map(|a| format!("-{a}")))
-            .collect();
-        if !changes.is_empty() {
-            line.push_str(&format!("\n           beliefs: {}", changes.join(" ")));
-        }
-        out.push_str(&line);
-        out.push('\n');
+        out.push_str(&render_step(i + 1, s));
     }
     out
+}
+
+/// Step `n` of a run, on its line (and its belief changes on the next).
+pub fn render_step(n: usize, s: &TraceStep) -> String {
+    let kind = match s.kind {
+        StepKindTag::Request => "request",
+        StepKindTag::Event => "event",
+        StepKindTag::Plan => "plan",
+        StepKindTag::Action => "action",
+        StepKindTag::Belief => "belief",
+        StepKindTag::Internal => "internal",
+        StepKindTag::Explanation => "explain",
+    };
+    let mut line = format!("    {:>3}. {kind:<8} {}", n, s.text);
+    if let Some(p) = &s.plan {
+        line.push_str(&format!("  ({p})"));
+    }
+    if let Some(n) = s.intention {
+        line.push_str(&format!("  [intention {n}]"));
+    }
+    let changes: Vec<String> = s
+        .added
+        .iter()
+        .map(|a| format!("+{a}"))
+        .chain(s.removed.iter().map(|a| format!("-{a}")))
+        .collect();
+    if !changes.is_empty() {
+        line.push_str(&format!("\n           beliefs: {}", changes.join(" ")));
+    }
+    line.push('\n');
+    line
 }
 
 fn render_stats(s: &Stats, bound: Option<Bound>) -> String {

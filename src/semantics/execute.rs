@@ -35,6 +35,18 @@ impl Semantics<'_> {
         }
     }
 
+    /// Where the step a frame executes next is written, for traces: the innermost block's
+    /// next step (a loop whose body has ended: the step after it in an enclosing block).
+    /// `None` when the body is done.
+    pub fn next_step(&self, f: &Frame) -> Option<Span> {
+        let blocks = &self.blocks[f.plan as usize];
+        f.cursors
+            .iter()
+            .rev()
+            .find_map(|c| blocks.blocks[c.block as usize].get(c.pos as usize))
+            .map(|s| s.span)
+    }
+
     /// Tests a loop again once its body has ended: `while` restores the bindings it had
     /// when it first ran and asks its condition again (stdlib `loop`: `un.clear();
     /// un.compose(ubak)`), so variables bound in the body are free on the next pass and
