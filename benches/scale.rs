@@ -197,6 +197,7 @@ fn threads() {
             keep_edges: false,
             max_memory: None,
             shard: None,
+            sample: None,
         };
         let limits = Limits {
             max_states: u64::MAX,

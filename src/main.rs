@@ -111,6 +111,70 @@ impl Output {
     }
 }
 
+/// The search options `verify` and `simulate` share.
+#[derive(Args, Debug)]
+struct Search {
+    /// Stop after this many distinct states (overrides `[bounds] max_states`).
+    #[arg(long)]
+    max_states: Option<u64>,
+    /// Do not expand states deeper than this (overrides `[bounds] max_depth`).
+    #[arg(long)]
+    max_depth: Option<u64>,
+    /// Stop after this many seconds.
+    #[arg(long, value_parser = seconds)]
+    timeout: Option<f64>,
+    /// Write one replayable scenario file per counterexample into this folder.
+    #[arg(long)]
+    scenarios: Option<PathBuf>,
+    /// Worker threads for the search (default: every core). Results do not depend on it.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
+    /// Turn symmetry reduction over `[bounds] symmetry` types off.
+    #[arg(long)]
+    no_symmetry: bool,
+    /// `--deny warnings`: failing warnings (static warnings no run settled) fail the run.
+    #[arg(long, value_name = "LEVEL", value_parser = ["warnings"])]
+    deny: Option<String>,
+}
+
+impl Search {
+    /// Runs `verify` (or, with `sample`, `simulate`) with these options.
+    fn run(
+        self,
+        project: &std::path::Path,
+        shard: Option<(u32, u32)>,
+        sample: Option<bdi_check::check::sample::Sample>,
+        out: &Output,
+    ) -> commands::Output {
+        let bar = Progress::new();
+        let defaults = bdi_check::check::VerifyOptions::default();
+        let opts = bdi_check::check::VerifyOptions {
+            threads: self.threads.map_or(defaults.threads, |t| t as usize),
+            symmetry: !self.no_symmetry,
+            shard,
+            max_memory: bdi_check::check::explore::default_max_memory(),
+            compiled: defaults.compiled,
+            sample,
+        };
+        let bounds = commands::verify::Bounds {
+            max_states: self.max_states,
+            max_depth: self.max_depth,
+            timeout: self.timeout,
+            deny_warnings: self.deny.is_some(),
+        };
+        let done = commands::verify::command(
+            project,
+            &bounds,
+            &opts,
+            self.scenarios.as_deref(),
+            &out.style(),
+            |n, d, t| bar.tick(n, d, t),
+        );
+        bar.finish();
+        done
+    }
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Parse .asl, .pddl or bdi-check.toml files and report every error.
@@ -139,31 +203,30 @@ enum Command {
     Verify {
         /// The project folder or its bdi-check.toml.
         project: PathBuf,
-        /// Stop after this many distinct states (overrides `[bounds] max_states`).
-        #[arg(long)]
-        max_states: Option<u64>,
-        /// Do not expand states deeper than this (overrides `[bounds] max_depth`).
-        #[arg(long)]
-        max_depth: Option<u64>,
-        /// Stop after this many seconds.
-        #[arg(long, value_parser = seconds)]
-        timeout: Option<f64>,
-        /// Write one replayable scenario file per counterexample into this folder.
-        #[arg(long)]
-        scenarios: Option<PathBuf>,
-        /// Worker threads for the search (default: every core). Results do not depend on it.
-        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
-        threads: Option<u32>,
-        /// Turn symmetry reduction over `[bounds] symmetry` types off.
-        #[arg(long)]
-        no_symmetry: bool,
         /// Verify from the K-th of N parts of the initial states only (merge the N reports
         /// with `bdi-check merge`).
         #[arg(long, value_name = "K/N", value_parser = parse_shard)]
         shard: Option<(u32, u32)>,
-        /// `--deny warnings`: failing warnings (static warnings no run settled) fail the run.
-        #[arg(long, value_name = "LEVEL", value_parser = ["warnings"])]
-        deny: Option<String>,
+        #[command(flatten)]
+        search: Search,
+        #[command(flatten)]
+        out: Output,
+    },
+    /// Follow random runs, for state spaces too large to exhaust: lint, then the checks of
+    /// `verify` on the states the runs reach. A violation comes with its run; with none,
+    /// the result is incomplete (exit 3), never a pass.
+    Simulate {
+        /// The project folder or its bdi-check.toml.
+        project: PathBuf,
+        /// How many runs to follow side by side (at every depth, this many of the states
+        /// reached are expanded, chosen at random).
+        #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
+        /// The seed of the random choices: the same seed follows the same runs.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        #[command(flatten)]
+        search: Search,
         #[command(flatten)]
         out: Output,
     },
@@ -263,41 +326,19 @@ fn main() -> ExitCode {
         ),
         Command::Verify {
             project,
-            max_states,
-            max_depth,
-            timeout,
-            scenarios,
-            threads,
-            no_symmetry,
             shard,
-            deny,
+            search,
+            out,
+        } => (search.run(&project, shard, None, &out), out.output),
+        Command::Simulate {
+            project,
+            runs,
+            seed,
+            search,
             out,
         } => {
-            let bar = Progress::new();
-            let defaults = bdi_check::check::VerifyOptions::default();
-            let opts = bdi_check::check::VerifyOptions {
-                threads: threads.map_or(defaults.threads, |t| t as usize),
-                symmetry: !no_symmetry,
-                shard,
-                max_memory: bdi_check::check::explore::default_max_memory(),
-                compiled: defaults.compiled,
-            };
-            let bounds = commands::verify::Bounds {
-                max_states,
-                max_depth,
-                timeout,
-                deny_warnings: deny.is_some(),
-            };
-            let done = commands::verify::command(
-                &project,
-                &bounds,
-                &opts,
-                scenarios.as_deref(),
-                &out.style(),
-                |n, d, t| bar.tick(n, d, t),
-            );
-            bar.finish();
-            (done, out.output)
+            let sample = bdi_check::check::sample::Sample { runs, seed };
+            (search.run(&project, None, Some(sample), &out), out.output)
         }
         Command::Explain {
             project,

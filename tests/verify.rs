@@ -992,3 +992,110 @@ fn trace_shows_the_state_after_each_step_of_every_run() {
     ]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// `simulate` with these arguments: its exit code, JSON report and the report's file.
+fn simulate_json(
+    project: &str,
+    runs: u32,
+    seed: u64,
+    tag: &str,
+) -> (i32, serde_json::Value, std::path::PathBuf) {
+    let file = temp_dir(tag).join("report.json");
+    let (runs, seed) = (runs.to_string(), seed.to_string());
+    let o = bdi_check(&[
+        "simulate",
+        project,
+        "--runs",
+        &runs,
+        "--seed",
+        &seed,
+        "--format",
+        "json",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(&file)
+        .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    (
+        o.status.code().unwrap(),
+        serde_json::from_str(&text).unwrap(),
+        file,
+    )
+}
+
+/// The errors a report fails with, as `id`s.
+fn failed_ids(r: &serde_json::Value) -> std::collections::BTreeSet<String> {
+    r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["status"] == "fail" && f["severity"] == "error")
+        .map(|f| f["id"].as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn simulate_finds_only_what_verify_finds_with_runs_that_replay_and_never_passes_early() {
+    // Random runs find a subset of verify's errors (never a false one), each with a run
+    // that replays; the same seed gives the same report; with runs to spare at every depth
+    // the search is the exhaustive one and the report is verify's.
+    for dir in [
+        "tests/verify/goal_failure",
+        "tests/verify/invariant",
+        "tests/verify/action_failure",
+        "tests/verify/livelock",
+        "specs/paper",
+    ] {
+        let (_, full, _) = verify_json(dir, "simulate_full");
+        let mut found = std::collections::BTreeSet::new();
+        for seed in 0..4 {
+            let (code, r, file) = simulate_json(dir, 1, seed, "simulate");
+            let ids = failed_ids(&r);
+            assert!(ids.is_subset(&failed_ids(&full)), "{dir}: {ids:?}");
+            assert_eq!(code, if ids.is_empty() { 3 } else { 1 }, "{dir}: {r:#}");
+            if !ids.is_empty() {
+                let o = bdi_check(&["replay", file.to_str().unwrap()]);
+                let out = String::from_utf8_lossy(&o.stdout);
+                assert!(
+                    out.lines().all(|l| l.contains("still reaches")),
+                    "{dir}: {out}"
+                );
+            }
+            let (_, again, _) = simulate_json(dir, 1, seed, "simulate_again");
+            assert_eq!(r["findings"], again["findings"], "{dir}: seed {seed}");
+            found.extend(ids);
+        }
+        assert!(!found.is_empty(), "{dir}: no seed found a defect");
+        let (code, wide, _) = simulate_json(dir, 1_000_000, 0, "simulate_wide");
+        assert_eq!(code, full_code(&full), "{dir}");
+        assert_eq!(wide["findings"], full["findings"], "{dir}");
+        assert_eq!(wide["stats"]["complete"], true, "{dir}");
+    }
+    // A correct library too large for the runs: no error, and incomplete rather than pass.
+    let (code, r, _) = simulate_json("specs/kitchen", 5, 0, "simulate_kitchen");
+    assert_eq!(code, 3, "{r:#}");
+    assert_eq!(r["verdict"], "incomplete");
+    assert!(failed_ids(&r).is_empty(), "{r:#}");
+    assert!(r["stats"]["states"].as_u64().unwrap() < 12_006, "{r:#}");
+    let (_, other, _) = simulate_json("specs/kitchen", 5, 1, "simulate_kitchen_seed");
+    let visited = |r: &serde_json::Value| {
+        (
+            r["stats"]["states"].clone(),
+            r["stats"]["transitions"].clone(),
+        )
+    };
+    assert_ne!(
+        visited(&r),
+        visited(&other),
+        "two seeds followed the same runs"
+    );
+}
+
+fn full_code(r: &serde_json::Value) -> i32 {
+    match r["verdict"].as_str().unwrap() {
+        "pass" => 0,
+        "fail" => 1,
+        "incomplete" => 3,
+        _ => 2,
+    }
+}

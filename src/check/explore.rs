@@ -42,6 +42,8 @@ pub enum Bound {
     Memory,
     /// A run left the finite model ([`crate::semantics::Note::Beyond`]).
     Beyond,
+    /// Random runs were followed (`simulate`): some states reached were not expanded.
+    Sampled,
 }
 
 /// Limits of one search.
@@ -66,6 +68,8 @@ pub struct Options {
     pub max_memory: Option<u64>,
     /// `(k, n)`: explore from the `k`-th of `n` parts of the initial states only (1-based).
     pub shard: Option<(u32, u32)>,
+    /// Follow random runs only ([`super::sample`]): at each depth, expand this many states.
+    pub sample: Option<super::sample::Sample>,
 }
 
 impl Default for Options {
@@ -75,6 +79,7 @@ impl Default for Options {
             keep_edges: true,
             max_memory: None,
             shard: None,
+            sample: None,
         }
     }
 }
@@ -475,6 +480,7 @@ fn search<M: Model, T>(
     g.initial = g.store.len();
     let mut depth = 0u32;
     let mut stopped = false;
+    let mut rng = opts.sample.map(|s| super::sample::SplitMix64::new(s.seed));
     while let Some(&(first, _)) = frontier.first() {
         if depth > 0 {
             g.levels.push(first);
@@ -483,17 +489,40 @@ fn search<M: Model, T>(
         if !expand && !stopped {
             g.bound.get_or_insert(Bound::Depth);
         }
+        // Following random runs: the states of this depth to expand (the others are
+        // summarized only, as states beyond a bound).
+        let chosen: Option<Vec<bool>> = match (opts.sample, &mut rng) {
+            (Some(s), Some(rng)) if frontier.len() > s.runs as usize => {
+                g.bound.get_or_insert(Bound::Sampled);
+                Some(rng.choose(frontier.len(), s.runs as usize))
+            }
+            _ => None,
+        };
+        let chosen_at = |i: usize| chosen.as_ref().is_none_or(|c| c[i]);
         let mut next: Vec<(u32, M::State)> = Vec::new();
-        let mut level = std::mem::take(&mut frontier).into_iter();
+        let mut level = std::mem::take(&mut frontier)
+            .into_iter()
+            .enumerate()
+            .peekable();
         let mut out = 0;
         loop {
             while out < expander.ahead() {
-                let job: Batch<M::State> = level.by_ref().take(JOB).collect();
+                // A job: consecutive states that are all expanded or all not.
+                let mut job: Batch<M::State> = Vec::new();
+                let mut expand_job = true;
+                while job.len() < JOB {
+                    let Some(&(i, _)) = level.peek() else { break };
+                    if !job.is_empty() && chosen_at(i) != expand_job {
+                        break;
+                    }
+                    expand_job = chosen_at(i);
+                    job.extend(level.next().map(|(_, s)| s));
+                }
                 if job.is_empty() {
                     break;
                 }
                 // After a stop, only summaries: the merge drops successors anyway.
-                expander.submit(job, expand && !stopped);
+                expander.submit(job, expand && expand_job && !stopped);
                 out += 1;
             }
             if out == 0 {

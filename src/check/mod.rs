@@ -27,6 +27,7 @@ pub mod explanation;
 pub mod explore;
 pub mod model;
 pub mod run;
+pub mod sample;
 pub mod store;
 pub mod symmetry;
 pub mod trace;
@@ -85,6 +86,8 @@ pub struct VerifyOptions {
     /// Search the compiled reasoning cycle ([`Compiled`]) where it applies (a local
     /// library); off, the reference one. The two give the same report.
     pub compiled: bool,
+    /// Follow random runs only (`simulate`), not every state.
+    pub sample: Option<sample::Sample>,
 }
 
 impl Default for VerifyOptions {
@@ -96,6 +99,7 @@ impl Default for VerifyOptions {
             shard: None,
             max_memory: None,
             compiled: true,
+            sample: None,
         }
     }
 }
@@ -192,6 +196,7 @@ pub fn verify_with(
         keep_edges: true,
         max_memory: opts.max_memory,
         shard: opts.shard,
+        sample: opts.sample,
     };
     let mut failures = Failures::default();
     let compiled = if opts.compiled {
@@ -263,6 +268,7 @@ pub fn verify_with(
         keep_edges: false,
         max_memory: opts.max_memory,
         shard: opts.shard,
+        sample: opts.sample,
     };
     findings.extend(
         explanation::verify(

@@ -51,7 +51,14 @@ pub fn command(
         }
     }
     let text = match (style.ci, style.format) {
-        (Some(ci), _) => ci.render(&run.report, "verify"),
+        (Some(ci), _) => ci.render(
+            &run.report,
+            if opts.sample.is_some() {
+                "simulate"
+            } else {
+                "verify"
+            },
+        ),
         (None, Format::Json) => {
             serde_json::to_string_pretty(&run.report).unwrap_or_default() + "\n"
         }
