@@ -8,7 +8,7 @@
 //! its exit code can never disagree.
 
 use crate::syntax::{Diagnostic, Location, Severity, SourceMap};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The tool's name and version, as reports name it.
 #[derive(Clone, Debug, Serialize, PartialEq, Eq)]
@@ -29,7 +29,7 @@ impl Default for Tool {
 }
 
 /// The overall outcome of a command.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq, PartialOrd, Ord)]
 #[serde(rename_all = "lowercase")]
 pub enum Verdict {
     /// Every check holds and the search was complete.
@@ -55,7 +55,7 @@ impl Verdict {
 }
 
 /// Whether a finding's check held.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
     /// The check failed.
@@ -67,7 +67,7 @@ pub enum Status {
 }
 
 /// One finding of SPEC §3.
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Finding {
     /// A stable id: `check:file:line`.
     pub id: String,
@@ -101,7 +101,7 @@ impl Finding {
 }
 
 /// A counterexample of SPEC §3: where it starts, what the user asked, and what happened.
-#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
 pub struct Counterexample {
     /// Every atom true at the start (the rest are false), as Jason terms.
     pub initial: Vec<String>,
@@ -116,7 +116,7 @@ pub struct Counterexample {
 }
 
 /// The kinds of step of a run.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum StepKindTag {
     /// A user request arrives.
@@ -136,7 +136,7 @@ pub enum StepKindTag {
 }
 
 /// One step of a counterexample run.
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct TraceStep {
     /// What kind of step.
     pub kind: StepKindTag,
@@ -235,7 +235,7 @@ pub struct TracedTransition {
 }
 
 /// Search statistics of SPEC §3.
-#[derive(Clone, Debug, Serialize, PartialEq, Default)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
 pub struct Stats {
     /// Initial states explored.
     pub initial_states: usize,
@@ -254,9 +254,10 @@ pub struct Stats {
 }
 
 /// The report every project command writes (SPEC §3).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Report {
-    /// The tool.
+    /// The tool (read back from JSON, the report is this tool's: `merge` writes it).
+    #[serde(skip_deserializing)]
     pub tool: Tool,
     /// The project as named on the command line.
     pub project: String,
@@ -265,14 +266,14 @@ pub struct Report {
     /// Every finding, failing and passing.
     pub findings: Vec<Finding>,
     /// Explanations given (filled by `explain`).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub explanations: Vec<serde_json::Value>,
     /// Search statistics (filled by `verify`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stats: Option<Stats>,
     /// What the reader must know about how the verdict was reached (e.g. that symmetry
     /// reduction rests on an assumption the agent does not meet).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
     /// The part of the initial states this run covered (`verify --shard K/N`), so that
     /// `merge` can check it has each part of one run exactly once.
@@ -280,12 +281,12 @@ pub struct Report {
     pub shard: Option<Shard>,
     /// The project's files the run read, each with its SHA-256, so `replay` can tell a
     /// project that changed since from a report that was altered.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sources: Vec<Source>,
 }
 
 /// One file a report was made from.
-#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub struct Source {
     /// How reports name it.
     pub file: String,
@@ -309,7 +310,7 @@ pub fn sources_of(map: &SourceMap) -> Vec<Source> {
 }
 
 /// One part of a sharded run: the `index`-th (from 1) of `count`.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub struct Shard {
     /// K of `--shard K/N`.
     pub index: u32,

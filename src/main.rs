@@ -42,6 +42,10 @@ enum MergeFormat {
     Human,
     /// The merged report.
     Json,
+    /// The merged report as SARIF 2.1.0.
+    Sarif,
+    /// The merged report as JUnit XML.
+    Junit,
 }
 
 /// `--color`.
@@ -370,8 +374,14 @@ fn main() -> ExitCode {
             output,
         } => {
             let done = match format {
-                MergeFormat::Json => commands::merge::command(&reports, Format::Json),
-                MergeFormat::Human => commands::merge::command(&reports, Format::Human),
+                MergeFormat::Json => commands::merge::command(&reports, Format::Json, None),
+                MergeFormat::Human => commands::merge::command(&reports, Format::Human, None),
+                MergeFormat::Sarif => {
+                    commands::merge::command(&reports, Format::Json, Some(CiFormat::Sarif))
+                }
+                MergeFormat::Junit => {
+                    commands::merge::command(&reports, Format::Json, Some(CiFormat::Junit))
+                }
             };
             (done, output)
         }

@@ -456,7 +456,25 @@ fn merge_in_human_lists_the_failing_findings() {
         text.lines().last().unwrap().starts_with("verdict: fail"),
         "{text}"
     );
-    // Only the formats merge writes are offered.
+    // SARIF and JUnit of the merged report are those of the unsharded run (JUnit's test
+    // cases may come in another order).
+    let full = |format: &str| bdi_check(&["verify", "specs/paper", "--format", format]).stdout;
     let out = bdi_check(&["merge", &a, &b, "--format", "sarif"]);
-    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(out.status.code(), Some(1));
+    let sarif: Value = serde_json::from_slice(&out.stdout).expect("SARIF is JSON");
+    let want: Value = serde_json::from_slice(&full("sarif")).expect("SARIF is JSON");
+    assert_eq!(sarif, want);
+    let out = bdi_check(&["merge", &a, &b, "--format", "junit"]);
+    assert_eq!(out.status.code(), Some(1));
+    let lines = |b: &[u8]| {
+        let mut v: Vec<String> = String::from_utf8_lossy(b)
+            .lines()
+            .map(String::from)
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(lines(&out.stdout), lines(&full("junit")));
+    assert!(String::from_utf8_lossy(&out.stdout)
+        .contains("<testsuite name=\"bdi-check verify specs/paper\""));
 }

@@ -2,11 +2,13 @@
 //! project (`verify --shard K/N`).
 
 use super::Output;
-use crate::report::Format;
+use crate::findings::Report;
+use crate::report::{CiFormat, Format};
 use std::path::PathBuf;
 
-/// `merge REPORTS`: the merged report as JSON, or its verdict line (`Format::Human`).
-pub fn command(reports: &[PathBuf], format: Format) -> Output {
+/// `merge REPORTS`: the merged report as JSON, SARIF or JUnit (`ci`), or its failing
+/// findings and verdict line (`Format::Human`).
+pub fn command(reports: &[PathBuf], format: Format, ci: Option<CiFormat>) -> Output {
     let mut values = Vec::new();
     for path in reports {
         let read = crate::syntax::source::read_input(path)
@@ -32,6 +34,15 @@ pub fn command(reports: &[PathBuf], format: Format) -> Output {
                 "incomplete" => 3,
                 _ => 2,
             };
+            if let Some(ci) = ci {
+                // The merged report is a report like `verify`'s: the same renderers.
+                return match serde_json::from_value::<Report>(merged) {
+                    Ok(r) => Output::report(ci.render(&r, "verify"), code),
+                    Err(e) => Output::refused(format!(
+                        "error: the merged report is not a bdi-check report: {e}\n"
+                    )),
+                };
+            }
             let text = match format {
                 Format::Json => serde_json::to_string_pretty(&merged).unwrap_or_default() + "\n",
                 Format::Human => {
