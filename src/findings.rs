@@ -91,6 +91,11 @@ pub struct Finding {
     /// Other places the finding names (e.g. the earlier of two overlapping plans).
     #[serde(skip)]
     pub related: Vec<crate::syntax::Span>,
+    /// Why the project accepts this failing finding on purpose: the `why` of the
+    /// manifest's `[[allow]]` that names it. A suppressed finding does not count toward the
+    /// verdict.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub suppressed: Option<String>,
 }
 
 impl Finding {
@@ -358,6 +363,7 @@ impl Finding {
             counterexample: None,
             span: d.span,
             related: d.secondary.iter().map(|l| l.span).collect(),
+            suppressed: None,
         }
     }
 }
@@ -393,7 +399,9 @@ pub fn unique_ids(findings: &mut [Finding]) {
 /// The verdict of a set of findings: `error` if an input finding is an error, else `fail` if
 /// any finding of severity error failed, else `incomplete` if any is unknown, else `pass`.
 pub fn verdict_of(findings: &[Finding]) -> Verdict {
-    let failed = |f: &&Finding| f.severity == Severity::Error && f.status == Status::Fail;
+    let failed = |f: &&Finding| {
+        f.severity == Severity::Error && f.status == Status::Fail && f.suppressed.is_none()
+    };
     if findings.iter().filter(failed).any(|f| f.check == "input") {
         Verdict::Error
     } else if findings.iter().any(|f| failed(&f)) {
@@ -420,6 +428,7 @@ mod tests {
             counterexample: None,
             span: None,
             related: Vec::new(),
+            suppressed: None,
         }
     }
 

@@ -1099,3 +1099,122 @@ fn full_code(r: &serde_json::Value) -> i32 {
         _ => 2,
     }
 }
+
+#[test]
+fn allows_suppress_exactly_the_findings_they_name_and_say_so() {
+    // tests/verify/allowed is goal_failure with its two errors accepted by `[[allow]]`:
+    // the same findings, the two marked with their reasons, a pass, and the allow that
+    // matches nothing reported.
+    let (code, r, file) = verify_json("tests/verify/allowed", "allowed");
+    assert_eq!(code, 0, "{r:#}");
+    assert_eq!(r["verdict"], "pass");
+    let (_, plain, _) = verify_json("tests/verify/goal_failure", "allowed_plain");
+    let shape = |r: &serde_json::Value| -> Vec<(String, String, String, String)> {
+        let mut v: Vec<_> = r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| {
+                let s = |k: &str| f[k].as_str().unwrap_or("").to_string();
+                (s("check"), s("status"), s("severity"), s("message"))
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(shape(&r), shape(&plain));
+    let suppressed: std::collections::BTreeSet<String> = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| !f["suppressed"].is_null())
+        .map(|f| f["id"].as_str().unwrap().replace("allowed", "goal_failure"))
+        .collect();
+    assert_eq!(suppressed, failed_ids(&plain), "{r:#}");
+    let warnings = r["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].as_str().unwrap().contains("`deadlock`"),
+        "{warnings:?}"
+    );
+    // A suppressed finding is replayed only when named.
+    let o = bdi_check(&["replay", file.to_str().unwrap()]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    // SARIF suppressions, JUnit skipped test cases.
+    let sarif = bdi_check(&["verify", "tests/verify/allowed", "--format", "sarif"]);
+    let s: serde_json::Value = serde_json::from_slice(&sarif.stdout).unwrap();
+    let with_suppressions = s["runs"][0]["results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|x| x["suppressions"][0]["kind"] == "external")
+        .count();
+    assert_eq!(with_suppressions, 2);
+    let junit = bdi_check(&["verify", "tests/verify/allowed", "--format", "junit"]);
+    let j = String::from_utf8_lossy(&junit.stdout);
+    assert_eq!(
+        j.matches("<skipped message=\"suppressed by [[allow]]")
+            .count(),
+        2,
+        "{j}"
+    );
+    assert!(j.contains("failures=\"0\""), "{j}");
+    // Human output says how many were suppressed.
+    let human = bdi_check(&["verify", "tests/verify/allowed"]);
+    let text = String::from_utf8_lossy(&human.stdout);
+    assert!(text.contains("2 suppressed"), "{text}");
+    assert!(
+        text.contains("warning: the [[allow]] of `deadlock`"),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_allows_are_bad_input_with_their_place() {
+    let base = std::fs::read_to_string("tests/verify/goal_failure/bdi-check.toml").unwrap();
+    for (allow, says) in [
+        (
+            "check = \"nope\"\nwhy = \"x\"",
+            "`nope` is not a check bdi-check has",
+        ),
+        ("check = \"goal-failure\"", "missing"),
+        ("check = \"goal-failure\"\nwhy = \" \"", "needs a reason"),
+        (
+            "check = \"goal-failure\"\nat = \"other.asl:2\"\nwhy = \"x\"",
+            "`other.asl` is not a file of the project",
+        ),
+        (
+            "check = \"goal-failure\"\nat = \"agent.asl:two\"\nwhy = \"x\"",
+            "is not `file:line`",
+        ),
+        (
+            "check = \"goal-failure\"\nwhy = \"x\"\nwhere = \"x\"",
+            "where",
+        ),
+    ] {
+        let dir = temp_dir("bad_allow");
+        std::fs::copy("tests/verify/goal_failure/agent.asl", dir.join("agent.asl")).unwrap();
+        let manifest = base.replace(
+            "../../../specs",
+            &format!("{}/specs", env!("CARGO_MANIFEST_DIR")),
+        );
+        std::fs::write(
+            dir.join("bdi-check.toml"),
+            format!("{manifest}\n[[allow]]\n{allow}\n"),
+        )
+        .unwrap();
+        for cmd in ["verify", "lint"] {
+            let o = bdi_check(&[cmd, dir.to_str().unwrap()]);
+            let err = String::from_utf8_lossy(&o.stderr).to_string()
+                + &String::from_utf8_lossy(&o.stdout);
+            assert_eq!(o.status.code(), Some(2), "{cmd} {allow}: {err}");
+            assert!(err.contains(says), "{cmd} {allow}: {err}");
+            assert!(err.contains("bdi-check.toml:1"), "{cmd} {allow}: {err}");
+        }
+    }
+}

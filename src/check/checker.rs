@@ -62,6 +62,7 @@ impl Checker<'_> {
             counterexample: None,
             span: Some(span),
             related: Vec::new(),
+            suppressed: None,
         }
     }
 

@@ -847,6 +847,7 @@ pub fn verify(
                     counterexample: Some(counterexample(project, &model, &r.graph, *shown, v)),
                     span: Some(v.span),
                     related: Vec::new(),
+                    suppressed: None,
                 });
             }
             if failed {
@@ -879,6 +880,7 @@ pub fn verify(
                 counterexample: None,
                 span: Some(user.span),
                 related: Vec::new(),
+                suppressed: None,
             });
         }
     }

@@ -45,7 +45,27 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
             };
         }
     };
+    let bad = super::allow::check(&project);
+    if !bad.is_empty() {
+        let findings: Vec<Finding> = bad
+            .iter()
+            .map(|d| Finding::from_input_diagnostic(d, &project.map))
+            .collect();
+        let mut report = Report::new(name, findings);
+        report.verdict = Verdict::Error;
+        return LintRun {
+            report,
+            map: project.map,
+            diagnostics: bad,
+            findings: Vec::new(),
+        };
+    }
     let mut findings = lint(&project, opts);
+    let unused = super::allow::apply(
+        &project,
+        findings.iter_mut().map(|f| &mut f.finding),
+        |check| crate::smt::lint::CHECKS.contains(&check),
+    );
     if deny_warnings {
         for f in &mut findings {
             if f.finding.severity == Severity::Warning && f.finding.status == Status::Fail {
@@ -54,6 +74,7 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
         }
     }
     let mut report = Report::new(name, findings.iter().map(|f| f.finding.clone()).collect());
+    report.warnings = unused;
     report.sources = crate::findings::sources_of(&project.map);
     LintRun {
         report,

@@ -2,6 +2,7 @@
 //! result to [`crate::report`] for rendering. `main.rs` parses the command line into these
 //! calls and writes what they return; nothing here prints.
 
+pub mod allow;
 pub mod explain;
 pub mod graph;
 pub mod lint;

@@ -2,6 +2,7 @@
 //! against the project as it is now. A kept report is a regression test: exit 1 while a
 //! counterexample still reaches its violation, 0 once none does (SPEC §2).
 
+use super::allow::known_check;
 use super::Output;
 use crate::check::explore::fingerprint;
 use crate::check::trace::Builder;
@@ -71,6 +72,9 @@ struct FindingIn {
     message: String,
     location: Option<LocationIn>,
     counterexample: Option<CounterexampleIn>,
+    /// Accepted on purpose (`[[allow]]`): replayed only when named.
+    #[serde(default)]
+    suppressed: Option<String>,
 }
 
 #[derive(Deserialize)]
@@ -239,7 +243,7 @@ pub fn replay(report: &Path, finding: Option<&str>) -> Result<Replay, Refusal> {
             .report
             .findings
             .iter()
-            .filter(|f| has_run(f).is_ok())
+            .filter(|f| has_run(f).is_ok() && f.suppressed.is_none())
             .collect(),
     };
     let results: Vec<Replayed> = selected
@@ -307,14 +311,6 @@ pub fn walk<R>(
         result,
     };
     Ok((f(&o.project, &sem, &w), o.notice.clone()))
-}
-
-/// Whether a check name is one of bdi-check's.
-fn known_check(name: &str) -> bool {
-    crate::smt::lint::CHECKS.contains(&name)
-        || crate::check::explanation::CHECKS.contains(&name)
-        || crate::check::CHECKS.contains(&name)
-        || name == "input"
 }
 
 /// Whether a finding comes with a run that reaches its violation, or why not: a note

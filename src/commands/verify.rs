@@ -107,6 +107,10 @@ pub fn run(
         Ok(p) => p,
         Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
+    let bad = super::allow::check(&project);
+    if !bad.is_empty() {
+        return input_failure(name, project.map, bad);
+    }
     let lim = limits(&project, bounds);
     // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
     let lint: Vec<Finding> = crate::smt::lint(&project, &crate::smt::LintOptions::default())
@@ -115,8 +119,10 @@ pub fn run(
         .collect();
     match verify_with(&project, lim, opts, progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
-        Ok(v) => {
+        Ok(mut v) => {
+            let unused = super::allow::apply(&project, &mut v.findings, |_| true);
             let mut report = Report::new(name, v.findings);
+            report.warnings.extend(unused);
             if report.verdict == Verdict::Pass && !v.stats.complete {
                 report.verdict = Verdict::Incomplete;
             }

@@ -4,7 +4,7 @@
 //! Written by hand: the shape is one suite of flat test cases, and a crate would add build
 //! time for forty lines of escaping. One `<testcase>` per finding, passed ones too, so the
 //! dashboard counts every check. What fails the verdict is a `<failure>` (an error that
-//! failed) or an `<error>` (malformed input); an undecided check is `<skipped>`; a failing
+//! failed) or an `<error>` (malformed input); an undecided check and a finding suppressed by `[[allow]]` are `<skipped>`; a failing
 //! warning or note is reported in `<system-out>` without failing, as the exit code does.
 //! There are no `time` attributes: the output depends on the findings alone.
 
@@ -24,6 +24,9 @@ enum Outcome {
 }
 
 fn outcome(f: &Finding) -> Outcome {
+    if f.suppressed.is_some() {
+        return Outcome::Skipped;
+    }
     match f.status {
         Status::Pass => Outcome::Passed,
         Status::Unknown => Outcome::Skipped,
@@ -119,10 +122,13 @@ fn testcase(f: &Finding, o: Outcome) -> String {
                 text(&body)
             )
         }
-        Outcome::Skipped => format!(
-            "      <skipped message=\"{}\"/>\n",
-            attr(&format!("undecided: {}", f.message))
-        ),
+        Outcome::Skipped => {
+            let why = match &f.suppressed {
+                Some(why) => format!("suppressed by [[allow]] ({why}): {}", f.message),
+                None => format!("undecided: {}", f.message),
+            };
+            format!("      <skipped message=\"{}\"/>\n", attr(&why))
+        }
         Outcome::Remark => format!(
             "      <system-out>{}: {}</system-out>\n",
             f.severity,

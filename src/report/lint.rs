@@ -67,13 +67,16 @@ pub fn render_human(run: &LintRun, detail: Detail, color: bool) -> String {
                 }
             }
         }
-        let hidden = run
-            .findings
-            .iter()
-            .filter(|f| super::verify::rank(&f.finding) == 2)
-            .count();
-        if hidden > 0 && !verbose {
+        if !verbose {
+            let hidden = run
+                .findings
+                .iter()
+                .map(|f| &f.finding)
+                .filter(|f| super::verify::rank(f) == 2);
             out.push_str(&super::verify::hidden_notes(hidden));
+        }
+        for w in &run.report.warnings {
+            out.push_str(&format!("warning: {w}\n"));
         }
     }
     out.push_str(&super::verify::paint_verdict(
@@ -87,13 +90,17 @@ pub fn render_human(run: &LintRun, detail: Detail, color: bool) -> String {
 /// One finding as rustc prints a diagnostic, with its counterexample state under it.
 pub fn render_finding(f: &LintFinding, map: &SourceMap, color: bool) -> String {
     let p = &f.finding;
-    let prefix = if p.status == Status::Unknown {
-        "undecided: "
-    } else {
-        ""
+    let prefix = match (&p.suppressed, p.status) {
+        (Some(why), _) => format!("suppressed by [[allow]] ({why}): "),
+        (None, Status::Unknown) => "undecided: ".into(),
+        (None, _) => String::new(),
     };
     let d = Diagnostic {
-        severity: p.severity,
+        severity: if p.suppressed.is_some() {
+            Severity::Note
+        } else {
+            p.severity
+        },
         code: p.check.clone(),
         message: format!("{prefix}{}", p.message),
         span: p.span,
@@ -124,9 +131,10 @@ pub fn summary(r: &Report) -> String {
     let count = |s: Severity| {
         r.findings
             .iter()
-            .filter(|f| f.status == Status::Fail && f.severity == s)
+            .filter(|f| f.status == Status::Fail && f.severity == s && f.suppressed.is_none())
             .count()
     };
+    let allowed = r.findings.iter().filter(|f| f.suppressed.is_some()).count();
     let plural =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     let undecided = r
@@ -153,8 +161,13 @@ pub fn summary(r: &Report) -> String {
         Verdict::Incomplete => "incomplete",
         Verdict::Error => "error",
     };
+    let allowed = if allowed > 0 {
+        format!(", {allowed} suppressed")
+    } else {
+        String::new()
+    };
     format!(
-        "lint {}: {}, {}, {}, {} undecided; {} passed: {verdict}\n",
+        "lint {}: {}, {}, {}, {} undecided{allowed}; {} passed: {verdict}\n",
         r.project,
         plural(count(Severity::Error), "error", "errors"),
         plural(count(Severity::Warning), "warning", "warnings"),

@@ -111,6 +111,11 @@ fn result(f: &Finding, rule_index: usize, project: &str) -> Value {
         r["kind"] = json!("fail");
         r["level"] = json!(level(f.severity));
     }
+    if let Some(why) = &f.suppressed {
+        // SARIF §3.35: accepted on purpose in the manifest, a file apart from the source.
+        r["suppressions"] =
+            json!([{"kind": "external", "status": "accepted", "justification": why}]);
+    }
     if let Some(c) = f.counterexample.as_ref().filter(|c| !c.steps.is_empty()) {
         r["codeFlows"] = json!([code_flow(c)]);
     }

@@ -58,9 +58,8 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
                 out.push_str(&render_finding(f, &run.map, color));
                 out.push('\n');
             }
-            let hidden = r.findings.iter().filter(|f| rank(f) == 2).count();
-            if hidden > 0 && !verbose {
-                out.push_str(&hidden_notes(hidden));
+            if !verbose {
+                out.push_str(&hidden_notes(r.findings.iter().filter(|f| rank(f) == 2)));
             }
         }
         if let Some(s) = &r.stats {
@@ -89,6 +88,9 @@ pub fn paint_verdict(line: &str, verdict: Verdict, color: bool) -> String {
 /// Where a finding goes in the human report: 0 failing errors, 1 failing warnings and
 /// undecided checks, 2 notes, 3 passes.
 pub fn rank(f: &Finding) -> u8 {
+    if f.suppressed.is_some() {
+        return 2;
+    }
     match (f.status, f.severity) {
         (Status::Fail, Severity::Error) => 0,
         (Status::Fail, Severity::Warning) | (Status::Unknown, _) => 1,
@@ -97,10 +99,22 @@ pub fn rank(f: &Finding) -> u8 {
     }
 }
 
-/// The line that says how many notes `-v` would show.
-pub fn hidden_notes(n: usize) -> String {
-    let s = if n == 1 { "" } else { "s" };
-    format!("{n} note{s} not shown (`-v` shows them)\n")
+/// The line that says how many notes and suppressed findings `-v` would show.
+pub fn hidden_notes<'f>(hidden: impl Iterator<Item = &'f Finding>) -> String {
+    let (allowed, notes): (Vec<&Finding>, Vec<&Finding>) =
+        hidden.partition(|f| f.suppressed.is_some());
+    let plural = |n: usize, one: &str| format!("{n} {one}{}", if n == 1 { "" } else { "s" });
+    let what = match (notes.len(), allowed.len()) {
+        (0, 0) => return String::new(),
+        (n, 0) => plural(n, "note"),
+        (0, a) => format!("{} suppressed by [[allow]]", plural(a, "finding")),
+        (n, a) => format!(
+            "{} and {} suppressed by [[allow]]",
+            plural(n, "note"),
+            plural(a, "finding")
+        ),
+    };
+    format!("{what} not shown (`-v` shows them)\n")
 }
 
 fn render_finding(f: &Finding, map: &SourceMap, color: bool) -> String {
@@ -110,10 +124,16 @@ fn render_finding(f: &Finding, map: &SourceMap, color: bool) -> String {
         (Status::Unknown, Severity::Error) => Severity::Warning,
         (_, s) => s,
     };
-    let status = match f.status {
-        Status::Fail => "",
-        Status::Pass => "passed: ",
-        Status::Unknown => "undecided: ",
+    let status = match (f.status, &f.suppressed) {
+        (Status::Fail, None) => String::new(),
+        (Status::Fail, Some(why)) => format!("suppressed by [[allow]] ({why}): "),
+        (Status::Pass, _) => "passed: ".into(),
+        (Status::Unknown, _) => "undecided: ".into(),
+    };
+    let severity = if f.suppressed.is_some() {
+        Severity::Note
+    } else {
+        severity
     };
     let d = Diagnostic {
         severity,
@@ -229,7 +249,9 @@ pub fn summary(r: &Report) -> String {
         .findings
         .iter()
         .filter(|f| f.status == Status::Fail && f.severity == Severity::Error)
+        .filter(|f| f.suppressed.is_none())
         .count();
+    let allowed = r.findings.iter().filter(|f| f.suppressed.is_some()).count();
     let unknown = r
         .findings
         .iter()
@@ -247,6 +269,9 @@ pub fn summary(r: &Report) -> String {
     );
     if unknown > 0 {
         line.push_str(&format!(", {unknown} undecided"));
+    }
+    if allowed > 0 {
+        line.push_str(&format!(", {allowed} suppressed"));
     }
     if let Some(s) = &r.stats {
         line.push_str(&format!(", {} states, {:.2}s", s.states, s.seconds));

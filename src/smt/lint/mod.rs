@@ -382,6 +382,7 @@ impl<'p> Linter<'p> {
                 counterexample,
                 span: Some(span),
                 related: secondary.iter().map(|(sp, _)| *sp).collect(),
+                suppressed: None,
             },
             label: label.into(),
             secondary,

@@ -31,7 +31,7 @@ mod types;
 mod validate;
 
 pub use types::{
-    AgentSection, Arrival, Bounds, ExpectedPair, ExplanationSection, FileRef, Formula,
+    AgentSection, Allow, Arrival, Bounds, ExpectedPair, ExplanationSection, FileRef, Formula,
     InitialSection, Invariant, Located, Manifest, Modifies, ObjectType, Phrase, PlanSelection,
     Property, PropertyKind, RequestsSection, Scenario, StepFormula, User, MAX_NUMBERS,
 };

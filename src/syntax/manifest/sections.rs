@@ -27,6 +27,7 @@ impl<'a> Cx<'a> {
             "property",
             "explanation",
             "bounds",
+            "allow",
         ];
         self.check_keys(root, TOP, "at the top level");
         let agent = self.agent(root, dir);
@@ -37,6 +38,7 @@ impl<'a> Cx<'a> {
         let properties = self.properties(root);
         let explanation = self.explanation(root);
         let bounds = self.bounds(root, &objects);
+        let allows = self.allows(root);
         Some(Manifest {
             file: self.file,
             path: path.to_path_buf(),
@@ -49,7 +51,73 @@ impl<'a> Cx<'a> {
             properties,
             explanation,
             bounds,
+            allows,
         })
+    }
+
+    fn allows(&mut self, root: &DeTable) -> Vec<Allow> {
+        const KEYS: &[&str] = &["check", "at", "why"];
+        let Some(v) = root.get("allow") else {
+            return Vec::new();
+        };
+        let Some(a) = self.array(v, "`allow`", "an array of tables `[[allow]]`") else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (i, av) in a.iter().enumerate() {
+            let Some(t) = self.table(av, &format!("[[allow]] #{}", i + 1)) else {
+                continue;
+            };
+            self.check_keys(t, KEYS, "in [[allow]]");
+            let required = |cx: &mut Self, key: &str| match t.get(key) {
+                Some(x) => cx.string(x, &format!("`allow.{key}`")),
+                None => {
+                    cx.missing(av.span(), key, "[[allow]]");
+                    None
+                }
+            };
+            let check = required(self, "check");
+            let why = required(self, "why");
+            if let Some(w) = &why {
+                if w.value.trim().is_empty() {
+                    let r = w.span.start as usize..w.span.end as usize;
+                    self.err(r, "an `[[allow]]` needs a reason", "empty `why`");
+                }
+            }
+            let at = t
+                .get("at")
+                .and_then(|x| self.string(x, "`allow.at`"))
+                .map(|at| {
+                    let place = match at.value.rsplit_once(':') {
+                        Some((file, line)) if !file.is_empty() => match line.parse::<usize>() {
+                            Ok(n) if n > 0 => (file.to_string(), Some(n)),
+                            _ => {
+                                let r = at.span.start as usize..at.span.end as usize;
+                                self.err(
+                                    r,
+                                    format!("\"{}\" is not `file:line`", at.value.escape_debug()),
+                                    "expected a file, then `:` and a line number from 1",
+                                );
+                                (file.to_string(), None)
+                            }
+                        },
+                        _ => (at.value.clone(), None),
+                    };
+                    Located {
+                        value: place,
+                        span: at.span,
+                    }
+                });
+            if let (Some(check), Some(why)) = (check, why) {
+                out.push(Allow {
+                    check,
+                    at,
+                    why,
+                    span: self.span(av.span()),
+                });
+            }
+        }
+        out
     }
 
     fn agent(&mut self, root: &DeTable, dir: &Path) -> Option<AgentSection> {

@@ -290,6 +290,23 @@ pub struct Manifest {
     pub explanation: Option<ExplanationSection>,
     /// `[bounds]`.
     pub bounds: Bounds,
+    /// Every `[[allow]]`, in source order. Default: none.
+    pub allows: Vec<Allow>,
+}
+
+/// One `[[allow]]`: a failing finding the project accepts on purpose, for a reviewer to
+/// see.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Allow {
+    /// `check` (required): the finding's check name.
+    pub check: Located<String>,
+    /// `at`: the file (relative to the project folder) and, after a colon, the line of the
+    /// finding's location; without it, every finding of the check.
+    pub at: Option<Located<(String, Option<usize>)>>,
+    /// `why` (required): the reason, reported with each finding it suppresses.
+    pub why: Located<String>,
+    /// The table.
+    pub span: Span,
 }
 
 /// A parsed scenario file: one run (SPEC §2).
