@@ -158,3 +158,119 @@ fn every_recorded_jason_run_is_reproduced() {
         "listed as known differences but now agree with Jason: {agree:?}"
     );
 }
+
+/// Whether the exhaustive search (every successor of every state, requests as the
+/// manifest lets them arrive) has a run that makes the scenario's requests in order,
+/// attempts exactly the actions Jason attempted (failing where Jason's failed), and ends
+/// idle with Jason's final beliefs. `Err` says why the question does not apply.
+fn search_has_run(case: &Path, scenario: &Path, run: &Value) -> Result<bool, String> {
+    use bdi_check::check::explore::fingerprint;
+    let p = load_project(case).map_err(|_| "the project does not load".to_string())?;
+    let sem = Semantics::new(&p).map_err(|_| "no semantics".to_string())?;
+    let mut map = p.map.clone();
+    let sc = load_scenario(scenario, &mut map).map_err(|d| d[0].message.clone())?;
+    let (initial, requests) = resolve_scenario(&p, &sem, &sc).map_err(|d| d[0].message.clone())?;
+    let mut once = requests.clone();
+    once.sort();
+    once.dedup();
+    if once.len() != requests.len() {
+        // The search makes each request once per run; a scenario may ask one twice.
+        return Err("a request is made twice".into());
+    }
+    if run["outcome"] != "done" {
+        return Err("Jason's run did not end".into());
+    }
+    // The actions attempted, and (a subsequence of them, in order) those that failed.
+    let actions = strings(&run["actions"]);
+    let failed = strings(&run["failed_actions"]);
+    let mut want_beliefs = strings(&run["final_beliefs"]);
+    want_beliefs.sort();
+    // The scenario's initial state must be one the search starts from.
+    let Some(start) = sem
+        .initial_states()
+        .into_iter()
+        .find(|s| s.beliefs == initial)
+    else {
+        return Ok(false);
+    };
+    let mut seen = std::collections::HashSet::new();
+    let mut queue = std::collections::VecDeque::from([(start, 0usize, 0usize, 0usize)]);
+    while let Some((s, k, a, f)) = queue.pop_front() {
+        if !seen.insert((fingerprint(&s), k, a, f)) {
+            continue;
+        }
+        assert!(
+            seen.len() < 200_000,
+            "{}: the search is too large",
+            case.display()
+        );
+        let succ = sem.successors(&s);
+        if k == requests.len() && a == actions.len() && f == failed.len() && s.is_idle() {
+            let mut beliefs: Vec<String> = s
+                .beliefs
+                .iter()
+                .map(|x| p.atoms.display(x, &p.universe))
+                .collect();
+            beliefs.sort();
+            if beliefs == want_beliefs {
+                return Ok(true);
+            }
+        }
+        'next: for t in succ {
+            let (mut k, mut a, mut f) = (k, a, f);
+            for n in &t.notes {
+                match n {
+                    Note::Request { index } => {
+                        if requests.get(k) != Some(index) {
+                            continue 'next;
+                        }
+                        k += 1;
+                    }
+                    Note::Action { text, .. } | Note::ActionFailed { text, .. } => {
+                        if actions.get(a) != Some(text) {
+                            continue 'next;
+                        }
+                        a += 1;
+                        if matches!(n, Note::ActionFailed { .. }) {
+                            if failed.get(f) != Some(text) {
+                                continue 'next;
+                            }
+                            f += 1;
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            queue.push_back((t.next, k, a, f));
+        }
+    }
+    Ok(false)
+}
+
+#[test]
+fn every_recorded_jason_run_is_a_run_of_the_search() {
+    // The search's own transitions, not only the scenario runner's: Jason's run is one of
+    // the runs `verify` explores, from one of its initial states, with the requests made
+    // where the manifest lets them arrive.
+    let mut missing = Vec::new();
+    let mut checked = 0;
+    for case in cases() {
+        let name = case.file_name().unwrap().to_string_lossy().to_string();
+        let rec: Value =
+            serde_json::from_str(&std::fs::read_to_string(case.join("jason.json")).unwrap())
+                .unwrap();
+        for (scenario, run) in rec["runs"].as_object().unwrap() {
+            let file = case.join("scenarios").join(format!("{scenario}.toml"));
+            match search_has_run(&case, &file, run) {
+                Ok(true) => checked += 1,
+                Ok(false) => missing.push(format!("{name}/{scenario}")),
+                Err(_) => {}
+            }
+        }
+    }
+    assert!(checked >= 100, "only {checked} runs checked");
+    assert!(
+        missing.is_empty(),
+        "Jason's run is not a run of the search: {missing:?}"
+    );
+}
