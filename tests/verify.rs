@@ -368,16 +368,78 @@ fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
     let dot = String::from_utf8_lossy(&o.stdout);
     assert_eq!(dot.matches("(added at run time)").count(), 1, "{dot}");
     assert!(dot.contains("@extra"), "{dot}");
-    // The paper's state graph is small enough to draw whole: 14 states, 12 transitions.
+    // The paper's state graph is small enough to draw whole: 14 states, 12 transitions,
+    // its two initial states double-bordered, the state whose step fails filled red with
+    // the failing step red, every transition labelled.
     let o = bdi_check(&["graph", "specs/paper", "--states"]);
-    let dot = String::from_utf8_lossy(&o.stdout);
+    let dot = String::from_utf8_lossy(&o.stdout).to_string();
     assert_eq!(dot.matches("[ label = \"s").count(), 14, "{dot}");
     assert_eq!(dot.matches(" -> ").count(), 12, "{dot}");
     assert!(dot.contains("navigateTo(dishwasher)"));
-    // The kitchen's is not, and the tool says so.
+    assert_eq!(dot.matches("peripheries=2").count(), 2, "{dot}");
+    assert_eq!(dot.matches("fillcolor=\"#f4cccc\"").count(), 1, "{dot}");
+    assert_eq!(dot.matches("color=red, fontcolor=red").count(), 1, "{dot}");
+    assert!(
+        !dot.contains("label = \"\""),
+        "an unlabelled transition: {dot}"
+    );
+    // The kitchen's is not, and the tool says so: it draws the states nearest one initial
+    // state, not a strip of initial states.
     let o = bdi_check(&["graph", "specs/kitchen", "--states"]);
     assert_eq!(o.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&o.stderr).contains("too many to draw"));
+    let dot = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(dot.matches("[ label = \"s").count() <= 200, "{dot}");
+    assert_eq!(dot.matches("peripheries=2").count(), 1, "{dot}");
+    // A large graph with failures: the runs to the failing states, each a path from an
+    // initial state.
+    let dir = temp_dir("graph-kitchen-any");
+    for name in ["kitchen.asl", "kitchen.pddl", "bdi-check.toml"] {
+        std::fs::copy(Path::new("specs/kitchen").join(name), dir.join(name)).unwrap();
+    }
+    let manifest = std::fs::read_to_string(dir.join("bdi-check.toml")).unwrap();
+    std::fs::write(
+        dir.join("bdi-check.toml"),
+        manifest.replace("arrival = \"idle\"", "arrival = \"any\""),
+    )
+    .unwrap();
+    let o = bdi_check(&["graph", dir.to_str().unwrap(), "--states"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("drawing the runs to the first"), "{err}");
+    let dot = String::from_utf8_lossy(&o.stdout).to_string();
+    let (mut initial, mut failing, mut edges) = (Vec::new(), Vec::new(), Vec::new());
+    for line in dot.lines().map(str::trim) {
+        let id = line.split(' ').next().unwrap_or("").to_string();
+        if line.contains(" -> ") {
+            let to = line
+                .split(" -> ")
+                .nth(1)
+                .unwrap()
+                .split(' ')
+                .next()
+                .unwrap();
+            edges.push((id.clone(), to.to_string()));
+        } else if line.contains("peripheries=2") {
+            initial.push(id.clone());
+        }
+        if line.contains("fillcolor=\"#f4cccc\"") {
+            failing.push(id);
+        }
+    }
+    assert!(!failing.is_empty(), "{dot}");
+    let mut reached: std::collections::BTreeSet<String> = initial.into_iter().collect();
+    loop {
+        let before = reached.len();
+        for (a, b) in &edges {
+            if reached.contains(a) {
+                reached.insert(b.clone());
+            }
+        }
+        if reached.len() == before {
+            break;
+        }
+    }
+    assert!(failing.iter().all(|f| reached.contains(f)), "{dot}");
     // One of --plans and --states is required.
     assert_eq!(bdi_check(&["graph", "specs/paper"]).status.code(), Some(2));
 }

@@ -1,16 +1,16 @@
 //! `bdi-check graph PROJECT (--plans | --states)`: the goal-plan tree, or the explored state
 //! graph (drawn by [`crate::report::graph`]). When the state graph has more states than can
-//! be drawn legibly, the part that the counterexamples of the failing checks go through is
-//! drawn (or the first states in breadth-first order when nothing fails).
+//! be drawn legibly, the runs to its first failing states are drawn with their one-step
+//! neighbourhood (or, when nothing fails, the states nearest the first initial state).
 
 use super::Output;
-use crate::check::explore::{explore, fingerprint, Limits};
-use crate::check::verify;
+use crate::check::explore::{explore_with, fingerprint, Limits, Options};
+use crate::check::trace::Builder;
 use crate::commands::verify::limits;
-use crate::findings::Status;
 use crate::model::project::{load_project, Project};
-use crate::report::graph::{plans_dot, states_dot, StateGraph, MAX_DRAWN_STATES};
-use crate::semantics::{Note, Semantics};
+use crate::report::graph::{plans_dot, states_dot, StateGraph, StateStyle, MAX_DRAWN_STATES};
+use crate::semantics::{Note, Semantics, State};
+use crate::syntax::manifest::PropertyKind;
 use crate::syntax::Diagnostic;
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -52,105 +52,171 @@ pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_colo
     }
 }
 
-/// The state graph (or, when it is too large, its counterexample part), and a note when
-/// it was cut.
+/// How many failing states a cut graph draws the runs to.
+const MAX_FAILING_RUNS: usize = 5;
+
+/// The state graph, or, when it is too large, the runs to its first failing states with
+/// their one-step neighbourhood (or, when nothing fails, the states nearest the first
+/// initial state), and a note when it was cut. Initial, failing and looping states are
+/// styled; every transition is labelled with the steps it shows.
 pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagnostic>> {
     let sem = Semantics::new(p)?;
-    let graph = explore(&sem, limits, |_, _, _| {}, |_, _, _| {});
+    let invariants: Vec<&crate::model::cond::Cond> = p.invariants.iter().map(|(_, c)| c).collect();
+    let always: Vec<crate::model::cond::Cond> = p
+        .manifest
+        .properties
+        .iter()
+        .filter(|x| x.kind == PropertyKind::Always)
+        .filter_map(|x| crate::model::formula::compile(&x.formula.expr, &p.atoms, &p.universe).ok())
+        .collect();
+    // Per state: whether a state property fails there, and whether the agent is done.
+    let mut summary: Vec<(bool, bool)> = Vec::new();
+    let mut failing_step: BTreeSet<u32> = BTreeSet::new();
+    let graph = explore_with(
+        &sem,
+        limits,
+        &Options::default(),
+        |s: &State| {
+            let bad = invariants.iter().any(|c| !c.eval(&s.beliefs))
+                || always.iter().any(|c| !c.eval(&s.beliefs));
+            (bad, s.is_idle())
+        },
+        |i, x| {
+            let i = i as usize;
+            if summary.len() <= i {
+                summary.resize(i + 1, (false, true));
+            }
+            summary[i] = x;
+        },
+        |src, _, notes: &Vec<Note>, _| {
+            if notes.iter().any(is_failure) {
+                failing_step.insert(src);
+            }
+        },
+        |_, _, _| {},
+    );
     let n = graph.len();
-    // Only fingerprints are kept: a drawn state is rebuilt by replaying the run to it.
-    let state = |i: u32| graph.state(&sem, i);
+    let stuck = |i: u32| {
+        graph.successors(i).is_some_and(|e| e.is_empty())
+            && !summary.get(i as usize).is_some_and(|x| x.1)
+    };
+    let failing = |i: u32| {
+        summary.get(i as usize).is_some_and(|x| x.0) || failing_step.contains(&i) || stuck(i)
+    };
     let (drawn, note): (BTreeSet<u32>, Option<String>) = if n <= MAX_DRAWN_STATES {
         ((0..n as u32).collect(), None)
     } else {
-        let v = verify(p, limits, |_, _, _| {}, &[])?;
         let mut keep = BTreeSet::new();
-        for f in v.findings.iter().filter(|f| f.status == Status::Fail) {
-            if let Some(c) = &f.counterexample {
-                // The counterexample's initial state, then follow its steps through the graph.
-                let start = (0..graph.initial as u32).find(|&i| {
-                    state(i).is_some_and(|s| {
-                        s.beliefs
-                            .iter()
-                            .map(|a| p.atoms.display(a, &p.universe))
-                            .collect::<Vec<_>>()
-                            == c.initial
-                    })
-                });
-                if let Some(i) = start {
-                    keep.insert(i);
-                    let mut at = i;
-                    for _ in 0..c.steps.len() {
-                        let Some(next) = graph.successors(at) else {
-                            break;
-                        };
-                        let Some(&j) = next.first() else { break };
+        let targets: Vec<u32> = (0..n as u32)
+            .filter(|&i| failing(i))
+            .take(MAX_FAILING_RUNS)
+            .collect();
+        for &t in &targets {
+            for i in graph.path_to(t) {
+                keep.insert(i);
+                // The one-step neighbourhood: what else the run could have done.
+                for &j in graph.successors(i).unwrap_or(&[]) {
+                    if keep.len() < MAX_DRAWN_STATES {
                         keep.insert(j);
-                        at = j;
                     }
                 }
             }
         }
-        let why = if keep.is_empty() {
-            keep = (0..MAX_DRAWN_STATES as u32).collect();
-            format!("the state graph has {n} states, too many to draw: drawing the first {MAX_DRAWN_STATES} in breadth-first order")
+        let why = if targets.is_empty() {
+            // Nothing fails: the states nearest the first initial state, breadth first.
+            let mut queue = std::collections::VecDeque::from([0u32]);
+            while let Some(i) = queue.pop_front() {
+                if keep.len() >= MAX_DRAWN_STATES {
+                    break;
+                }
+                if keep.insert(i) {
+                    queue.extend(graph.successors(i).unwrap_or(&[]).iter().copied());
+                }
+            }
+            format!("the state graph has {n} states, too many to draw: drawing the {} states nearest the first initial state", keep.len())
         } else {
-            format!("the state graph has {n} states, too many to draw: drawing the {} states the counterexamples go through", keep.len())
+            format!(
+                "the state graph has {n} states, too many to draw: drawing the runs to the first {} failing states and what else each step could have done ({} states)",
+                targets.len(),
+                keep.len()
+            )
         };
         (keep, Some(why))
     };
-    let mut nodes: Vec<(u32, String)> = Vec::new();
-    let mut drawn_states: BTreeSet<u32> = BTreeSet::new();
-    let mut edges: Vec<(u32, u32, String)> = Vec::new();
+    // Rebuild each drawn state (by replaying its run) and label it and its transitions.
+    let mut states: std::collections::BTreeMap<u32, State> = std::collections::BTreeMap::new();
     for &i in &drawn {
-        let Some(s) = state(i) else { continue };
-        let beliefs: Vec<String> = s
-            .beliefs
-            .iter()
-            .map(|a| p.atoms.display(a, &p.universe))
-            .collect();
-        let mut label = format!("s{i}\n{}", beliefs.join("\n"));
-        if !s.is_idle() {
-            label.push_str(&format!(
-                "\n({} events, {} intentions)",
-                s.events.len(),
-                s.intentions.len()
-            ));
+        if let Some(s) = graph.state(&sem, i) {
+            states.insert(i, s);
         }
-        nodes.push((i, label));
-        drawn_states.insert(i);
     }
-    for &i in &drawn {
-        let (Some(targets), Some(from)) = (graph.successors(i), state(i)) else {
+    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
+    for (&i, from) in &states {
+        let Some(targets) = graph.successors(i) else {
             continue;
         };
-        let succ = sem.successors(&from);
+        let succ = sem.successors(from);
         for &j in targets {
-            if !drawn_states.contains(&j) {
+            if !states.contains_key(&j) {
                 continue;
             }
             let want = graph.fingerprint(j);
-            let label = succ
-                .iter()
-                .find(|t| fingerprint(&t.next) == want)
-                .map(|t| {
-                    t.notes
-                        .iter()
-                        .filter_map(|n| match n {
-                            Note::Request { index } => {
-                                Some(format!("!{}", sem.requests[*index as usize]))
-                            }
-                            Note::Action { text, .. } => Some(text.clone()),
-                            Note::ActionFailed { text, .. } => Some(format!("{text} fails")),
-                            Note::GoalFailed { cause, .. } => Some(format!("{cause} fails")),
-                            _ => None,
-                        })
-                        .collect::<Vec<_>>()
-                        .join("; ")
-                })
-                .unwrap_or_default();
-            edges.push((i, j, label));
+            let Some(t) = succ.iter().find(|t| fingerprint(&t.next) == want) else {
+                continue;
+            };
+            let mut b = Builder::new(p, &sem);
+            b.push(t.notes.clone());
+            let steps: Vec<String> = b.steps().iter().map(|s| s.text.clone()).collect();
+            let label = if steps.is_empty() {
+                "(a cycle that shows no step)".to_string()
+            } else {
+                steps.join("\n")
+            };
+            edges.push((i, j, label, t.notes.iter().any(is_failure)));
         }
     }
+    // Looping states: those on a cycle among the drawn transitions.
+    let mut g: petgraph::graph::DiGraph<u32, ()> = petgraph::graph::DiGraph::new();
+    let index: std::collections::HashMap<u32, petgraph::graph::NodeIndex> =
+        states.keys().map(|&i| (i, g.add_node(i))).collect();
+    for (i, j, _, _) in &edges {
+        g.add_edge(index[i], index[j], ());
+    }
+    let mut looping: BTreeSet<u32> = BTreeSet::new();
+    for scc in petgraph::algo::kosaraju_scc(&g) {
+        let on_cycle = scc.len() > 1 || g.contains_edge(scc[0], scc[0]);
+        if on_cycle {
+            looping.extend(scc.iter().map(|&k| g[k]));
+        }
+    }
+    let nodes = states
+        .iter()
+        .map(|(&i, s)| {
+            let beliefs: Vec<String> = s
+                .beliefs
+                .iter()
+                .map(|a| p.atoms.display(a, &p.universe))
+                .collect();
+            let mut label = format!("s{i}\n{}", beliefs.join("\n"));
+            if !s.is_idle() {
+                label.push_str(&format!(
+                    "\n({} events, {} intentions)",
+                    s.events.len(),
+                    s.intentions.len() + usize::from(s.pending.is_some()) + s.waiting.len()
+                ));
+            }
+            let style = StateStyle {
+                initial: (i as usize) < graph.initial,
+                failing: failing(i),
+                looping: looping.contains(&i),
+            };
+            (i, label, style)
+        })
+        .collect();
     Ok(StateGraph { nodes, edges, note })
+}
+
+/// Whether a transition's note is a failure a check reports.
+fn is_failure(n: &Note) -> bool {
+    matches!(n, Note::ActionFailed { .. } | Note::GoalFailed { .. })
 }

@@ -101,31 +101,77 @@ pub fn plans_dot(p: &Project) -> String {
     )
 }
 
-/// A drawn part of the state graph: the states (by number, with their labels), the
-/// transitions between them (with what happened), and why it was cut, if it was.
+/// How a drawn state is styled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StateStyle {
+    /// An initial state (drawn with a double border).
+    pub initial: bool,
+    /// A state where a check fails: an invariant or `always` property is false, no step is
+    /// possible though the agent is not done, or a transition from it fails an action or a
+    /// goal (filled red).
+    pub failing: bool,
+    /// A state on a loop among the drawn states (filled yellow).
+    pub looping: bool,
+}
+
+/// A drawn part of the state graph: the states (by number, with their labels and styles),
+/// the transitions between them (with every step they show, and whether one fails), and
+/// why it was cut, if it was.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct StateGraph {
     /// Each drawn state, in drawing order.
-    pub nodes: Vec<(u32, String)>,
-    /// Each drawn transition `(from, to, label)`, between drawn states.
-    pub edges: Vec<(u32, u32, String)>,
+    pub nodes: Vec<(u32, String, StateStyle)>,
+    /// Each drawn transition `(from, to, label, failing)`, between drawn states.
+    pub edges: Vec<(u32, u32, String, bool)>,
     /// Why not every state is drawn, if not.
     pub note: Option<String>,
 }
 
 /// The state graph as DOT; a cut graph says why in a comment on its first line.
 pub fn states_dot(sg: &StateGraph) -> String {
-    let mut g: DiGraph<String, String> = DiGraph::new();
+    let mut g: DiGraph<(String, StateStyle), (String, bool)> = DiGraph::new();
     let mut node: HashMap<u32, NodeIndex> = HashMap::new();
-    for (i, label) in &sg.nodes {
-        node.insert(*i, g.add_node(label.clone()));
+    for (i, label, style) in &sg.nodes {
+        node.insert(*i, g.add_node((label.clone(), *style)));
     }
-    for (i, j, label) in &sg.edges {
-        g.add_edge(node[i], node[j], label.clone());
+    for (i, j, label, failing) in &sg.edges {
+        g.add_edge(node[i], node[j], (label.clone(), *failing));
     }
-    let mut dot = format!("{}", Dot::new(&g)).replace(
+    let quote = |t: &str| {
+        t.replace('\\', "\\\\")
+            .replace('"', "\\\"")
+            .replace('\n', "\\n")
+    };
+    let edge = |_: &DiGraph<_, _>, e: petgraph::graph::EdgeReference<(String, bool)>| {
+        let (label, failing) = e.weight();
+        let colour = if *failing {
+            ", color=red, fontcolor=red"
+        } else {
+            ""
+        };
+        format!("label = \"{}\"{colour}", quote(label))
+    };
+    let state = |_: &DiGraph<_, _>, (_, (label, st)): (NodeIndex, &(String, StateStyle))| {
+        let mut a = format!("label = \"{}\"", quote(label));
+        if st.initial {
+            a.push_str(", peripheries=2");
+        }
+        if st.failing {
+            a.push_str(", style=filled, fillcolor=\"#f4cccc\", color=red");
+        } else if st.looping {
+            a.push_str(", style=filled, fillcolor=\"#fff2cc\"");
+        }
+        a
+    };
+    let dot = Dot::with_attr_getters(
+        &g,
+        &[Config::EdgeNoLabel, Config::NodeNoLabel],
+        &edge,
+        &state,
+    );
+    let mut dot = format!("{dot:?}").replace(
         "digraph {",
-        "digraph states {\n    node [shape=box, fontname=\"monospace\"];",
+        "digraph states {\n    node [shape=box, fontname=\"monospace\"];\n    edge [fontname=\"monospace\"];",
     );
     if let Some(why) = &sg.note {
         dot = format!("// {why}\n{dot}");
