@@ -70,6 +70,8 @@ enum FormatArg {
     Sarif,
     /// JUnit XML, for CI test reports (lint and verify).
     Junit,
+    /// One self-contained HTML page (lint, verify, simulate, and explain with a scenario).
+    Html,
 }
 
 /// Options every command shares.
@@ -97,6 +99,7 @@ impl Output {
             FormatArg::Json => (Format::Json, None),
             FormatArg::Sarif => (Format::Json, Some(CiFormat::Sarif)),
             FormatArg::Junit => (Format::Json, Some(CiFormat::Junit)),
+            FormatArg::Html => (Format::Human, None),
         };
         let detail = if self.quiet {
             Detail::Quiet
@@ -109,6 +112,7 @@ impl Output {
             format,
             ci,
             detail,
+            html: matches!(self.format, FormatArg::Html),
             color: self.output.is_none() && stdout_color(),
             stderr_color: stderr_color(),
         }

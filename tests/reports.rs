@@ -514,3 +514,152 @@ fn the_xml_checker_rejects_malformed_documents() {
         assert!(result.is_err(), "accepted {bad:?}");
     }
 }
+
+/// The headless browser the HTML tests drive: Debian's `chromium` (`.ci/run` installs
+/// it). `None` only when `BDI_CHECK_NO_BROWSER=1` says to do without one.
+fn browser() -> Option<&'static str> {
+    for b in ["chromium", "chromium-browser", "google-chrome"] {
+        let found = std::process::Command::new("sh")
+            .args(["-c", &format!("command -v {b}")])
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if found {
+            return Some(b);
+        }
+    }
+    assert!(
+        std::env::var_os("BDI_CHECK_NO_BROWSER").is_some(),
+        "the HTML tests need chromium (`apt-get install chromium`; `.ci/run` installs it), or BDI_CHECK_NO_BROWSER=1 to skip them"
+    );
+    None
+}
+
+/// Runs the headless browser on a page: `--dump-dom` gives the DOM after its script ran.
+fn chromium(browser: &str, args: &[&str]) -> std::process::Output {
+    let profile = common::temp_dir("chromium-profile");
+    std::process::Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            &format!("--user-data-dir={}", profile.display()),
+        ])
+        .args(args)
+        .output()
+        .expect("the browser runs")
+}
+
+#[test]
+fn the_html_page_is_self_contained_and_shows_each_step_in_a_real_browser() {
+    let dir = common::temp_dir("html");
+    let page = dir.join("paper.html");
+    let o = bdi_check(&[
+        "verify",
+        "specs/paper",
+        "--format",
+        "html",
+        "-o",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "the exit code is verify's in every format"
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>"), "{html}");
+    // No network, no external assets.
+    for outside in ["http://", "https://", "<link", "src=", "@import", "url("] {
+        assert!(!html.contains(outside), "the page loads `{outside}`");
+    }
+    // Every failing error of the JSON report is on the page.
+    let (_, report) = run("verify", "specs/paper", "json", &[]);
+    let report = json(&report);
+    for f in report["findings"].as_array().unwrap() {
+        if f["status"] == "fail" && f["severity"] == "error" {
+            let id = f["id"].as_str().unwrap();
+            assert!(html.contains(&format!("data-id=\"{id}\"")), "{id}");
+        }
+    }
+    let Some(b) = browser() else { return };
+    // Step 3 of the first run is a plan: selecting it (from the address, as a click does)
+    // shows the beliefs after it and highlights its plan in the goal-plan tree.
+    let url = format!("file://{}#run-1-step-3", page.display());
+    let o = chromium(b, &["--dump-dom", &url]);
+    let dom = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(dom.contains("id=\"verdict\">fail<"), "{dom}");
+    let step = dom
+        .split("<li ")
+        .find(|l| l.contains("id=\"run-1-step-3\""))
+        .expect("the step is on the page");
+    assert!(step.contains("class=\"step k-plan selected\""), "{step}");
+    let plan = step
+        .split("data-plan=\"")
+        .nth(1)
+        .and_then(|r| r.split('"').next())
+        .expect("a plan step names its plan");
+    assert!(
+        dom.contains(&format!("class=\"plan running\" data-plan=\"{plan}\"")),
+        "the running plan {plan} is not highlighted"
+    );
+    let pane = dom
+        .split("id=\"state-1\">")
+        .nth(1)
+        .and_then(|r| r.split("</div>").next())
+        .unwrap();
+    assert!(pane.starts_with("after step 3:"), "{pane}");
+    let first = &report["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["status"] == "fail" && f["severity"] == "error")
+        .unwrap()["counterexample"];
+    for atom in first["initial"].as_array().unwrap() {
+        assert!(pane.contains(atom.as_str().unwrap()), "{pane}");
+    }
+    // A screenshot: the page renders.
+    let shot = dir.join("paper.png");
+    let o = chromium(
+        b,
+        &[
+            "--window-size=1400,1000",
+            &format!("--screenshot={}", shot.display()),
+            &format!("file://{}", page.display()),
+        ],
+    );
+    let png =
+        std::fs::read(&shot).unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
+    assert!(
+        png.starts_with(b"\x89PNG") && png.len() > 10_000,
+        "{} bytes",
+        png.len()
+    );
+    // explain's page: the scenario's run with its explanations in place.
+    let o = bdi_check(&[
+        "explain",
+        "specs/paper",
+        "--scenario",
+        "tests/scenarios/paper_door_closed.toml",
+        "--format",
+        "html",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let page = dir.join("explain.html");
+    std::fs::write(&page, &o.stdout).unwrap();
+    let o = chromium(
+        b,
+        &[
+            "--dump-dom",
+            &format!("file://{}#run-1-step-1", page.display()),
+        ],
+    );
+    let dom = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(dom.contains("class=\"step k-explanation\""), "{dom}");
+    assert!(dom.contains("class=\"step k-request selected\""), "{dom}");
+    // Commands with no page refuse the format.
+    let o = bdi_check(&["explain", "specs/paper", "--format", "html"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = bdi_check(&["parse", "specs/paper/paper.asl", "--format", "html"]);
+    assert_eq!(o.status.code(), Some(2));
+}

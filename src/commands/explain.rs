@@ -12,8 +12,8 @@ use crate::findings::{Finding, Report, StepKindTag, Tool, TraceStep};
 use crate::model::atoms::AtomSet;
 use crate::model::project::{load_project, Project};
 use crate::report::explain::{
-    render_catalogue, render_human, render_json, Catalogue, Entry, ExplainRun, Given, LoadFailure,
-    Scenario, Trace,
+    render_catalogue, render_html, render_human, render_json, Catalogue, Entry, ExplainRun, Given,
+    LoadFailure, Scenario, Trace,
 };
 use crate::report::Format;
 use crate::semantics::{Note, Semantics, State};
@@ -29,10 +29,13 @@ pub fn command(
     user: Option<&str>,
     style: &Style,
 ) -> Output {
-    if let Some(refused) = style.refuse_ci_format("explain") {
+    if let Some(refused) = style.ci.and_then(|_| style.refuse_ci_format("explain")) {
         return refused;
     }
     let Some(sc) = scenario else {
+        if let Some(refused) = style.refuse_html("explain without --scenario") {
+            return refused;
+        }
         return match catalogue(project, user) {
             Ok(Catalogue { entries, note, .. }) => {
                 let text = match style.format {
@@ -77,6 +80,7 @@ pub fn command(
         return Output::refused(render_human(&run, style.stderr_color));
     }
     let text = match style.format {
+        _ if style.html => render_html(&run),
         Format::Json => render_json(&run),
         Format::Human => render_human(&run, style.color),
     };
@@ -101,6 +105,7 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
         given: Vec::new(),
         map,
         diagnostics,
+        tree: Default::default(),
     };
     let mut p = match load_project(project) {
         Ok(p) => p,
@@ -147,6 +152,7 @@ pub fn run(project: &Path, scenario: &Path, only: Option<&str>) -> ExplainRun {
         given,
         map: p.map.clone(),
         diagnostics: Vec::new(),
+        tree: crate::report::html::PlanTree::of(&p),
     }
 }
 

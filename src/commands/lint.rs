@@ -13,6 +13,10 @@ use std::path::Path;
 pub fn command(project: &Path, deny_warnings: bool, style: &Style) -> Output {
     let run = run(project, &LintOptions::default(), deny_warnings);
     let (text, stderr) = match style.ci {
+        _ if style.html && run.diagnostics.is_empty() => (
+            crate::report::html::render(&run.report, &run.tree, "lint"),
+            String::new(),
+        ),
         Some(ci) => (ci.render(&run.report, "lint"), String::new()),
         None => render(&run, style.format, style.detail, style.color),
     };
@@ -42,6 +46,7 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
                 map: e.map,
                 diagnostics: e.diagnostics,
                 findings: Vec::new(),
+                tree: Default::default(),
             };
         }
     };
@@ -58,6 +63,7 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
             map: project.map,
             diagnostics: bad,
             findings: Vec::new(),
+            tree: Default::default(),
         };
     }
     let mut findings = lint(&project, opts);
@@ -78,6 +84,7 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
     report.sources = crate::findings::sources_of(&project.map);
     LintRun {
         report,
+        tree: crate::report::html::PlanTree::of(&project),
         map: project.map,
         diagnostics: Vec::new(),
         findings,

@@ -56,6 +56,8 @@ pub struct Style {
     pub ci: Option<CiFormat>,
     /// What the human output shows.
     pub detail: Detail,
+    /// `--format html` (then `format` is `Human` and `ci` is `None`).
+    pub html: bool,
     /// Colour in the report (stdout is a terminal and no `-o`).
     pub color: bool,
     /// Colour in stderr's diagnostics (stderr is a terminal).
@@ -63,12 +65,23 @@ pub struct Style {
 }
 
 impl Style {
+    /// A usage error when a command that writes no page is asked for `--format html`.
+    pub fn refuse_html(&self, command: &str) -> Option<Output> {
+        self.html.then(|| {
+            Output::refused(format!(
+                "error: `--format html` is for `lint`, `verify`, `simulate` and `explain --scenario`; `{command}` writes `human` or `json`\n"
+            ))
+        })
+    }
+
     /// A usage error (exit 2, as clap's) when a command that has no findings to report is
-    /// asked for SARIF or JUnit.
+    /// asked for SARIF or JUnit (or, with no page to write, HTML).
     pub fn refuse_ci_format(&self, command: &str) -> Option<Output> {
-        let name = match self.ci? {
-            CiFormat::Sarif => "sarif",
-            CiFormat::Junit => "junit",
+        let name = match self.ci {
+            Some(CiFormat::Sarif) => "sarif",
+            Some(CiFormat::Junit) => "junit",
+            None if self.html => return self.refuse_html(command),
+            None => return None,
         };
         Some(Output::refused(format!(
             "error: `--format {name}` is for `lint` and `verify`; `{command}` writes `human` or `json`\n"

@@ -50,15 +50,16 @@ pub fn command(
             ));
         }
     }
+    let command = if opts.sample.is_some() {
+        "simulate"
+    } else {
+        "verify"
+    };
     let text = match (style.ci, style.format) {
-        (Some(ci), _) => ci.render(
-            &run.report,
-            if opts.sample.is_some() {
-                "simulate"
-            } else {
-                "verify"
-            },
-        ),
+        _ if style.html && run.diagnostics.is_empty() => {
+            crate::report::html::render(&run.report, &run.tree, command)
+        }
+        (Some(ci), _) => ci.render(&run.report, command),
         (None, Format::Json) => {
             serde_json::to_string_pretty(&run.report).unwrap_or_default() + "\n"
         }
@@ -139,6 +140,7 @@ pub fn run(
             report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
             VerifyRun {
                 report,
+                tree: crate::report::html::PlanTree::of(&project),
                 map: project.map,
                 diagnostics: Vec::new(),
                 bound: v.bound,
@@ -159,5 +161,6 @@ fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> 
         map,
         diagnostics,
         bound: None,
+        tree: Default::default(),
     }
 }

@@ -56,6 +56,22 @@ pub struct ExplainRun {
     pub map: SourceMap,
     /// Input errors.
     pub diagnostics: Vec<Diagnostic>,
+    /// The goal-plan tree, for the HTML page (empty when the project did not load).
+    pub tree: super::html::PlanTree,
+}
+
+/// The run as one HTML page, its explanations in place.
+pub fn render_html(run: &ExplainRun) -> String {
+    let Some(t) = &run.trace else {
+        return String::new();
+    };
+    let c = crate::findings::Counterexample {
+        initial: t.initial.clone(),
+        requests: t.requests.clone(),
+        steps: t.steps.clone(),
+        loop_start: None,
+    };
+    super::html::render_explain(&run.report, &c, t.outcome, &run.tree)
 }
 
 /// The run as a numbered story with the explanations in place.

@@ -15,7 +15,8 @@ use std::collections::HashMap;
 /// Most states `--states` draws in full.
 pub const MAX_DRAWN_STATES: usize = 200;
 
-fn formula_text(f: &Formula) -> String {
+/// A context as text, as the model holds it.
+pub(super) fn formula_text(f: &Formula) -> String {
     match f {
         Formula::True => "true".into(),
         Formula::Literal(t) | Formula::Call(t) => t.to_string(),
@@ -27,7 +28,7 @@ fn formula_text(f: &Formula) -> String {
 }
 
 /// The goals a body posts: `(name/arity, new intention?)`.
-fn subgoals(steps: &[Step], out: &mut Vec<(String, bool)>) {
+pub(super) fn subgoals(steps: &[Step], out: &mut Vec<(String, bool)>) {
     for s in steps {
         match &s.kind {
             BodyStep::Achieve { goal, new_focus } => out.push((

@@ -17,6 +17,8 @@ pub struct LintRun {
     pub diagnostics: Vec<Diagnostic>,
     /// The findings with their labels, in report order.
     pub findings: Vec<LintFinding>,
+    /// The goal-plan tree, for the HTML page (empty when the project did not load).
+    pub tree: super::html::PlanTree,
 }
 
 /// The run in the requested format: `(stdout, stderr)`. Input errors go to stderr in human

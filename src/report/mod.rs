@@ -5,6 +5,7 @@
 pub mod domain;
 pub mod explain;
 pub mod graph;
+pub mod html;
 pub mod junit;
 pub mod lint;
 pub mod outline;

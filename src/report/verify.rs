@@ -18,6 +18,8 @@ pub struct VerifyRun {
     pub diagnostics: Vec<Diagnostic>,
     /// The bound that cut the search short, if any.
     pub bound: Option<Bound>,
+    /// The goal-plan tree, for the HTML page (empty when the project did not load).
+    pub tree: super::html::PlanTree,
 }
 
 /// What the human output shows.
