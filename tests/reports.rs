@@ -543,6 +543,11 @@ fn chromium(browser: &str, args: &[&str]) -> std::process::Output {
             "--no-sandbox",
             "--disable-gpu",
             "--no-first-run",
+            // The machine's network is closed: no background connections.
+            "--disable-quic",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
             &format!("--user-data-dir={}", profile.display()),
         ])
         .args(args)
