@@ -140,6 +140,21 @@ pub enum StepKindTag {
     Explanation,
 }
 
+impl StepKindTag {
+    /// The kind as reports write it (`request`, `event`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            StepKindTag::Request => "request",
+            StepKindTag::Event => "event",
+            StepKindTag::Plan => "plan",
+            StepKindTag::Action => "action",
+            StepKindTag::Belief => "belief",
+            StepKindTag::Internal => "internal",
+            StepKindTag::Explanation => "explanation",
+        }
+    }
+}
+
 /// One step of a counterexample run.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct TraceStep {

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 mod common;
-use common::{bdi_check, steps, temp_dir, verify_json};
+use common::{bdi_check, report_json, steps, temp_dir, verify_json};
 
 fn failing<'a>(report: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json::Value> {
     report["findings"]
@@ -393,16 +393,7 @@ fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
     assert_eq!(dot.matches("peripheries=2").count(), 1, "{dot}");
     // A large graph with failures: the runs to the failing states, each a path from an
     // initial state.
-    let dir = temp_dir("graph-kitchen-any");
-    for name in ["kitchen.asl", "kitchen.pddl", "bdi-check.toml"] {
-        std::fs::copy(Path::new("specs/kitchen").join(name), dir.join(name)).unwrap();
-    }
-    let manifest = std::fs::read_to_string(dir.join("bdi-check.toml")).unwrap();
-    std::fs::write(
-        dir.join("bdi-check.toml"),
-        manifest.replace("arrival = \"idle\"", "arrival = \"any\""),
-    )
-    .unwrap();
+    let dir = kitchen_any("graph-kitchen-any");
     let o = bdi_check(&["graph", dir.to_str().unwrap(), "--states"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("drawing the runs to the first"), "{err}");
@@ -444,9 +435,9 @@ fn graph_draws_the_goal_plan_tree_and_the_state_graph() {
     assert_eq!(bdi_check(&["graph", "specs/paper"]).status.code(), Some(2));
 }
 
-#[test]
-fn concurrent_requests_interleave_and_interfere_in_the_kitchen() {
-    let dir = temp_dir("kitchen-any");
+/// A copy of the kitchen whose requests may arrive at any time, not only when it is idle.
+fn kitchen_any(tag: &str) -> std::path::PathBuf {
+    let dir = temp_dir(tag);
     for name in ["kitchen.asl", "kitchen.pddl", "bdi-check.toml"] {
         std::fs::copy(Path::new("specs/kitchen").join(name), dir.join(name)).unwrap();
     }
@@ -456,6 +447,12 @@ fn concurrent_requests_interleave_and_interfere_in_the_kitchen() {
         manifest.replace("arrival = \"idle\"", "arrival = \"any\""),
     )
     .unwrap();
+    dir
+}
+
+#[test]
+fn concurrent_requests_interleave_and_interfere_in_the_kitchen() {
+    let dir = kitchen_any("kitchen-any");
     let (code, r, file) = verify_json(dir.to_str().unwrap(), "kitchen-any-report");
     assert_eq!(code, 1);
     let failures = failing(&r, "action-failure");
@@ -1062,26 +1059,10 @@ fn simulate_json(
     seed: u64,
     tag: &str,
 ) -> (i32, serde_json::Value, std::path::PathBuf) {
-    let file = temp_dir(tag).join("report.json");
     let (runs, seed) = (runs.to_string(), seed.to_string());
-    let o = bdi_check(&[
-        "simulate",
-        project,
-        "--runs",
-        &runs,
-        "--seed",
-        &seed,
-        "--format",
-        "json",
-        "-o",
-        file.to_str().unwrap(),
-    ]);
-    let text = std::fs::read_to_string(&file)
-        .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
-    (
-        o.status.code().unwrap(),
-        serde_json::from_str(&text).unwrap(),
-        file,
+    report_json(
+        &["simulate", project, "--runs", &runs, "--seed", &seed],
+        tag,
     )
 }
 

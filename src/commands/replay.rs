@@ -639,7 +639,7 @@ fn shown(project: &Project, sem: &Semantics, notes: &[Note]) -> Vec<(&'static st
     b.push(notes.to_vec());
     b.steps()
         .iter()
-        .map(|s| (kind_name(s.kind), s.text.clone()))
+        .map(|s| (s.kind.name(), s.text.clone()))
         .collect()
 }
 
@@ -652,21 +652,8 @@ fn follows(project: &Project, sem: &Semantics, notes: &[Note], recorded: &[(&str
         && steps.iter().enumerate().all(|(i, s)| {
             recorded
                 .get(i)
-                .is_some_and(|(k, text)| kind_name(s.kind) == *k && s.text == *text)
+                .is_some_and(|(k, text)| s.kind.name() == *k && s.text == *text)
         })
-}
-
-fn kind_name(k: crate::findings::StepKindTag) -> &'static str {
-    use crate::findings::StepKindTag::*;
-    match k {
-        Request => "request",
-        Event => "event",
-        Plan => "plan",
-        Action => "action",
-        Belief => "belief",
-        Internal => "internal",
-        Explanation => "explanation",
-    }
 }
 
 /// What counts as reaching a finding's violation.

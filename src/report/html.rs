@@ -9,7 +9,7 @@
 //! run, and how the browser test drives the page.
 
 use super::graph::{formula_text, subgoals};
-use crate::findings::{Counterexample, Finding, Report, Status, StepKindTag, TraceStep, Verdict};
+use crate::findings::{Counterexample, Finding, Report, Status, TraceStep, Verdict};
 use crate::model::project::Project;
 use crate::syntax::Severity;
 use std::collections::{BTreeMap, BTreeSet};
@@ -84,20 +84,9 @@ impl PlanTree {
     }
 }
 
-/// Escapes text for HTML element content and attribute values.
+/// Escapes text for HTML element content and attribute values (as XML attributes).
 fn esc(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            _ => out.push(c),
-        }
-    }
-    out
+    super::junit::attr(s)
 }
 
 const STYLE: &str = r#"
@@ -325,15 +314,7 @@ fn run_html(c: &Counterexample, runs: &mut usize) -> String {
 }
 
 fn step_html(r: usize, n: usize, s: &TraceStep, beliefs: &str) -> String {
-    let kind = match s.kind {
-        StepKindTag::Request => "request",
-        StepKindTag::Event => "event",
-        StepKindTag::Plan => "plan",
-        StepKindTag::Action => "action",
-        StepKindTag::Belief => "belief",
-        StepKindTag::Internal => "internal",
-        StepKindTag::Explanation => "explanation",
-    };
+    let kind = s.kind.name();
     let plan = s
         .plan
         .as_ref()

@@ -6,7 +6,7 @@
 //! paths the report does not already hold. One result per failing or undecided finding;
 //! passed checks are not results (SARIF has no "pass" result a dashboard would show).
 
-use crate::findings::{Counterexample, Finding, Report, Status, StepKindTag};
+use crate::findings::{Counterexample, Finding, Report, Status};
 use crate::syntax::Severity;
 use serde_json::{json, Value};
 use std::collections::BTreeSet;
@@ -159,7 +159,7 @@ fn code_flow(c: &Counterexample) -> Value {
             }
             json!({
                 "location": location,
-                "kinds": [kind(s.kind)],
+                "kinds": [s.kind.name()],
                 "executionOrder": i + 1,
             })
         })
@@ -168,18 +168,6 @@ fn code_flow(c: &Counterexample) -> Value {
         "message": {"text": format!("counterexample ({} steps)", c.steps.len())},
         "threadFlows": [{"locations": locations}],
     })
-}
-
-fn kind(k: StepKindTag) -> &'static str {
-    match k {
-        StepKindTag::Request => "request",
-        StepKindTag::Event => "event",
-        StepKindTag::Plan => "plan",
-        StepKindTag::Action => "action",
-        StepKindTag::Belief => "belief",
-        StepKindTag::Internal => "internal",
-        StepKindTag::Explanation => "explanation",
-    }
 }
 
 /// `file:line` of a step's plan, split at the last colon (a file name may hold colons).

@@ -192,13 +192,8 @@ pub fn render_counterexample(c: &Counterexample) -> String {
 /// Step `n` of a run, on its line (and its belief changes on the next).
 pub fn render_step(n: usize, s: &TraceStep) -> String {
     let kind = match s.kind {
-        StepKindTag::Request => "request",
-        StepKindTag::Event => "event",
-        StepKindTag::Plan => "plan",
-        StepKindTag::Action => "action",
-        StepKindTag::Belief => "belief",
-        StepKindTag::Internal => "internal",
         StepKindTag::Explanation => "explain",
+        k => k.name(),
     };
     let mut line = format!("    {:>3}. {kind:<8} {}", n, s.text);
     if let Some(p) = &s.plan {

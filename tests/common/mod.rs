@@ -24,15 +24,17 @@ pub fn temp_dir(name: &str) -> std::path::PathBuf {
 /// the report was written (in `temp_dir(tag)`).
 #[allow(dead_code)] // not every test target verifies
 pub fn verify_json(project: &str, tag: &str) -> (i32, serde_json::Value, std::path::PathBuf) {
+    report_json(&["verify", project], tag)
+}
+
+/// Runs a command that writes a JSON report (`args`, then `--format json -o FILE`);
+/// returns the exit code, the report, and where it was written (in `temp_dir(tag)`).
+#[allow(dead_code)] // not every test target writes reports
+pub fn report_json(args: &[&str], tag: &str) -> (i32, serde_json::Value, std::path::PathBuf) {
     let file = temp_dir(tag).join("report.json");
-    let o = bdi_check(&[
-        "verify",
-        project,
-        "--format",
-        "json",
-        "-o",
-        file.to_str().unwrap(),
-    ]);
+    let mut all = args.to_vec();
+    all.extend(["--format", "json", "-o", file.to_str().unwrap()]);
+    let o = bdi_check(&all);
     let text = std::fs::read_to_string(&file)
         .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&o.stderr)));
     (
