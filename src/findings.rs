@@ -254,6 +254,17 @@ pub struct TracedTransition {
     pub state: StateView,
 }
 
+impl TraceStep {
+    /// Its belief changes, `+atom` for each added then `-atom` for each removed.
+    pub fn changes(&self) -> Vec<String> {
+        self.added
+            .iter()
+            .map(|a| format!("+{a}"))
+            .chain(self.removed.iter().map(|a| format!("-{a}")))
+            .collect()
+    }
+}
+
 /// Search statistics of SPEC §3.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
 pub struct Stats {

@@ -380,11 +380,7 @@ fn replay_one(
     f: &FindingIn,
     walked: &mut Vec<Walked>,
 ) -> Replayed {
-    let no = |detail: &str| Replayed {
-        id: f.id.clone(),
-        reached: false,
-        detail: detail.to_string(),
-    };
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
     let mut state = match start_of(project, sem, f) {
         Ok(s) => s,
         Err(why) => return no(why),
@@ -499,11 +495,7 @@ fn replay_explained(
 ) -> Replayed {
     use crate::check::explanation::Explained;
     use crate::check::model::Model;
-    let no = |detail: &str| Replayed {
-        id: f.id.clone(),
-        reached: false,
-        detail: detail.to_string(),
-    };
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
     let Some(user_name) = f.id.split(':').nth(1) else {
         return no("the finding's id names no user");
     };

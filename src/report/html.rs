@@ -324,12 +324,7 @@ fn step_html(r: usize, n: usize, s: &TraceStep, beliefs: &str) -> String {
         .intention
         .map(|i| format!(" <span class=\"where\">[intention {i}]</span>"))
         .unwrap_or_default();
-    let changes: Vec<String> = s
-        .added
-        .iter()
-        .map(|a| format!("+{a}"))
-        .chain(s.removed.iter().map(|a| format!("-{a}")))
-        .collect();
+    let changes = s.changes();
     let changes = if changes.is_empty() {
         String::new()
     } else {

@@ -11,6 +11,17 @@ pub struct Replayed {
     pub detail: String,
 }
 
+impl Replayed {
+    /// A finding whose run does not reach its violation, and why.
+    pub fn missed(id: &str, detail: &str) -> Replayed {
+        Replayed {
+            id: id.to_string(),
+            reached: false,
+            detail: detail.to_string(),
+        }
+    }
+}
+
 /// One line per finding: whether it still reaches its violation, and what happened.
 pub fn render(results: &[Replayed]) -> String {
     results

@@ -202,12 +202,7 @@ pub fn render_step(n: usize, s: &TraceStep) -> String {
     if let Some(n) = s.intention {
         line.push_str(&format!("  [intention {n}]"));
     }
-    let changes: Vec<String> = s
-        .added
-        .iter()
-        .map(|a| format!("+{a}"))
-        .chain(s.removed.iter().map(|a| format!("-{a}")))
-        .collect();
+    let changes = s.changes();
     if !changes.is_empty() {
         line.push_str(&format!("\n           beliefs: {}", changes.join(" ")));
     }
