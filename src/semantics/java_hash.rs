@@ -386,8 +386,11 @@ mod tests {
             2, 13, 7, 17, 12, 3, 16, 8, 11, 15, 10, 9, 0, 19, 14, 5, 18, 6, 1,
         ];
         assert_eq!(set.order().unwrap(), expected);
+        assert_eq!(set.len(), expected.len());
+        assert!(!set.is_empty());
         set.clear();
         assert_eq!((set.len(), set.capacity()), (0, 32));
+        assert!(set.is_empty());
     }
 
     /// `Agent.buf` over three cycles of percepts, with `DefaultBeliefBase.percepts` as a
