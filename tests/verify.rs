@@ -229,6 +229,20 @@ fn a_handled_failure_is_not_a_goal_failure_but_its_coverage_gap_is_reached() {
     assert_eq!(gap[0]["location"]["line"], 4);
     assert!(steps(gap[0]).iter().any(|s| s == "event +!open"));
     assert_eq!(code, 1);
+    // Its message says how to accept it on purpose; an unhandled gap's does not.
+    assert!(
+        gap[0]["message"].as_str().unwrap().contains("[[allow]]"),
+        "{r:#}"
+    );
+    let (_, r, _) = verify_json("tests/verify/goal_failure", "unhandled");
+    for f in failing(&r, "coverage-gap") {
+        if f["severity"] == "error" {
+            assert!(
+                !f["message"].as_str().unwrap().contains("[[allow]]"),
+                "{f:#}"
+            );
+        }
+    }
 }
 
 #[test]

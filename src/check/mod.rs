@@ -39,10 +39,10 @@ mod safety;
 mod search;
 mod settle;
 
-use crate::findings::{Finding, Stats};
+use crate::findings::{Finding, Stats, Status};
 use crate::model::formula;
 use crate::model::project::Project;
-use crate::semantics::{Compiled, Semantics};
+use crate::semantics::{Compiled, Note, Semantics};
 use crate::syntax::{Diagnostic, Span};
 use checker::Checker;
 use explore::{Bound, Limits, Options};
@@ -259,6 +259,7 @@ pub fn verify_with(
     settle_undecided(&mut findings, project, &applied, &no_plan, graph.complete());
     c.safety(&mut findings, &props);
     settle_non_inductive(&mut findings, project, graph.complete());
+    note_handled_gaps(&mut findings, project, &goal_failures);
     c.failures(&mut findings, action_failures, goal_failures);
     c.liveness(&mut findings, &props);
     // The explanation properties: one more search per user, each state paired with the
@@ -303,4 +304,35 @@ pub fn verify_with(
         symmetric_types,
         symmetry_caveat: not_equivariant,
     })
+}
+
+/// A coverage gap some run reaches is an error (SPEC §3) even when a failure plan handles
+/// the goal's failure. When no goal failure the search recorded has the gap as its cause,
+/// the message says how to accept the gap on purpose.
+fn note_handled_gaps(
+    findings: &mut [Finding],
+    project: &Project,
+    goal_failures: &std::collections::BTreeMap<String, failures::Failure>,
+) {
+    for f in findings.iter_mut() {
+        let reached = f.check == "coverage-gap"
+            && f.status == Status::Fail
+            && f.severity == crate::syntax::Severity::Error;
+        let Some(plan) = reached
+            .then(|| project.plans.plans.iter().find(|p| Some(p.span) == f.span))
+            .flatten()
+        else {
+            continue;
+        };
+        let goal = &plan.trigger.literal;
+        let unhandled = goal_failures.values().any(|x| {
+            matches!(&x.note, Note::GoalFailed { cause, .. }
+                if cause.literal.functor() == goal.functor() && cause.literal.arity() == goal.arity())
+        });
+        if !unhandled {
+            f.message.push_str(
+                "; no goal failure found has it as its cause: if a failure plan handles it by design, accept it with `[[allow]] check = \"coverage-gap\"`",
+            );
+        }
+    }
 }
