@@ -367,6 +367,21 @@ mod tests {
     }
 
     #[test]
+    fn the_table_doubles_when_its_size_passes_three_quarters_of_its_capacity() {
+        // HashMap.putVal: `if (++size > threshold) resize()`, threshold = 0.75 * capacity.
+        let mut set = JavaHashSet::new();
+        let mut at_size = Vec::new();
+        for i in 0..25 {
+            set.insert(i as i32, i);
+            at_size.push((set.len(), set.capacity()));
+        }
+        assert_eq!(at_size[11], (12, 16));
+        assert_eq!(at_size[12], (13, 32));
+        assert_eq!(at_size[23], (24, 32));
+        assert_eq!(at_size[24], (25, 64));
+    }
+
+    #[test]
     fn removals_and_reinsertions_match_java() {
         let hashes: Vec<i32> = (0..20).map(|i| at(i, 1)).collect();
         let mut set = JavaHashSet::new();
