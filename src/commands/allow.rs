@@ -58,6 +58,16 @@ pub fn apply<'f>(
     ran: impl Fn(&str) -> bool,
 ) -> Vec<String> {
     let allows = &project.manifest.allows;
+    if allows.is_empty() {
+        return Vec::new();
+    }
+    // Each project file as the file system names it, looked up once, by file id.
+    let canonical: Vec<Option<PathBuf>> = project
+        .map
+        .files()
+        .iter()
+        .map(|f| std::fs::canonicalize(&f.path).ok())
+        .collect();
     let places: Vec<Option<(PathBuf, Option<usize>)>> = allows
         .iter()
         .map(|a| {
@@ -73,8 +83,7 @@ pub fn apply<'f>(
         }
         let file = f
             .span
-            .and_then(|s| project.map.get(s.file))
-            .and_then(|sf| std::fs::canonicalize(&sf.path).ok());
+            .and_then(|s| canonical.get(s.file.0 as usize).cloned().flatten());
         let line = f.location.as_ref().map(|l| l.line);
         let hit = allows.iter().zip(&places).position(|(a, place)| {
             a.check.value == f.check

@@ -6,7 +6,7 @@ use crate::findings::{Finding, Report, Status, Verdict};
 use crate::model::project::load_project;
 use crate::report::lint::{render, LintRun};
 use crate::smt::{lint, LintOptions};
-use crate::syntax::Severity;
+use crate::syntax::{Diagnostic, Severity, SourceMap};
 use std::path::Path;
 
 /// `lint PROJECT [--deny warnings]`.
@@ -33,38 +33,11 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
     let name = path.display().to_string();
     let project = match load_project(path) {
         Ok(p) => p,
-        Err(e) => {
-            let findings: Vec<Finding> = e
-                .diagnostics
-                .iter()
-                .map(|d| Finding::from_input_diagnostic(d, &e.map))
-                .collect();
-            let mut report = Report::new(name, findings);
-            report.verdict = Verdict::Error;
-            return LintRun {
-                report,
-                map: e.map,
-                diagnostics: e.diagnostics,
-                findings: Vec::new(),
-                tree: Default::default(),
-            };
-        }
+        Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
     let bad = super::allow::check(&project);
     if !bad.is_empty() {
-        let findings: Vec<Finding> = bad
-            .iter()
-            .map(|d| Finding::from_input_diagnostic(d, &project.map))
-            .collect();
-        let mut report = Report::new(name, findings);
-        report.verdict = Verdict::Error;
-        return LintRun {
-            report,
-            map: project.map,
-            diagnostics: bad,
-            findings: Vec::new(),
-            tree: Default::default(),
-        };
+        return input_failure(name, project.map, bad);
     }
     let mut findings = lint(&project, opts);
     let unused = super::allow::apply(
@@ -88,5 +61,22 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
         map: project.map,
         diagnostics: Vec::new(),
         findings,
+    }
+}
+
+/// The run of a project that is bad input: its diagnostics as `input` findings.
+fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> LintRun {
+    let findings: Vec<Finding> = diagnostics
+        .iter()
+        .map(|d| Finding::from_input_diagnostic(d, &map))
+        .collect();
+    let mut report = Report::new(name, findings);
+    report.verdict = Verdict::Error;
+    LintRun {
+        report,
+        map,
+        diagnostics,
+        findings: Vec::new(),
+        tree: Default::default(),
     }
 }

@@ -12,7 +12,7 @@ use super::graph::{formula_text, subgoals};
 use crate::findings::{Counterexample, Finding, Report, Status, TraceStep, Verdict};
 use crate::model::project::Project;
 use crate::syntax::Severity;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::fmt::Write;
 
 /// One plan of the goal-plan tree.
@@ -42,6 +42,7 @@ impl PlanTree {
     /// The tree of a project's plan library.
     pub fn of(p: &Project) -> PlanTree {
         let mut triggers: Vec<(String, Vec<TreePlan>)> = Vec::new();
+        let mut index: HashMap<String, usize> = HashMap::new();
         for plan in &p.plans.plans {
             let t = &plan.trigger;
             let key = format!(
@@ -61,13 +62,16 @@ impl PlanTree {
                 context: formula_text(&plan.context),
                 subgoals: goals,
             };
-            match triggers.iter_mut().find(|(k, _)| *k == key) {
-                Some((_, plans)) => plans.push(entry),
-                None => triggers.push((key, vec![entry])),
+            match index.get(&key) {
+                Some(&i) => triggers[i].1.push(entry),
+                None => {
+                    index.insert(key.clone(), triggers.len());
+                    triggers.push((key, vec![entry]));
+                }
             }
         }
-        // Roots: goals no plan posts (what requests and initial goals start), then any
-        // trigger no root reaches (belief events, and goals only a cycle posts).
+        // Roots: the triggers no plan posts (what requests, initial goals and percepts
+        // start).
         let posted: BTreeSet<&str> = triggers
             .iter()
             .flat_map(|(_, ps)| {
@@ -341,77 +345,132 @@ fn json_list<'a>(items: impl Iterator<Item = &'a String>) -> String {
     serde_json::to_string(&items.collect::<Vec<_>>()).unwrap_or_else(|_| "[]".into())
 }
 
-/// The tree as nested lists: each root goal, its plans, their subgoals' plans, and so on;
-/// a goal already shown higher on the same branch is named, not expanded again.
+/// The tree as nested lists: each root goal, its plans, their subgoals' plans, and so on.
+/// Each goal is expanded once, where it first appears; later it is named only. So the page
+/// grows linearly with the library, and is built with an explicit stack, not recursion, so
+/// that a long chain of subgoals cannot overflow the stack.
 fn tree_html(tree: &PlanTree) -> String {
-    fn goal(tree: &PlanTree, key: &str, path: &mut Vec<String>, out: &mut String) {
-        let _ = write!(out, "<li><b>{}</b>", esc(key));
-        let Some((_, plans)) = tree.triggers.iter().find(|(k, _)| k == key) else {
-            out.push_str(" <i>(no plan)</i></li>");
-            return;
-        };
-        if path.iter().any(|k| k == key) {
-            out.push_str(" <i>(recursive: see above)</i></li>");
-            return;
-        }
-        path.push(key.to_string());
-        out.push_str("<ul>");
-        for p in plans {
-            let _ = write!(
-                out,
-                "<li><span class=\"plan\" data-plan=\"{}\">{} : {} <span class=\"where\">{}</span></span>",
-                esc(&p.place),
-                esc(&p.name),
-                esc(&p.context),
-                esc(&p.place)
-            );
-            if !p.subgoals.is_empty() {
-                out.push_str("<ul>");
-                for g in &p.subgoals {
-                    goal(tree, g, path, out);
-                }
-                out.push_str("</ul>");
-            }
-            out.push_str("</li>");
-        }
-        out.push_str("</ul></li>");
-        path.pop();
+    enum Work<'t> {
+        Goal(&'t str),
+        Plan(&'t TreePlan),
+        Text(&'static str),
     }
+    let plans: HashMap<&str, &[TreePlan]> = tree
+        .triggers
+        .iter()
+        .map(|(k, ps)| (k.as_str(), ps.as_slice()))
+        .collect();
+    let mut expanded: HashSet<&str> = HashSet::new();
     let mut out = String::from("<ul>");
-    let mut path = Vec::new();
-    let mut shown: BTreeSet<&str> = BTreeSet::new();
-    for r in &tree.roots {
-        shown.insert(r);
-        goal(tree, r, &mut path, &mut out);
-    }
-    // Triggers that only a cycle of subgoals posts: shown on their own.
-    for (k, _) in &tree.triggers {
-        if !shown.contains(k.as_str()) && !reachable(tree, k) {
-            goal(tree, k, &mut path, &mut out);
+    // The roots, then what no root reaches (goals only a cycle of subgoals posts).
+    let starts = tree
+        .roots
+        .iter()
+        .map(String::as_str)
+        .chain(tree.triggers.iter().map(|(k, _)| k.as_str()));
+    for start in starts {
+        if expanded.contains(start) {
+            continue;
+        }
+        let mut stack = vec![Work::Goal(start)];
+        while let Some(w) = stack.pop() {
+            match w {
+                Work::Text(t) => out.push_str(t),
+                Work::Plan(p) => {
+                    let _ = write!(
+                        out,
+                        "<li><span class=\"plan\" data-plan=\"{}\">{} : {} <span class=\"where\">{}</span></span>",
+                        esc(&p.place),
+                        esc(&p.name),
+                        esc(&p.context),
+                        esc(&p.place)
+                    );
+                }
+                Work::Goal(key) => {
+                    let _ = write!(out, "<li><b>{}</b>", esc(key));
+                    let Some(ps) = plans.get(key) else {
+                        out.push_str(" <i>(no plan)</i></li>");
+                        continue;
+                    };
+                    if !expanded.insert(key) {
+                        out.push_str(" <i>(shown above)</i></li>");
+                        continue;
+                    }
+                    out.push_str("<ul>");
+                    // Pushed in reverse, so that they are written in order.
+                    stack.push(Work::Text("</ul></li>"));
+                    for p in ps.iter().rev() {
+                        stack.push(Work::Text("</li>"));
+                        if !p.subgoals.is_empty() {
+                            stack.push(Work::Text("</ul>"));
+                            stack.extend(p.subgoals.iter().rev().map(|g| Work::Goal(g)));
+                            stack.push(Work::Text("<ul>"));
+                        }
+                        stack.push(Work::Plan(p));
+                    }
+                }
+            }
         }
     }
     out.push_str("</ul>");
     out
 }
 
-/// Whether a root reaches the trigger `key` through subgoals.
-fn reachable(tree: &PlanTree, key: &str) -> bool {
-    let mut seen: BTreeSet<&str> = BTreeSet::new();
-    let mut todo: Vec<&str> = tree.roots.iter().map(String::as_str).collect();
-    while let Some(k) = todo.pop() {
-        if !seen.insert(k) {
-            continue;
-        }
-        if k == key {
-            return true;
-        }
-        if let Some((_, plans)) = tree.triggers.iter().find(|(t, _)| t == k) {
-            todo.extend(
-                plans
-                    .iter()
-                    .flat_map(|p| p.subgoals.iter().map(String::as_str)),
-            );
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(place: &str, subgoals: &[&str]) -> TreePlan {
+        TreePlan {
+            place: place.into(),
+            name: place.into(),
+            context: "true".into(),
+            subgoals: subgoals.iter().map(|s| s.to_string()).collect(),
         }
     }
-    false
+
+    #[test]
+    fn each_plan_is_drawn_once_and_a_long_chain_does_not_overflow_the_stack() {
+        // A diamond, repeated: g0 posts a and b, both post g1, and so on. Expanding every
+        // path would draw 2^n copies of the last goal.
+        let n = 40;
+        let mut triggers = Vec::new();
+        for i in 0..n {
+            let next = format!("+!g{}/0", i + 1);
+            triggers.push((
+                format!("+!g{i}/0"),
+                vec![plan(
+                    &format!("g{i}"),
+                    &[&format!("+!a{i}/0"), &format!("+!b{i}/0")],
+                )],
+            ));
+            triggers.push((format!("+!a{i}/0"), vec![plan(&format!("a{i}"), &[&next])]));
+            triggers.push((format!("+!b{i}/0"), vec![plan(&format!("b{i}"), &[&next])]));
+        }
+        let tree = PlanTree {
+            triggers,
+            roots: vec!["+!g0/0".into()],
+        };
+        let html = tree_html(&tree);
+        assert_eq!(html.matches("class=\"plan\"").count(), 3 * n);
+        assert_eq!(html.matches("(shown above)").count(), n - 1);
+        assert_eq!(html.matches("(no plan)").count(), 2, "g{n} has no plan, from a and b");
+        assert_eq!(html.matches("<li").count(), html.matches("</li>").count());
+        // A chain of 200,000 subgoals, on a test thread's 2 MiB stack.
+        let m = 200_000;
+        let triggers = (0..m)
+            .map(|i| {
+                (
+                    format!("+!c{i}/0"),
+                    vec![plan(&format!("c{i}"), &[&format!("+!c{}/0", i + 1)])],
+                )
+            })
+            .collect();
+        let tree = PlanTree {
+            triggers,
+            roots: vec!["+!c0/0".into()],
+        };
+        let html = tree_html(&tree);
+        assert_eq!(html.matches("class=\"plan\"").count(), m);
+    }
 }
