@@ -1004,6 +1004,22 @@ fn trace_shows_the_state_after_each_step_of_every_run() {
                 }
                 assert_eq!(beliefs, set(&x["state"]["beliefs"]), "{dir}: {id}: {x:#}");
             }
+            if dir.ends_with("goal_failure") {
+                // The intention's frame names the plan's bindings and the step it runs next.
+                let frames: Vec<&serde_json::Value> = t["transitions"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .flat_map(|x| x["state"]["intentions"].as_array().unwrap())
+                    .flat_map(|i| i["frames"].as_array().unwrap())
+                    .collect();
+                assert!(
+                    frames.iter().any(|f| f["next"] == "pickUp(C)"
+                        && f["bindings"][0] == "C = cup1"
+                        && f["trigger"] == "+!load(cup1)"),
+                    "{frames:#?}"
+                );
+            }
             if dir.ends_with("explain_untruthful") {
                 // The user learns each novel pair as Algorithm 1 does: N only grows.
                 let learned: Vec<usize> = t["transitions"]

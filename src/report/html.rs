@@ -454,7 +454,11 @@ mod tests {
         let html = tree_html(&tree);
         assert_eq!(html.matches("class=\"plan\"").count(), 3 * n);
         assert_eq!(html.matches("(shown above)").count(), n - 1);
-        assert_eq!(html.matches("(no plan)").count(), 2, "g{n} has no plan, from a and b");
+        assert_eq!(
+            html.matches("(no plan)").count(),
+            2,
+            "g{n} has no plan, from a and b"
+        );
         assert_eq!(html.matches("<li").count(), html.matches("</li>").count());
         // A chain of 200,000 subgoals, on a test thread's 2 MiB stack.
         let m = 200_000;
