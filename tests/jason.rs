@@ -110,8 +110,15 @@ fn cases() -> Vec<PathBuf> {
 }
 
 /// Scenarios where bdi-check is known to differ from Jason, each with why; the test fails
-/// when one of them starts to agree (so that this list only ever shrinks with the facts).
-const KNOWN: &[(&str, &str, &str)] = &[];
+/// when one of them starts to agree (so that this list only ever shrinks with the facts),
+/// and each must be a refusal (the run ends `beyond` the model), never another answer.
+const KNOWN: &[(&str, &str, &str)] = &[(
+    "77-goal-directive-events",
+    "bottom",
+    "Jason 3 throws a NullPointerException inside .fail_goal(h) when h is the bottom goal \
+     of an intention (findEventForFailure peeks at the intention dropGoal emptied); \
+     bdi-check refuses the run",
+)];
 
 #[test]
 fn every_recorded_jason_run_is_reproduced() {
@@ -139,10 +146,10 @@ fn every_recorded_jason_run_is_reproduced() {
             match got {
                 Ok(got) if got == want && known => agree.push(format!("{name}/{scenario}")),
                 Ok(got) if got == want => {}
-                got if !known => differ.push(format!(
+                Ok(got) if known && got.outcome == "beyond" => {}
+                got => differ.push(format!(
                     "{name}/{scenario}:\n  jason:     {want:?}\n  bdi-check: {got:?}"
                 )),
-                _ => {}
             }
         }
     }
@@ -260,6 +267,9 @@ fn every_recorded_jason_run_is_a_run_of_the_search() {
             serde_json::from_str(&std::fs::read_to_string(case.join("jason.json")).unwrap())
                 .unwrap();
         for (scenario, run) in rec["runs"].as_object().unwrap() {
+            if KNOWN.iter().any(|(c, s, _)| *c == name && s == scenario) {
+                continue;
+            }
             let file = case.join("scenarios").join(format!("{scenario}.toml"));
             match search_has_run(&case, &file, run) {
                 Ok(true) => checked += 1,

@@ -265,6 +265,30 @@ fn seeded_messages_name_the_literals_at_fault() {
     );
 }
 
+/// A shadowed plan is hidden by plans that are chosen: one that is never chosen itself is
+/// not named "chosen instead", even where it is applicable whenever the hidden one is.
+#[test]
+fn a_shadowed_plan_is_hidden_by_plans_that_are_chosen() {
+    let fs = run_lint(&project("tests/lint/shadowed_by_chosen"));
+    let shadowed: Vec<(String, String, Vec<String>)> = failing(&fs)
+        .iter()
+        .filter(|f| f.finding.check == "shadowed-plan")
+        .map(|f| {
+            let hiders = f.secondary.iter().map(|(_, label)| label.clone()).collect();
+            (place(f), f.finding.message.clone(), hiders)
+        })
+        .collect();
+    assert_eq!(shadowed.len(), 2, "{shadowed:#?}");
+    for (at, msg, hiders) in &shadowed {
+        assert!(
+            ["agent.asl:3", "agent.asl:4"].contains(&at.as_str()),
+            "{at}"
+        );
+        assert!(msg.contains("the earlier plan @broad "), "{msg}");
+        assert_eq!(hiders, &["chosen instead".to_string()], "{at}");
+    }
+}
+
 #[test]
 fn goal_summaries_follow_subgoals_transitively() {
     fn atom_names(p: &Project, set: &BTreeSet<AtomId>) -> Vec<String> {
@@ -1432,6 +1456,7 @@ fn lint_agrees_with_brute_force_on_the_seeded_defects() {
     for (case, _, _) in SEEDED {
         differential(&format!("tests/lint/{case}"));
     }
+    differential("tests/lint/shadowed_by_chosen");
 }
 
 #[test]

@@ -384,10 +384,21 @@ impl Semantics<'_> {
                     }
                     f @ (".succeed_goal" | ".fail_goal") => {
                         let g = term.args().first().cloned().unwrap_or_else(Term::nil);
-                        notes.push(Note::Internal { text, plan, origin });
+                        let fail = f == ".fail_goal";
                         self.normalize(frame);
                         let current = std::mem::replace(int, empty_intention(origin));
-                        let fail = f == ".fail_goal";
+                        if fail && self.fails_a_bottom_goal(s, &current, &g) {
+                            notes.push(Note::Beyond {
+                                text,
+                                plan,
+                                span: step.span,
+                                reason: format!(
+                                    "{g} is the bottom goal of an intention: Jason 3 throws a NullPointerException inside .fail_goal here (Intention.dropGoal empties the intention, then TransitionSystem.findEventForFailure peeks at it), and bdi-check does not model that"
+                                ),
+                            });
+                            return Flow::Gone;
+                        }
+                        notes.push(Note::Internal { text, plan, origin });
                         self.goal_directive(s, current, &g, fail, (plan, step.span), notes);
                         return Flow::Gone;
                     }
@@ -487,11 +498,11 @@ impl Semantics<'_> {
                 }
             }
             BodyStep::Achieve { goal, new_focus } => {
-                let literal = subgoal_literal(&value!(goal), depth);
+                let written = renamed_apart(&value!(goal), depth);
                 let trigger = EventTrigger {
                     op: TriggerOp::Add,
                     kind: TriggerKind::Achieve,
-                    literal,
+                    literal: with_source(&written, "self"),
                 };
                 if *new_focus {
                     self.post_event(
@@ -504,7 +515,7 @@ impl Semantics<'_> {
                         },
                     );
                 } else {
-                    return self.post_subgoal(s, int, trigger, (plan, step.span));
+                    return self.post_subgoal(s, int, trigger, written, (plan, step.span));
                 }
             }
             BodyStep::Test(f) => {
@@ -514,13 +525,15 @@ impl Semantics<'_> {
                         // Jason's `applyExecInt` (test): with no answer, a literal whose
                         // `+?g` some plan is relevant for becomes that event, as a subgoal.
                         if let Formula::Literal(t) = f {
+                            let written = renamed_apart(&frame.subst.apply(t), depth);
                             let trigger = EventTrigger {
                                 op: TriggerOp::Add,
                                 kind: TriggerKind::Test,
-                                literal: subgoal_literal(&frame.subst.apply(t), depth),
+                                literal: with_source(&written, "self"),
                             };
                             if !self.relevant_in(s.library.as_deref(), &trigger).is_empty() {
-                                return self.post_subgoal(s, int, trigger, (plan, step.span));
+                                let at = (plan, step.span);
+                                return self.post_subgoal(s, int, trigger, written, at);
                             }
                         }
                         let int = std::mem::replace(int, empty_intention(origin));
@@ -730,17 +743,22 @@ impl Semantics<'_> {
     }
 
     /// Suspends `int` on the subgoal event `trigger` (`!g`, or `?g` handled by a `+?g`
-    /// plan): its top plan waits for `g` (its current step), in the event.
+    /// plan): its top plan waits for `g` (its current step, `written`: the literal as the
+    /// body has it, without the `source(self)` the event gets), in the event.
     fn post_subgoal(
         &self,
         s: &mut State,
         int: &mut Intention,
         trigger: EventTrigger,
+        written: Term,
         at: (u32, Span),
     ) -> Flow {
         let origin = int.origin;
         if let Some(top) = int.frames.last_mut() {
-            top.calling = Some(trigger.literal.clone());
+            // Jason's applyClrInt compares a finished failure plan's goal with the body
+            // term of the step below (`getCurrentStep().getBodyTerm()`), which has no
+            // `source(self)`: `!g` then matches a `-!g` that `.fail_goal(g)` posted.
+            top.calling = Some(written);
             self.normalize(top);
         }
         let suspended = std::mem::replace(int, empty_intention(origin));
@@ -792,11 +810,11 @@ impl Semantics<'_> {
     }
 }
 
-/// The literal of a subgoal posted by the plan at `depth` of its stack: Jason's
-/// `prepareBodyForEvent` gives it `source(self)`, and its plan's variables are renamed to
+/// A subgoal's literal as the plan at `depth` of its stack posts it, before Jason's
+/// `prepareBodyForEvent` gives its event `source(self)`: the plan's variables renamed to
 /// the next generation (the subgoal's plan has variables of its own).
-fn subgoal_literal(t: &Term, depth: usize) -> Term {
-    with_source(t, "self").map_vars(&mut |v| {
+fn renamed_apart(t: &Term, depth: usize) -> Term {
+    t.map_vars(&mut |v| {
         if v.generation() == 0 {
             Term::from(v.with_generation(depth as u32 + 1))
         } else {

@@ -117,6 +117,28 @@ impl Semantics<'_> {
         }
     }
 
+    /// Whether `.fail_goal(g)` would drop the bottom goal of some intention (`current`, the
+    /// running one, or one in an event, in the queue, awaiting feedback or in `.wait`):
+    /// `Intention.dropGoal` then leaves it empty, and `fail_goal.dropIntention` passes it to
+    /// `TransitionSystem.findEventForFailure`, whose `getPLForIM(i.peek())` throws.
+    pub(super) fn fails_a_bottom_goal(&self, s: &State, current: &Intention, g: &Term) -> bool {
+        let bottom = |i: &Intention| {
+            i.frames.first().is_some_and(|f| {
+                f.trigger.op == TriggerOp::Add
+                    && f.trigger.kind == TriggerKind::Achieve
+                    && crate::model::unifier(g, &f.trigger.literal).is_some()
+            })
+        };
+        bottom(current)
+            || s.intentions.iter().any(bottom)
+            || s.events
+                .iter()
+                .filter_map(|e| e.intention.as_ref())
+                .any(bottom)
+            || s.pending.as_ref().is_some_and(|p| bottom(&p.intention))
+            || s.waiting.iter().any(|w| bottom(&w.intention))
+    }
+
     /// Jason's `dropIntention` of `succeed_goal` and `fail_goal` on an intention pursuing
     /// `g` (`Intention.dropGoal` pops its plans down to and including the lowest plan for
     /// `g`). Succeed: the plan below goes on after its `!g` (for the running intention,

@@ -50,26 +50,38 @@ impl Linter<'_> {
         let mut shadowed = BTreeSet::new();
         let lib = &self.p.plans;
         if self.p.manifest.bounds.plan_selection == PlanSelection::First {
+            // Each plan that may hide a later one is encoded once for the group, as an
+            // assumption literal `l => not applicable`: asking whether plan j is shadowed then
+            // assumes the earlier plans' literals instead of encoding them again, so the
+            // group costs linearly in encoding, not quadratically (issue 18).
+            base.sess.solver.push();
+            let (_, event, _) = self.event(g);
+            let mut hiders: Vec<(usize, Result<Bool, String>)> = Vec::new();
             for (k, &j) in g.plans.iter().enumerate() {
-                if k == 0 {
-                    continue;
-                }
-                // Only plans that are always there, always before it, hide a plan: the
-                // agent's own that no step removes, unless it may be added before them.
-                if lib.added_at_begin(j) {
-                    continue;
-                }
-                let earlier: Vec<usize> = g.plans[..k]
-                    .iter()
-                    .copied()
-                    .filter(|&i| !lib.may_change(i))
-                    .collect();
-                if let Some(Alive::Yes(cx)) = alive.get(&j) {
-                    if self.shadowed(g, &earlier, j, cx.clone(), base, &alive) {
-                        shadowed.insert(j);
+                if k > 0 && !lib.added_at_begin(j) {
+                    if let Some(Alive::Yes(cx)) = alive.get(&j) {
+                        if self.shadowed(g, &hiders, j, cx.clone(), base) {
+                            shadowed.insert(j);
+                        }
                     }
                 }
+                // Only plans that are always there, always before it, hide a plan: the
+                // agent's own that no step removes, unless it may be added before them. A
+                // shadowed plan hides nothing its own hiders do not, so it is left out: the
+                // plans named "chosen instead" are then ones that are chosen.
+                let hides = !lib.may_change(j)
+                    && !shadowed.contains(&j)
+                    && !matches!(alive.get(&j), Some(Alive::Dead));
+                if hides {
+                    let lit = self.applicable(j, &event).map(|app| {
+                        let l = self.enc.fresh_bool("not earlier");
+                        base.sess.solver.assert(l.implies(app.not()));
+                        l
+                    });
+                    hiders.push((j, lit.map_err(|Unsupported(why)| why)));
+                }
             }
+            base.sess.solver.pop(1);
         }
         for (k, &i) in g.plans.iter().enumerate() {
             for &j in &g.plans[k + 1..] {
@@ -214,22 +226,18 @@ impl Linter<'_> {
 
     // ----- shadowed-plan ------------------------------------------------------------------
 
+    /// Whether the earlier plans `hiders` (each with its literal `l => not applicable`, or
+    /// why it could not be encoded) are applicable whenever plan `j` is.
     fn shadowed(
         &mut self,
         g: &Group,
-        earlier: &[usize],
+        hiders: &[(usize, Result<Bool, String>)],
         j: usize,
         witness: Counterexample,
         base: &Base,
-        alive: &BTreeMap<usize, Alive>,
     ) -> bool {
         let plan = self.plan(j);
-        let earlier: Vec<usize> = earlier
-            .iter()
-            .copied()
-            .filter(|i| !matches!(alive.get(i), Some(Alive::Dead)))
-            .collect();
-        if earlier.is_empty() {
+        if hiders.is_empty() {
             return false;
         }
         let (_, event, dom) = self.event(g);
@@ -240,13 +248,13 @@ impl Linter<'_> {
             let ctx =
                 self.enc
                     .assert_formula(&plan.context, &mut env, &mut frame, &self.enc.base)?;
-            let mut nots = Vec::new();
-            for &i in &earlier {
-                nots.push(self.applicable(i, &event)?.not());
-            }
-            Ok((and(vec![dom.clone(), rel, ctx]), nots))
+            let lits = hiders
+                .iter()
+                .map(|(_, l)| l.clone().map_err(Unsupported))
+                .collect::<Enc<Vec<Bool>>>()?;
+            Ok((and(vec![dom.clone(), rel, ctx]), lits))
         })();
-        let (this, nots) = match built {
+        let (this, lits) = match built {
             Ok(x) => x,
             Err(Unsupported(why)) => {
                 self.undecided(
@@ -259,16 +267,9 @@ impl Linter<'_> {
                 return false;
             }
         };
+        let earlier: Vec<usize> = hiders.iter().map(|&(i, _)| i).collect();
         base.sess.solver.push();
         base.sess.solver.assert(&this);
-        let lits: Vec<Bool> = nots
-            .iter()
-            .map(|b| {
-                let l = self.enc.fresh_bool("not earlier");
-                base.sess.solver.assert(l.implies(b));
-                l
-            })
-            .collect();
         let mut all = base.inv_lits();
         all.extend(lits.iter().cloned());
         let outcome = base.sess.check(&all);
