@@ -1291,3 +1291,40 @@ fn bad_allows_are_bad_input_with_their_place() {
         }
     }
 }
+
+#[test]
+fn a_plan_overlap_a_run_reaches_is_an_error_with_that_run() {
+    // lint warns that @runOpenDishwasher and @runClosedDishwasher may both apply; the search
+    // reaches such a state with +!runDishwasher selected, so the warning becomes an error
+    // whose run replays. The kitchen's other plan pairs are never applicable together.
+    let (code, r, _) = verify_json("tests/lint/plan_overlap", "plan-overlap-reached");
+    assert_eq!(code, 1, "{r:#}");
+    let failing: Vec<&serde_json::Value> = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["check"] == "plan-overlap" && f["status"] == "fail")
+        .collect();
+    assert_eq!(failing.len(), 1, "{failing:#?}");
+    let f = failing[0];
+    assert_eq!(f["severity"], "error");
+    assert!(
+        f["message"]
+            .as_str()
+            .unwrap()
+            .ends_with("and a run reaches it"),
+        "{f:#}"
+    );
+    // The run to the state where +!runDishwasher meets both plans (`replay` does not
+    // replay a plan overlap yet: issue 14's closing note).
+    let run = steps(f);
+    assert!(run.iter().any(|s| s.contains("runDishwasher")), "{run:#?}");
+    // The kitchen, whose two plans exclude each other, has no overlap any run reaches.
+    let (code, r, _) = verify_json("specs/kitchen", "plan-overlap-none");
+    assert_eq!(code, 0, "{r:#}");
+    assert!(r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|f| f["check"] != "plan-overlap" || f["status"] == "pass"));
+}
