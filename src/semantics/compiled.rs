@@ -681,3 +681,39 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_interner_keeps_each_distinct_value_once() {
+        let parts: Interner<u64> = Interner::new();
+        let mut asked = 0;
+        let mut held = Vec::new();
+        for v in [7u64, 8, 7, 9, 8, 7] {
+            held.push(parts.intern(v, |_| {
+                asked += 1;
+                AtomSet::default()
+            }));
+        }
+        // Three distinct values, each read once, and equal values share their part.
+        assert_eq!(parts.len(), 3);
+        assert_eq!(asked, 3);
+        let at = |i: usize| held[i].0.as_ptr() as usize;
+        assert_eq!(at(0), at(2));
+        assert_eq!(at(0), at(5));
+        assert_eq!(at(1), at(4));
+        assert_ne!(at(0), at(1));
+        assert_ne!(at(1), at(3));
+    }
+
+    #[test]
+    fn shards_spread_the_hashes_by_their_middle_bits() {
+        assert_eq!(shard_of(0), 0);
+        assert_eq!(shard_of(5 << 40), 5);
+        assert_eq!(shard_of(70 << 40), 70 % SHARDS);
+        assert_eq!(shard_of(u64::MAX), (u64::MAX >> 40) as usize % SHARDS);
+        assert!((0..1000u64).all(|h| shard_of(h.wrapping_mul(0x9E37_79B9_7F4A_7C15)) < SHARDS));
+    }
+}
