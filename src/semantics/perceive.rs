@@ -149,3 +149,17 @@ fn java_capacity(size: usize) -> u32 {
     }
     cap
 }
+
+#[cfg(test)]
+mod tests {
+    use super::java_capacity;
+
+    #[test]
+    fn a_java_hash_set_doubles_its_sixteen_buckets_past_three_quarters() {
+        // java.util.HashMap: threshold = capacity * 0.75, resize when size exceeds it.
+        let sizes = [(0, 16), (1, 16), (12, 16), (13, 32), (24, 32), (25, 64)];
+        for (size, cap) in sizes.into_iter().chain([(48, 64), (49, 128), (97, 256)]) {
+            assert_eq!(java_capacity(size), cap, "{size} elements");
+        }
+    }
+}

@@ -314,3 +314,74 @@ pub fn requests_of<'a>(
         _ => bits,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn trigger(op: TriggerOp, kind: TriggerKind, annots: &[Term]) -> EventTrigger {
+        EventTrigger {
+            op,
+            kind,
+            literal: Term::literal("g", false, vec![Term::atom("a")], annots.to_vec()),
+        }
+    }
+
+    #[test]
+    fn a_trigger_shows_as_jason_writes_it_without_its_own_source() {
+        let own = Term::structure("source", vec![Term::atom("self")]);
+        let boss = Term::structure("source", vec![Term::atom("boss")]);
+        let urgent = Term::atom("urgent");
+        let show = |op, kind, annots: &[Term]| trigger(op, kind, annots).to_string();
+        use TriggerKind::{Achieve, Belief, Test};
+        use TriggerOp::{Add, Del};
+        assert_eq!(show(Add, Achieve, &[own.clone()]), "+!g(a)");
+        assert_eq!(
+            show(Del, Achieve, &[urgent.clone(), own.clone()]),
+            "-!g(a)[urgent]"
+        );
+        assert_eq!(show(Add, Test, &[boss.clone()]), "+?g(a)[source(boss)]");
+        assert_eq!(show(Add, Belief, &[]), "+g(a)");
+        assert_eq!(show(Del, Belief, &[boss, own]), "-g(a)[source(boss)]");
+    }
+
+    fn intention(origin: Origin) -> Intention {
+        Intention {
+            frames: Vec::new(),
+            origin,
+        }
+    }
+
+    #[test]
+    fn the_requests_served_are_the_origins_of_intentions_and_events() {
+        let ints = [
+            intention(Origin::Request(0)),
+            intention(Origin::Spawned),
+            intention(Origin::Request(3)),
+        ];
+        let events = [Event {
+            trigger: trigger(TriggerOp::Add, TriggerKind::Achieve, &[]),
+            intention: None,
+            origin: Origin::Request(5),
+            posted_at: None,
+        }];
+        assert_eq!(requests_of(&ints, &events), 0b10_1001);
+        assert_eq!(requests_of(&ints[1..2], &[]), 0);
+        assert_eq!(requests_of(&[], &events), 1 << 5);
+        // A state's: its intentions, the one awaiting feedback and its events.
+        let state = State {
+            beliefs: AtomSet::empty(0),
+            order: Vec::new(),
+            events: events.to_vec(),
+            intentions: vec![intention(Origin::Request(1))],
+            pending: Some(Pending {
+                intention: intention(Origin::Request(2)),
+                failure: None,
+            }),
+            waiting: Vec::new(),
+            requested: 0,
+            library: None,
+        };
+        assert_eq!(state.pending_requests(), 0b10_0110);
+    }
+}
