@@ -116,13 +116,32 @@ fn cases() -> Vec<PathBuf> {
 /// Scenarios where bdi-check is known to differ from Jason, each with why; the test fails
 /// when one of them starts to agree (so that this list only ever shrinks with the facts),
 /// and each must be a refusal (the run ends `beyond` the model), never another answer.
-const KNOWN: &[(&str, &str, &str)] = &[(
-    "77-goal-directive-events",
-    "bottom",
-    "Jason 3 throws a NullPointerException inside .fail_goal(h) when h is the bottom goal \
+const KNOWN: &[(&str, &str, &str)] = &[
+    (
+        "77-goal-directive-events",
+        "bottom",
+        "Jason 3 throws a NullPointerException inside .fail_goal(h) when h is the bottom goal \
      of an intention (findEventForFailure peeks at the intention dropGoal emptied); \
      bdi-check refuses the run",
-)];
+    ),
+    (
+        "82-belief-update-errors",
+        "d",
+        "+val(5 div 0): Jason 3's ArithmeticException escapes the act phase and the \
+         circumstance is created anew (every intention dropped); bdi-check refuses the run",
+    ),
+    (
+        "82-belief-update-errors",
+        "e",
+        "-val(5 mod 0): Jason goes on with NaN, which matches no belief; bdi-check refuses \
+         the run (no such numbers in the model)",
+    ),
+    (
+        "82-belief-update-errors",
+        "f",
+        "Y = 5 div 0: as d, Jason resets the circumstance; bdi-check refuses the run",
+    ),
+];
 
 #[test]
 fn every_recorded_jason_run_is_reproduced() {

@@ -1328,3 +1328,32 @@ fn a_plan_overlap_a_run_reaches_is_an_error_with_that_run() {
         .iter()
         .all(|f| f["check"] != "plan-overlap" || f["status"] == "pass"));
 }
+
+#[test]
+fn arithmetic_jason_throws_on_is_refused_where_it_happens() {
+    // `5 div 0` throws in Jason (the circumstance is created anew) and `5 mod 0` is NaN:
+    // neither is a run of the model, so the search stops there, says where and why, and
+    // the verdict is incomplete, never a pass nor a made-up plan failure.
+    let (code, r, _) = verify_json("tests/jason/82-belief-update-errors", "arith-beyond");
+    assert_eq!(code, 3, "{r:#}");
+    let warnings: Vec<&str> = r["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|w| w.as_str())
+        .collect();
+    let w = warnings
+        .iter()
+        .find(|w| w.starts_with("a run leaves the model"))
+        .unwrap_or_else(|| panic!("{warnings:?}"));
+    assert!(w.contains("agent.asl:"), "{w}");
+    assert!(
+        w.contains("integer division by zero") || w.contains("not a finite number"),
+        "{w}"
+    );
+    assert!(r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|f| f["check"] != "goal-failure" || f["status"] != "fail"));
+}

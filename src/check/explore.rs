@@ -109,6 +109,8 @@ pub struct Graph<S = State> {
     pub transitions: usize,
     /// The bound that stopped the search, if any.
     pub bound: Option<Bound>,
+    /// Where the first run that left the model left it, and why ([`Bound::Beyond`]).
+    pub beyond: Option<(crate::syntax::Span, String)>,
     /// Seconds spent.
     pub seconds: f64,
     /// Peak resident memory of the process during the search, in bytes (0 if unknown).
@@ -445,6 +447,7 @@ fn search<M: Model, T>(
         initial_covered: 0,
         transitions: 0,
         bound: None,
+        beyond: None,
         seconds: 0.0,
         peak_memory: 0,
         state: PhantomData,
@@ -556,8 +559,9 @@ fn search<M: Model, T>(
                 };
                 let mut cut = false;
                 for (k, (label, t, fp)) in succ.into_iter().enumerate() {
-                    if model.beyond(&label) {
+                    if let Some(why) = model.beyond(&label) {
                         g.bound.get_or_insert(Bound::Beyond);
+                        g.beyond.get_or_insert(why);
                         cut = true;
                         continue;
                     }
@@ -628,6 +632,7 @@ impl<S> Graph<S> {
             initial_covered: self.initial_covered,
             transitions: self.transitions,
             bound: self.bound,
+            beyond: self.beyond,
             seconds: self.seconds,
             peak_memory: self.peak_memory,
             state: PhantomData,

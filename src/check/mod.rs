@@ -60,6 +60,9 @@ pub struct Verification {
     pub stats: Stats,
     /// The bound that stopped the search, if any.
     pub bound: Option<Bound>,
+    /// With [`Bound::Beyond`]: where the first run left the model (`file:line:col`), the
+    /// step and why.
+    pub beyond: Option<String>,
     /// Bytes held by the visited-state store and by the edges at the end of the search.
     pub memory: (usize, usize),
     /// Peak resident memory of the process, in bytes (0 if unknown).
@@ -299,6 +302,10 @@ pub fn verify_with(
         findings,
         stats,
         bound: graph.bound,
+        beyond: graph.beyond.as_ref().map(|(span, why)| {
+            let at = project.map.location(*span);
+            format!("{}:{}:{}: {why}", at.file, at.line, at.column)
+        }),
         memory: (graph.store_bytes(), graph.edge_bytes()),
         peak_memory: graph.peak_memory,
         symmetric_types,

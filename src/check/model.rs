@@ -34,14 +34,27 @@ pub trait Model {
 
     /// Whether a transition leaves the model ([`Note::Beyond`]): the search does not follow
     /// it and is incomplete.
-    fn beyond(&self, _label: &Self::Label) -> bool {
-        false
+    fn beyond(&self, _label: &Self::Label) -> Option<(crate::syntax::Span, String)> {
+        None
     }
 }
 
 /// Whether notes leave the model.
-pub fn is_beyond<'n>(mut notes: impl Iterator<Item = &'n Note>) -> bool {
-    notes.any(|n| matches!(n, Note::Beyond { .. }))
+pub fn is_beyond<'n>(notes: impl Iterator<Item = &'n Note>) -> bool {
+    beyond_of(notes).is_some()
+}
+
+/// Where notes leave the model and why (the step as it would run, and what the model
+/// lacks), for the first [`Note::Beyond`] among them.
+pub fn beyond_of<'n>(
+    mut notes: impl Iterator<Item = &'n Note>,
+) -> Option<(crate::syntax::Span, String)> {
+    notes.find_map(|n| match n {
+        Note::Beyond {
+            text, span, reason, ..
+        } => Some((*span, format!("`{text}`: {reason}"))),
+        _ => None,
+    })
 }
 
 impl Model for Semantics<'_> {
@@ -59,8 +72,8 @@ impl Model for Semantics<'_> {
             .collect()
     }
 
-    fn beyond(&self, label: &Vec<Note>) -> bool {
-        is_beyond(label.iter())
+    fn beyond(&self, label: &Vec<Note>) -> Option<(crate::syntax::Span, String)> {
+        beyond_of(label.iter())
     }
 }
 
@@ -85,8 +98,8 @@ impl Model for Agent<'_> {
         self.sem.next_states(s)
     }
 
-    fn beyond(&self, label: &Vec<Note>) -> bool {
-        is_beyond(label.iter())
+    fn beyond(&self, label: &Vec<Note>) -> Option<(crate::syntax::Span, String)> {
+        beyond_of(label.iter())
     }
 
     fn fingerprint(&self, s: &State) -> u64 {
@@ -134,8 +147,8 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
         self.compiled.successors(s)
     }
 
-    fn beyond(&self, label: &Notes<'c>) -> bool {
-        is_beyond(label.iter())
+    fn beyond(&self, label: &Notes<'c>) -> Option<(crate::syntax::Span, String)> {
+        beyond_of(label.iter())
     }
 
     fn fingerprint(&self, s: &Packed<'c>) -> u64 {

@@ -137,6 +137,9 @@ pub fn run(
             }
             report.stats = Some(v.stats);
             report.sources = crate::findings::sources_of(&project.map);
+            report.warnings.extend(v.beyond.as_ref().map(|b| {
+                format!("a run leaves the model, and the search does not follow it: {b}")
+            }));
             report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
             VerifyRun {
                 report,

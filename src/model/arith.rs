@@ -6,9 +6,13 @@
 //! is the same operation), and `div` is `(int) x / (int) y`: both operands cast to Java
 //! `int` (saturating, NaN to 0, as Rust's `as i32`), then an integer division that
 //! truncates and wraps on `MIN / -1`. Where Jason would go on with a value that is not a
-//! number of the model (`/` or `mod` by zero give infinities and NaN) or throw (`div` by
-//! zero raises `ArithmeticException`), the result here is an error: the step or context
-//! that needs the value fails, as the plan fails in Jason when the exception is raised.
+//! number of the model (`/` or `mod` by zero give infinities and NaN, as does overflow) or
+//! throw (`div` by zero raises `ArithmeticException`), the result here is an error. The
+//! reasoning cycle does not fail the plan there, as real Jason does neither: it refuses
+//! the run (`Note::Beyond`). In Jason 3 the exception of `div` escapes the reasoning cycle
+//! (`TransitionSystem.act`/`deliberate` log "*** ERROR in the transition system" and
+//! create a new circumstance, dropping every intention and event: recorded in
+//! `tests/jason/82-belief-update-errors`).
 
 /// The operators the plan compiler keeps as structures until their operands are bound.
 pub const OPERATORS: [&str; 7] = ["+", "-", "*", "/", "div", "mod", "**"];
@@ -16,16 +20,16 @@ pub const OPERATORS: [&str; 7] = ["+", "-", "*", "/", "div", "mod", "**"];
 /// Why an arithmetic expression has no value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ArithError {
-    /// `div` by zero (Java's `ArithmeticException`), `/` or `mod` by zero.
+    /// `div` by zero (Java's `ArithmeticException`).
     DivisionByZero,
-    /// An infinite or NaN result.
+    /// An infinite or NaN result (`/` or `mod` by zero, overflow).
     NotFinite,
 }
 
 impl std::fmt::Display for ArithError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            ArithError::DivisionByZero => "division by zero",
+            ArithError::DivisionByZero => "integer division by zero",
             ArithError::NotFinite => "the result is not a finite number",
         })
     }
@@ -40,9 +44,6 @@ pub fn apply(op: &str, args: &[f64]) -> Option<Result<f64, ArithError>> {
         ("+", [x, y]) => x + y,
         ("-", [x, y]) => x - y,
         ("*", [x, y]) => x * y,
-        ("/", [_, y]) | ("mod", [_, y]) if *y == 0.0 => {
-            return Some(Err(ArithError::DivisionByZero))
-        }
         ("/", [x, y]) => x / y,
         ("mod", [x, y]) => x % y,
         ("div", [x, y]) => {
@@ -103,14 +104,9 @@ mod tests {
             apply("div", &[5.0, 0.5]),
             Some(Err(ArithError::DivisionByZero))
         );
-        assert_eq!(
-            apply("/", &[5.0, 0.0]),
-            Some(Err(ArithError::DivisionByZero))
-        );
-        assert_eq!(
-            apply("mod", &[5.0, 0.0]),
-            Some(Err(ArithError::DivisionByZero))
-        );
+        // Java gives Infinity and NaN here, and goes on with them.
+        assert_eq!(apply("/", &[5.0, 0.0]), Some(Err(ArithError::NotFinite)));
+        assert_eq!(apply("mod", &[5.0, 0.0]), Some(Err(ArithError::NotFinite)));
         assert_eq!(
             apply("**", &[10.0, 400.0]),
             Some(Err(ArithError::NotFinite))

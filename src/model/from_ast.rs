@@ -238,11 +238,12 @@ impl Converter {
                 match crate::model::arith::apply(op.symbol(), &[x, y]) {
                     Some(Ok(v)) => Ok(v),
                     Some(Err(crate::model::arith::ArithError::DivisionByZero)) => {
-                        Err(arith_error(match op {
-                            ArithOp::Mod => "modulo by zero",
-                            _ => "division by zero",
-                        }))
+                        Err(arith_error("integer division by zero"))
                     }
+                    Some(Err(_)) if y == 0.0 => Err(arith_error(match op {
+                        ArithOp::Mod => "modulo by zero",
+                        _ => "division by zero",
+                    })),
                     _ => Err(arith_error(
                         "this arithmetic expression has no finite value",
                     )),

@@ -227,7 +227,7 @@ fn render_stats(s: &Stats, bound: Option<Bound>) -> String {
             Bound::Depth => "the depth bound (`--max-depth`, `[bounds] max_depth`) was reached",
             Bound::Time => "the time limit (`--timeout`) was reached",
             Bound::Memory => "the memory bound (nine tenths of the memory available) was reached",
-            Bound::Beyond => "a run adds a belief the finite model does not have (a number outside `[bounds] numbers`, or a free variable); widen `[bounds] numbers` if it is a number",
+            Bound::Beyond => "a run leaves the finite model (the warning above says where and why: a belief with a number outside `[bounds] numbers` or a free variable, or a step bdi-check refuses at run time); widen `[bounds] numbers` if it is a number",
             Bound::Sampled => "only random runs were followed (`simulate --runs`); run `verify` to explore every state",
         };
         out.push_str(&format!("the search is incomplete: {why}\n"));

@@ -5,7 +5,7 @@
 //! event with no relevant or applicable plan.
 
 use super::cycle::{kind_key, op_key, Note, Semantics, MAX_STACK};
-use super::query::Beliefs;
+use super::query::{take_trouble, trouble_reason, Beliefs};
 use super::state::{Cursor, CursorKind, Event, EventTrigger, Frame, Intention, State};
 use crate::model::{unify, Substitution};
 use crate::syntax::ast::{TriggerKind, TriggerOp};
@@ -28,7 +28,37 @@ impl Semantics<'_> {
     /// allows, as its own state.
     pub(super) fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
         let mut notes = vec![Note::Event(ev.trigger.clone())];
+        take_trouble();
         let applicable = self.applicable_for(&s, &ev, !self.select_any);
+        if let Some(e) = take_trouble() {
+            // A context's arithmetic that Jason throws on (the deliberation's exception
+            // resets the circumstance) or goes on past with a non-number: refused.
+            // The plan whose context met it (asked again, one plan at a time: rare path).
+            let relevant = self.relevant_in(s.library.as_deref(), &ev.trigger);
+            let plan = relevant
+                .iter()
+                .copied()
+                .find(|&pi| {
+                    let plan = &self.project.plans.plans[pi as usize];
+                    let mut u = Substitution::new();
+                    if unify(&plan.trigger.literal, &ev.trigger.literal, &mut u) {
+                        let mut b = self.beliefs(&s);
+                        b.selected = Some(&ev);
+                        b.answers(&plan.context, &u);
+                    }
+                    take_trouble().is_some()
+                })
+                .or(relevant.first().copied())
+                .unwrap_or(0);
+            let span = self.project.plans.plans[plan as usize].span;
+            notes.push(Note::Beyond {
+                text: format!("the contexts of the plans for {}", ev.trigger),
+                plan,
+                span,
+                reason: trouble_reason(e),
+            });
+            return vec![(s, notes)];
+        }
         if applicable.is_empty() {
             let mut s = s;
             if ev.trigger.kind != TriggerKind::Belief {

@@ -6,7 +6,7 @@
 
 use super::cycle::{with_source, FrameView, Note, Semantics};
 use super::library::no_code;
-use super::query::{eval, relation};
+use super::query::{eval, note_trouble, relation, take_trouble, trouble_reason};
 use super::state::{
     ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Origin, Pending,
     State,
@@ -169,7 +169,24 @@ impl Semantics<'_> {
         let mut int = s.intentions.remove(0);
         let finished_top = int.frames.last().is_none_or(|f| f.cursors.is_empty());
         if !finished_top {
-            match self.step(s, &mut int, notes, env, choice) {
+            let at = int
+                .frames
+                .last()
+                .and_then(|f| Some((f.plan, self.next_step(f)?)));
+            take_trouble();
+            let flow = self.step(s, &mut int, notes, env, choice);
+            if let (Some(e), Some((plan, span))) = (take_trouble(), at) {
+                // Arithmetic Jason would throw on or go on past with a non-number: the
+                // run leaves the model here (not followed, so what the step did is moot).
+                notes.push(Note::Beyond {
+                    text: step_text(self, span),
+                    plan,
+                    span,
+                    reason: trouble_reason(e),
+                });
+                return;
+            }
+            match flow {
                 Flow::Continue => {}
                 Flow::Suspended | Flow::Gone => return,
             }
@@ -283,6 +300,8 @@ impl Semantics<'_> {
                 match eval($t, &frame.subst) {
                     Ok(v) => v,
                     Err(e) => {
+                        // `act_with` turns this into a refusal of the run.
+                        note_trouble(e);
                         let text = frame.subst.apply($t).to_string();
                         let int = std::mem::replace(int, empty_intention(origin));
                         return fail(self, s, int, &text, e.to_string(), notes);

@@ -42,6 +42,34 @@ pub struct Beliefs<'a> {
     pub ordered: &'a [bool],
 }
 
+thread_local! {
+    /// The first arithmetic error met by a query since [`take_trouble`] (queries answer
+    /// with substitutions only; the phase that asked turns this into a refusal).
+    static TROUBLE: std::cell::Cell<Option<ArithError>> = const { std::cell::Cell::new(None) };
+}
+
+/// Notes an arithmetic error met while answering a query or evaluating a step.
+pub(super) fn note_trouble(e: ArithError) {
+    TROUBLE.with(|t| {
+        if t.get().is_none() {
+            t.set(Some(e));
+        }
+    });
+}
+
+/// The arithmetic error met since the last call, if any (and forgets it).
+pub(super) fn take_trouble() -> Option<ArithError> {
+    TROUBLE.with(|t| t.take())
+}
+
+/// Why a run with this arithmetic error leaves the model, as Jason 3 behaves there.
+pub(super) fn trouble_reason(e: ArithError) -> String {
+    match e {
+        ArithError::DivisionByZero => "an integer division by zero: Jason 3 throws ArithmeticException out of the reasoning cycle here, logs \"*** ERROR in the transition system\" and creates a new circumstance, dropping every intention and event (TransitionSystem.act and deliberate, C.create()); bdi-check does not model that".into(),
+        ArithError::NotFinite => "the result is not a finite number: Jason goes on with Infinity or NaN (Java's double arithmetic), which bdi-check does not model".into(),
+    }
+}
+
 /// Variables of a rule called at depth `d` have generation `RULE_GENERATION + d`.
 const RULE_GENERATION: u32 = 2_000_000;
 
@@ -235,8 +263,10 @@ impl Beliefs<'_> {
             }
             Formula::Rel(op, a, b) => match (eval(a, s), eval(b, s)) {
                 (Ok(x), Ok(y)) => relation(*op, &x, &y, s).into_iter().collect(),
-                // Jason's exception fails the query.
-                _ => Vec::new(),
+                (Err(e), _) | (_, Err(e)) => {
+                    note_trouble(e);
+                    Vec::new()
+                }
             },
             Formula::Call(t) => self.call(t, s),
         }
@@ -269,12 +299,16 @@ impl Beliefs<'_> {
                 .collect(),
             (name, args) => {
                 // Jason evaluates the arguments first (`prepareArguments`).
-                let Ok(args) = args
+                let args = match args
                     .iter()
                     .map(|a| eval(a, s))
                     .collect::<Result<Vec<_>, _>>()
-                else {
-                    return Vec::new();
+                {
+                    Ok(args) => args,
+                    Err(e) => {
+                        note_trouble(e);
+                        return Vec::new();
+                    }
                 };
                 internal::call(name, &args, s).unwrap_or_default()
             }

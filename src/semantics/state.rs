@@ -335,12 +335,12 @@ mod tests {
         let show = |op, kind, annots: &[Term]| trigger(op, kind, annots).to_string();
         use TriggerKind::{Achieve, Belief, Test};
         use TriggerOp::{Add, Del};
-        assert_eq!(show(Add, Achieve, &[own.clone()]), "+!g(a)");
+        assert_eq!(show(Add, Achieve, std::slice::from_ref(&own)), "+!g(a)");
         assert_eq!(
             show(Del, Achieve, &[urgent.clone(), own.clone()]),
             "-!g(a)[urgent]"
         );
-        assert_eq!(show(Add, Test, &[boss.clone()]), "+?g(a)[source(boss)]");
+        assert_eq!(show(Add, Test, std::slice::from_ref(&boss)), "+?g(a)[source(boss)]");
         assert_eq!(show(Add, Belief, &[]), "+g(a)");
         assert_eq!(show(Del, Belief, &[boss, own]), "-g(a)[source(boss)]");
     }
