@@ -95,6 +95,33 @@ fn compiled_successors_are_the_reference_ones_on_every_project() {
 }
 
 #[test]
+fn compiled_successors_are_the_reference_ones_on_every_jason_conformance_agent() {
+    // The conformance agents use the constructs the examples do not (rules, `.count`,
+    // `.findall`, loops, `.wait`, plans added at run time, percept order): the memo keys
+    // must hold every belief each of them reads.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/jason");
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(&root)
+        .expect("tests/jason")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.join("bdi-check.toml").is_file())
+        .collect();
+    dirs.sort();
+    let (mut total, mut compiled) = (0, 0);
+    for dir in &dirs {
+        let n = agree(dir, 5_000);
+        total += n;
+        compiled += usize::from(n > 0);
+    }
+    assert!(
+        compiled >= 40,
+        "{compiled} of {} agents compiled",
+        dirs.len()
+    );
+    assert!(total > 2_000, "states compared: {total}");
+}
+
+#[test]
 fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
     use bdi_check::check::explore::Limits;
     use bdi_check::check::{verify_with, VerifyOptions};

@@ -1357,3 +1357,40 @@ fn arithmetic_jason_throws_on_is_refused_where_it_happens() {
         .iter()
         .all(|f| f["check"] != "goal-failure" || f["status"] != "fail"));
 }
+
+#[test]
+fn a_request_goal_may_have_at_most_sixty_four_ground_instances() {
+    // Requests are tracked one bit each: 64 instances load, 65 are refused as bad input.
+    for (n, want) in [(64usize, 3), (65, 2)] {
+        let d = temp_dir(&format!("requests-{n}"));
+        let names: Vec<String> = (0..n).map(|i| format!("\"t{i}\"")).collect();
+        std::fs::write(d.join("agent.asl"), "+!go(X) <- act(X).\n").unwrap();
+        std::fs::write(
+            d.join("domain.pddl"),
+            "(define (domain d) (:types thing) (:predicates (p ?x - thing))\n\
+             (:action act :parameters (?x - thing) :precondition (and) :effect (p ?x)))\n",
+        )
+        .unwrap();
+        std::fs::write(
+            d.join("bdi-check.toml"),
+            format!(
+                "[agent]\nplans = \"agent.asl\"\nactions = \"domain.pddl\"\n\n\
+                 [objects]\nthing = [{}]\n\n[initial]\nvary = []\n\n\
+                 [requests]\ngoals = [\"go(X)\"]\nmax = 1\n",
+                names.join(", ")
+            ),
+        )
+        .unwrap();
+        let o = bdi_check(&["verify", d.to_str().unwrap(), "--max-states", "5", "-q"]);
+        let out = format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert_eq!(o.status.code(), Some(want), "{n} instances: {out}");
+        if want == 2 {
+            assert!(out.contains("65 ground instances; at most 64"), "{out}");
+        }
+        let _ = std::fs::remove_dir_all(&d);
+    }
+}

@@ -340,7 +340,10 @@ mod tests {
             show(Del, Achieve, &[urgent.clone(), own.clone()]),
             "-!g(a)[urgent]"
         );
-        assert_eq!(show(Add, Test, std::slice::from_ref(&boss)), "+?g(a)[source(boss)]");
+        assert_eq!(
+            show(Add, Test, std::slice::from_ref(&boss)),
+            "+?g(a)[source(boss)]"
+        );
         assert_eq!(show(Add, Belief, &[]), "+g(a)");
         assert_eq!(show(Del, Belief, &[boss, own]), "-g(a)[source(boss)]");
     }
@@ -368,6 +371,9 @@ mod tests {
         assert_eq!(requests_of(&ints, &events), 0b10_1001);
         assert_eq!(requests_of(&ints[1..2], &[]), 0);
         assert_eq!(requests_of(&[], &events), 1 << 5);
+        // A request served twice (its intention and a subgoal's event) is one bit.
+        let twice = [intention(Origin::Request(5)), intention(Origin::Request(5))];
+        assert_eq!(requests_of(&twice, &events), 1 << 5);
         // A state's: its intentions, the one awaiting feedback and its events.
         let state = State {
             beliefs: AtomSet::empty(0),
