@@ -8,8 +8,8 @@
 //! Prints one line per size.
 
 use bdi_check::findings::Status;
-use bdi_check::model::project::load_project;
-use bdi_check::smt::{lint, LintOptions};
+use bdi_check::model::project::{load_project, Project};
+use bdi_check::smt::{lint, LintFinding, LintOptions};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -55,13 +55,7 @@ fn main() {
         std::fs::create_dir_all(&dir).expect("temporary folder");
         std::fs::copy(specs.join("kitchen.asl"), dir.join("kitchen.asl")).expect("copy plans");
         std::fs::write(dir.join("bdi-check.toml"), manifest(cups, &specs)).expect("manifest");
-        let project = match load_project(&dir) {
-            Ok(p) => p,
-            Err(e) => panic!("the generated project does not load: {:?}", e.diagnostics),
-        };
-        let start = Instant::now();
-        let findings = lint(&project, &LintOptions::default());
-        let seconds = start.elapsed().as_secs_f64();
+        let (project, findings, seconds) = load_and_lint(&dir);
         let count = |s: Status| findings.iter().filter(|f| f.finding.status == s).count();
         println!(
             "lint kitchen with {cups:>2} cups ({:>4} atoms, {:>3} ground actions): {seconds:>7.3} s, {} failed, {} passed, {} undecided",
@@ -80,13 +74,7 @@ fn main() {
             std::fs::write(dir.join("agent.asl"), asl).expect("plans");
             std::fs::write(dir.join("bdi-check.toml"), library_manifest(&goals, &specs))
                 .expect("manifest");
-            let project = match load_project(&dir) {
-                Ok(p) => p,
-                Err(e) => panic!("the generated project does not load: {:?}", e.diagnostics),
-            };
-            let start = Instant::now();
-            let findings = lint(&project, &LintOptions::default());
-            let seconds = start.elapsed().as_secs_f64();
+            let (_, findings, seconds) = load_and_lint(&dir);
             println!(
                 "lint {shape:?} library of {plans:>4} plans: {seconds:>7.3} s, {:>5.2} ms per plan, {} findings",
                 seconds * 1000.0 / plans as f64,
@@ -95,6 +83,18 @@ fn main() {
         }
     }
     let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Loads a generated project and lints it: the project, the findings and lint's seconds.
+fn load_and_lint(dir: &Path) -> (Project, Vec<LintFinding>, f64) {
+    let project = match load_project(dir) {
+        Ok(p) => p,
+        Err(e) => panic!("the generated project does not load: {:?}", e.diagnostics),
+    };
+    let start = Instant::now();
+    let findings = lint(&project, &LintOptions::default());
+    let seconds = start.elapsed().as_secs_f64();
+    (project, findings, seconds)
 }
 
 /// How a generated library's plans relate.
