@@ -373,6 +373,7 @@ mod tests {
         assert_eq!(requests_of(&[], &events), 1 << 5);
         // A request served twice (its intention and a subgoal's event) is one bit.
         let twice = [intention(Origin::Request(5)), intention(Origin::Request(5))];
+        assert_eq!(requests_of(&twice, &[]), 1 << 5);
         assert_eq!(requests_of(&twice, &events), 1 << 5);
         // A state's: its intentions, the one awaiting feedback and its events.
         let state = State {
