@@ -121,8 +121,8 @@ const KNOWN: &[(&str, &str, &str)] = &[
         "77-goal-directive-events",
         "bottom",
         "Jason 3 throws a NullPointerException inside .fail_goal(h) when h is the bottom goal \
-     of an intention (findEventForFailure peeks at the intention dropGoal emptied); \
-     bdi-check refuses the run",
+         of an intention (findEventForFailure peeks at the intention dropGoal emptied); \
+         bdi-check refuses the run",
     ),
     (
         "82-belief-update-errors",

@@ -2,7 +2,7 @@
 //! [`crate::report::lint`]).
 
 use super::{Output, Style};
-use crate::findings::{Finding, Report, Status, Verdict};
+use crate::findings::{Report, Status};
 use crate::model::project::load_project;
 use crate::report::lint::{render, LintRun};
 use crate::smt::{lint, LintOptions};
@@ -66,12 +66,7 @@ pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
 
 /// The run of a project that is bad input: its diagnostics as `input` findings.
 fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> LintRun {
-    let findings: Vec<Finding> = diagnostics
-        .iter()
-        .map(|d| Finding::from_input_diagnostic(d, &map))
-        .collect();
-    let mut report = Report::new(name, findings);
-    report.verdict = Verdict::Error;
+    let report = super::input_report(name, &map, &diagnostics);
     LintRun {
         report,
         map,

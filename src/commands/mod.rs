@@ -12,8 +12,10 @@ pub mod replay;
 pub mod trace;
 pub mod verify;
 
+use crate::findings::{Finding, Report, Verdict};
 use crate::report::verify::Detail;
 use crate::report::{CiFormat, Format};
+use crate::syntax::{Diagnostic, SourceMap};
 
 /// What a command gives back: its report text, what goes to stderr, and the exit code.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -87,4 +89,16 @@ impl Style {
             "error: `--format {name}` is for `lint` and `verify`; `{command}` writes `human` or `json`\n"
         )))
     }
+}
+
+/// The report of a project that is bad input: its diagnostics as `input` findings, and
+/// the verdict `error` (the same for `lint` and `verify`).
+fn input_report(name: String, map: &SourceMap, diagnostics: &[Diagnostic]) -> Report {
+    let findings: Vec<Finding> = diagnostics
+        .iter()
+        .map(|d| Finding::from_input_diagnostic(d, map))
+        .collect();
+    let mut report = Report::new(name, findings);
+    report.verdict = Verdict::Error;
+    report
 }

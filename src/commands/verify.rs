@@ -153,12 +153,7 @@ pub fn run(
 }
 
 fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> VerifyRun {
-    let findings: Vec<Finding> = diagnostics
-        .iter()
-        .map(|d| Finding::from_input_diagnostic(d, &map))
-        .collect();
-    let mut report = Report::new(name, findings);
-    report.verdict = Verdict::Error;
+    let report = super::input_report(name, &map, &diagnostics);
     VerifyRun {
         report,
         map,
