@@ -144,15 +144,19 @@ impl Semantics<'_> {
                         return (s, notes);
                     }
                     Some(mut int) => {
-                        let is_goal_add = ev.trigger.op == TriggerOp::Add
-                            && ev.trigger.kind == TriggerKind::Achieve;
+                        // Trigger.isGoal: an achievement or a test goal.
+                        let is_goal_add = |t: &EventTrigger| {
+                            t.op == TriggerOp::Add
+                                && matches!(t.kind, TriggerKind::Achieve | TriggerKind::Test)
+                        };
                         if let Some(top) = int.frames.last() {
-                            // Jason's TRO: a recursive subgoal that is the last step of its plan.
-                            if is_goal_add
+                            // Jason's TRO (TransitionSystem.applyAddIM, under `isTROon()`): the
+                            // plan on top finished with `!g` or `?g`, both triggers goal
+                            // additions of one predicate indicator.
+                            if is_goal_add(&ev.trigger)
                                 && top.cursors.is_empty()
                                 && top.calling.is_some()
-                                && top.trigger.op == TriggerOp::Add
-                                && top.trigger.kind == TriggerKind::Achieve
+                                && is_goal_add(&top.trigger)
                                 && top.trigger.literal.functor() == ev.trigger.literal.functor()
                                 && top.trigger.literal.arity() == ev.trigger.literal.arity()
                             {
