@@ -793,7 +793,6 @@ impl Semantics<'_> {
         Flow::Suspended
     }
 
-    /// The ground action a term names, or why there is none.
     /// Whether the agent explains itself (the manifest names an `emitted_by` action).
     pub fn explains_itself(&self) -> bool {
         self.emitted_by.is_some()
@@ -804,6 +803,7 @@ impl Semantics<'_> {
         self.emitted_by.is_some() && t.functor() == self.emitted_by.as_deref()
     }
 
+    /// The ground action a term names, or why there is none.
     pub(super) fn ground_action(
         &self,
         t: &Term,

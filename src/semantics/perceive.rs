@@ -31,13 +31,7 @@ impl Semantics<'_> {
     /// number of buckets, which is one value for every count an action can lead to, unless
     /// the count is near a resize (then the count itself).
     pub fn env_class(&self, env: usize) -> u64 {
-        let lo = java_capacity(env.saturating_sub(self.max_effect));
-        let hi = java_capacity(env + self.max_effect);
-        if lo == hi {
-            u64::from(lo)
-        } else {
-            1 << 40 | env as u64
-        }
+        env_class(env, self.max_effect)
     }
 
     /// Sorts percepts as Jason's belief update meets them: `Agent.buf` puts the perceived
@@ -140,6 +134,19 @@ impl Semantics<'_> {
     }
 }
 
+/// [`Semantics::env_class`] for actions that change at most `max_effect` atoms: the bucket
+/// count every reachable count shares, or, near a resize, the count itself (tagged, so that
+/// no count is taken for a bucket count).
+fn env_class(env: usize, max_effect: usize) -> u64 {
+    let lo = java_capacity(env.saturating_sub(max_effect));
+    let hi = java_capacity(env + max_effect);
+    if lo == hi {
+        u64::from(lo)
+    } else {
+        1 << 40 | env as u64
+    }
+}
+
 /// The number of buckets of a `java.util.HashSet` after `size` insertions into a new one:
 /// 16, doubled whenever it is more than three quarters full (`HashMap.resize`).
 fn java_capacity(size: usize) -> u32 {
@@ -152,7 +159,7 @@ fn java_capacity(size: usize) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::java_capacity;
+    use super::{env_class, java_capacity};
 
     #[test]
     fn a_java_hash_set_doubles_its_sixteen_buckets_past_three_quarters() {
@@ -160,6 +167,27 @@ mod tests {
         let sizes = [(0, 16), (1, 16), (12, 16), (13, 32), (24, 32), (25, 64)];
         for (size, cap) in sizes.into_iter().chain([(48, 64), (49, 128), (97, 256)]) {
             assert_eq!(java_capacity(size), cap, "{size} elements");
+        }
+    }
+
+    #[test]
+    fn counts_of_one_class_see_the_same_bucket_counts_after_any_action() {
+        // The compiled act phase is cached by the class: sound only if every count an
+        // action can lead to from either of two counts of a class has the same buckets.
+        for me in 0..=20 {
+            let classes: Vec<u64> = (0..400).map(|env| env_class(env, me)).collect();
+            for a in 0..400 {
+                for b in a + 1..400 {
+                    if classes[a] != classes[b] {
+                        continue;
+                    }
+                    for d in 0..=me {
+                        assert_eq!(java_capacity(a + d), java_capacity(b + d), "{a} {b} {me}");
+                        let (x, y) = (a.saturating_sub(d), b.saturating_sub(d));
+                        assert_eq!(java_capacity(x), java_capacity(y), "{a} {b} {me}");
+                    }
+                }
+            }
         }
     }
 }
