@@ -12,22 +12,32 @@ use std::collections::{HashSet, VecDeque};
 const DOMAIN: &str = "(define (domain d) (:types thing)
   (:predicates (p ?x - thing))
   (:action act :parameters (?x - thing) :precondition (and) :effect (p ?x))
-  (:action ping :parameters () :precondition (and) :effect (and)))
+  (:action ping :parameters () :precondition (and) :effect (and))
+  (:action two :parameters (?x ?y - thing) :precondition (and) :effect (and (p ?x) (p ?y))))
 ";
 
 /// The project of `asl` over things `a` and `b`, requesting `go` once.
 fn project(tag: &str, asl: &str) -> Project {
+    project_with(tag, asl, &["a", "b"], "go").unwrap_or_else(|e| panic!("{asl}: {e}"))
+}
+
+/// The project of `asl` over `things`, requesting `goal` once, or what loading says.
+fn project_with(tag: &str, asl: &str, things: &[&str], goal: &str) -> Result<Project, String> {
     let d = temp_dir(&format!("semantics-{tag}"));
     std::fs::write(d.join("agent.asl"), asl).unwrap();
     std::fs::write(d.join("domain.pddl"), DOMAIN).unwrap();
+    let things: Vec<String> = things.iter().map(|t| format!("{t:?}")).collect();
     std::fs::write(
         d.join("bdi-check.toml"),
-        "[agent]\nplans = \"agent.asl\"\nactions = \"domain.pddl\"\n\n\
-         [objects]\nthing = [\"a\", \"b\"]\n\n[initial]\nvary = []\n\n\
-         [requests]\ngoals = [\"go\"]\nmax = 1\n",
+        format!(
+            "[agent]\nplans = \"agent.asl\"\nactions = \"domain.pddl\"\n\n\
+             [objects]\nthing = [{}]\n\n[initial]\nvary = []\n\n\
+             [requests]\ngoals = [{goal:?}]\nmax = 1\n",
+            things.join(", ")
+        ),
     )
     .unwrap();
-    let p = load_project(&d).unwrap_or_else(|e| panic!("{asl}: {:?}", e.diagnostics));
+    let p = load_project(&d).map_err(|e| format!("{:?}", e.diagnostics));
     let _ = std::fs::remove_dir_all(&d);
     p
 }
@@ -146,4 +156,244 @@ fn a_wait_that_ends_is_reported_before_the_event_its_cycle_handles() {
         assert!(wait < event, "before the event: {:?}", t.notes);
     }
     assert!(seen > 0, "some cycle ends the wait and handles an event");
+}
+
+#[test]
+fn requests_ground_to_at_most_64_instances() {
+    // A state keeps the requests made as the bits of a u64.
+    let asl = "+!go(X) <- act(X).\n";
+    let names: Vec<String> = (0..65).map(|i| format!("t{i}")).collect();
+    let names: Vec<&str> = names.iter().map(|n| n.as_str()).collect();
+    let p = project_with("requests-64", asl, &names[..64], "go(X)").expect("the project");
+    let sem = Semantics::new(&p).expect("64 requests");
+    assert_eq!(sem.requests.len(), 64);
+    let p = project_with("requests-65", asl, &names, "go(X)").expect("the project");
+    let e = Semantics::new(&p).err().expect("65 requests are refused");
+    assert!(
+        format!("{e:?}").contains("65 ground instances; at most 64"),
+        "{e:?}"
+    );
+}
+
+/// Every note of every reachable transition.
+fn all_notes(sem: &Semantics) -> Vec<Note> {
+    transitions(sem)
+        .into_iter()
+        .flat_map(|(_, t)| t.notes)
+        .collect()
+}
+
+#[test]
+fn only_the_contexts_up_to_the_first_applicable_plan_are_evaluated() {
+    // Without a custom selectOption, Jason goes from SelEv to FindOp
+    // (TransitionSystem.applySelEv, applyFindOp): it stops at the first applicable plan,
+    // so a later context that would throw is never evaluated.
+    let p = project(
+        "find-op",
+        "+!go : .count(p(_), N) & N < 1 <- ping.\n+!go : .count(p(_), N) & X = 1 div N <- ping.\n",
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    let notes = all_notes(&sem);
+    assert!(
+        notes
+            .iter()
+            .any(|n| matches!(n, Note::Plan { plan: 0, .. })),
+        "{notes:?}"
+    );
+    assert!(
+        !notes.iter().any(|n| matches!(n, Note::Beyond { .. })),
+        "{notes:?}"
+    );
+}
+
+#[test]
+fn a_belief_event_without_an_applicable_plan_is_dropped() {
+    // Jason discards it (TransitionSystem.applyRelApplPl: only goal events fail).
+    let p = project("belief-event", "+!go <- act(a).\n+p(X) : p(b) <- ping.\n");
+    let sem = Semantics::new(&p).expect("the semantics");
+    let notes = all_notes(&sem);
+    assert!(
+        notes
+            .iter()
+            .any(|n| matches!(n, Note::Event(t) if t.to_string().starts_with("+p(a)"))),
+        "{notes:?}"
+    );
+    assert!(
+        !notes
+            .iter()
+            .any(|n| matches!(n, Note::GoalFailed { .. } | Note::NoApplicablePlan(_))),
+        "{notes:?}"
+    );
+}
+
+#[test]
+fn a_failure_plan_goes_on_top_of_the_plan_that_failed() {
+    // Jason pushes the -!g plan on the intention as it is (TransitionSystem.applyAddIM on
+    // the failure event): the +!g plan stays below it, whatever TRO does for goal additions.
+    let p = project(
+        "failure-depth",
+        "+!go <- !g; ping.\n+!g <- !h.\n-!g <- ping.\n",
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    let mut depths: Vec<(u32, u16)> = all_notes(&sem)
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Plan { plan, depth, .. } => Some((plan, depth)),
+            _ => None,
+        })
+        .collect();
+    depths.sort();
+    depths.dedup();
+    assert_eq!(depths, [(0, 0), (1, 1), (2, 2)]);
+}
+
+#[test]
+fn rules_that_call_each_other_too_deep_are_refused_not_false() {
+    // A context that calls 256 rules deep is answered; one deeper leaves the model with
+    // its reason (Jason recurses on its Java stack), never a silent "no answer".
+    for (n, refused) in [(255, false), (256, true)] {
+        // c0 :- c1. ... c{n-1} :- c{n}. c{n} :- 1 == 1. A query of c0 calls c{n} n + 1 deep.
+        let mut asl: String = (0..n).map(|i| format!("c{i} :- c{}.\n", i + 1)).collect();
+        asl.push_str(&format!("c{n} :- 1 == 1.\n+!go : c0 <- ping.\n"));
+        let p = project(&format!("rule-depth-{n}"), &asl);
+        let sem = Semantics::new(&p).expect("the semantics");
+        let notes = all_notes(&sem);
+        let beyond = notes.iter().find_map(|n| match n {
+            Note::Beyond { reason, .. } => Some(reason.clone()),
+            _ => None,
+        });
+        let adopted = notes
+            .iter()
+            .any(|n| matches!(n, Note::Plan { plan: 0, .. }));
+        assert_eq!(adopted, !refused, "c0 to c{n}: {notes:?}");
+        assert_eq!(
+            beyond.is_some_and(|r| r.contains("more than 256 deep")),
+            refused,
+            "c0 to c{n}: {notes:?}"
+        );
+    }
+}
+
+#[test]
+fn a_failed_constraint_fails_the_plan_with_error_constraint_failed() {
+    // Jason's constraint step: generateGoalDeletion with createBasicErrorAnnots(
+    // "constraint_failed", ...), so a -!g plan for that error is the one chosen.
+    let p = project(
+        "constraint-failed",
+        "+!go <- .count(p(_), N); N == 1.\n\
+         -!go[error(ia_failed)] <- act(b).\n\
+         -!go[error(constraint_failed)] <- act(a).\n",
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    let plans: HashSet<u32> = all_notes(&sem)
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Plan { plan, .. } => Some(plan),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(plans, HashSet::from([0, 2]));
+}
+
+#[test]
+fn a_belief_step_is_reported_with_its_own_sign() {
+    let p = project("belief-signs", "+!go <- +q(a); -q(a); -+q(b).\n");
+    let sem = Semantics::new(&p).expect("the semantics");
+    let texts: Vec<String> = all_notes(&sem)
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Belief { text, .. } => Some(text),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(texts, ["+q(a)", "-q(a)", "-+q(b)"]);
+}
+
+#[test]
+fn a_step_whose_arithmetic_leaves_the_model_is_named_as_written() {
+    let p = project(
+        "beyond-step",
+        "+!go <- .count(p(_), N); act(a);\n    X = 1 div N.\n",
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    let beyond: Vec<(String, String)> = all_notes(&sem)
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Beyond { text, reason, .. } => Some((text, reason)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(beyond.len(), 1, "{beyond:?}");
+    assert_eq!(beyond[0].0, "X = 1 div N");
+    assert!(beyond[0].1.contains("division by zero"), "{beyond:?}");
+}
+
+#[test]
+fn fail_goal_is_refused_exactly_where_it_would_drop_a_bottom_goal() {
+    // Jason 3 throws inside .fail_goal when it empties an intention (Intention.dropGoal,
+    // then findEventForFailure peeks at it): refused. Elsewhere it is followed.
+    let cases = [
+        ("+!go <- .fail_goal(go).\n", true),
+        ("+!go <- !!side; .fail_goal(side).\n+!side <- ping.\n", true),
+        ("+!go <- !g.\n+!g <- .fail_goal(g).\n-!g <- ping.\n", false),
+        (
+            "+!go <- act(a).\n+p(X) <- .fail_goal(p(X)); ping.\n+!p(X) <- ping.\n",
+            false,
+        ),
+    ];
+    for (i, (asl, refused)) in cases.into_iter().enumerate() {
+        let p = project(&format!("fail-goal-bottom-{i}"), asl);
+        let sem = Semantics::new(&p).expect("the semantics");
+        let notes = all_notes(&sem);
+        let beyond = notes
+            .iter()
+            .any(|n| matches!(n, Note::Beyond { reason, .. } if reason.contains("bottom goal")));
+        assert_eq!(beyond, refused, "{asl}{notes:?}");
+    }
+}
+
+/// Whether some reachable state has `n` waits, all woken (resumed at the next cycle).
+fn all_woken(sem: &Semantics, n: usize) -> bool {
+    transitions(sem)
+        .iter()
+        .any(|(_, t)| t.next.waiting.len() == n && t.next.waiting.iter().all(|w| w.woken))
+}
+
+#[test]
+fn one_action_s_percepts_wake_each_wait_they_match_in_turn() {
+    // Each added event is told to the waits not woken yet (WaitEvent.eventAdded): the
+    // second percept of `two` finds the first wait woken already, and wakes the other.
+    let p = project(
+        "wake-in-turn",
+        "+!go <- !!wa; !!wb; ping; ping; two(a, b).\n\
+         +!wa <- .wait({+p(a)}); ping.\n+!wb <- .wait({+p(b)}); ping.\n",
+    );
+    assert!(all_woken(&Semantics::new(&p).expect("the semantics"), 2));
+}
+
+#[test]
+fn an_event_wait_is_woken_by_its_own_operator_and_kind_only() {
+    // The events are `+!p(a)` and `+p(a)`: a wait for `-p(a)` matches their literal but
+    // neither's operator and kind; a wait for `+!p(a)` is woken.
+    for (i, wait) in ["{-p(a)}", "{+!p(a)}"].into_iter().enumerate() {
+        let asl = format!(
+            "+!go <- !!w; ping; ping; !!p(a); act(a).\n+!w <- .wait({wait}); ping.\n\
+             +!p(X) <- ping.\n"
+        );
+        let p = project(&format!("wake-kind-{i}"), &asl);
+        let sem = Semantics::new(&p).expect("the semantics");
+        let woken = all_woken(&sem, 1);
+        assert_eq!(woken, i == 1, "{wait}");
+    }
+}
+
+#[test]
+fn a_condition_wait_sees_the_beliefs_between_one_action_s_percepts() {
+    // Jason adds each percept's event right after its belief changes: after the first of
+    // `two`'s percepts, one p holds.
+    let p = project(
+        "wake-between",
+        "+!go <- !!w; ping; ping; two(a, b).\n+!w <- .wait(.count(p(_), 1)); ping.\n",
+    );
+    assert!(all_woken(&Semantics::new(&p).expect("the semantics"), 1));
 }

@@ -708,6 +708,92 @@ mod tests {
         assert_ne!(at(1), at(3));
     }
 
+    /// Values that all hash alike: only their equality tells them apart.
+    #[derive(PartialEq, Eq)]
+    struct Colliding(u8);
+
+    impl Hash for Colliding {
+        fn hash<H: Hasher>(&self, _: &mut H) {}
+    }
+
+    #[test]
+    fn an_interner_tells_apart_values_whose_hashes_collide() {
+        let parts: Interner<Colliding> = Interner::new();
+        let a = parts.intern(Colliding(1), |_| AtomSet::default());
+        let b = parts.intern(Colliding(2), |_| AtomSet::default());
+        let a2 = parts.intern(Colliding(1), |_| AtomSet::default());
+        assert_eq!(parts.len(), 2);
+        assert_ne!(a.0.as_ptr(), b.0.as_ptr());
+        assert_eq!(a.0.as_ptr(), a2.0.as_ptr());
+    }
+
+    fn pass_through(x: &impl Hash) -> u64 {
+        let mut h = PassThrough::default();
+        x.hash(&mut h);
+        h.finish()
+    }
+
+    #[test]
+    fn parts_and_keys_hash_as_the_hash_they_keep() {
+        // The tables' buckets come straight from these hashes: none is recomputed.
+        let part = Part {
+            hash: 0xdead_beef_1234,
+            reads: AtomSet::default(),
+            value: 3u8,
+        };
+        assert_eq!(pass_through(&part), 0xdead_beef_1234);
+        let key = Key::new(&part, &(AtomSet::default(), Vec::new()), 9);
+        assert_eq!(pass_through(&key), key.hash);
+        assert_eq!(pass_through(&7u64), 7);
+    }
+
+    #[test]
+    fn a_pass_through_hasher_mixes_the_bytes_it_is_given() {
+        // Keys other than one `u64` (none today) would still be told apart: every string
+        // of up to two bytes below 16 hashes differently.
+        let mut seen = HashSet::new();
+        for len in 0..=2u32 {
+            for n in 0..16u32.pow(len) {
+                let bytes: Vec<u8> = (0..len).map(|i| (n >> (4 * i) & 15) as u8).collect();
+                let mut h = PassThrough::default();
+                h.write(&bytes);
+                assert!(seen.insert((len, h.finish())), "{bytes:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_memo_computes_each_key_once() {
+        let part = Part {
+            hash: 5,
+            reads: AtomSet::default(),
+            value: (),
+        };
+        let other = Part {
+            hash: 5,
+            reads: AtomSet::default(),
+            value: (),
+        };
+        let base = (AtomSet::default(), Vec::new());
+        let memo: Memo<u32> = Memo::new();
+        let mut computed = 0;
+        let mut get = |p: &Part<()>, extra: u64, v: u32| {
+            let held = memo.get(Key::new(p, &base, extra), || {
+                computed += 1;
+                v
+            });
+            held.0.as_ptr() as usize
+        };
+        let first = get(&part, 0, 1);
+        // The same part and reads: the kept outcome, not the new one.
+        assert_eq!(get(&part, 0, 2), first);
+        // Another part (parts are told apart by address) or another extra: a new entry.
+        assert_ne!(get(&other, 0, 3), first);
+        assert_ne!(get(&part, 1, 4), first);
+        assert_eq!(computed, 3);
+        assert_eq!(memo.len(), 3);
+    }
+
     #[test]
     fn shards_spread_the_hashes_by_their_middle_bits() {
         assert_eq!(shard_of(0), 0);

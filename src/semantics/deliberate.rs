@@ -90,8 +90,12 @@ impl Semantics<'_> {
                     reason: "no applicable failure plan".into(),
                     origin: ev.origin,
                 });
+            } else if let Some(int) = ev.intention {
+                // A belief event an intention waits in: it goes on after its belief update
+                // (TransitionSystem.applyRelApplPlRule2, an internal event:
+                // removeActionReQueue). Other belief events are discarded, as in Jason.
+                s.intentions.push(int);
             }
-            // Belief events with no applicable plan are discarded, as in Jason.
             return vec![(s, notes)];
         }
         applicable

@@ -585,6 +585,8 @@ impl Semantics<'_> {
                         }
                     }
                 }
+                // What the events tell: `-+b` of a belief that holds removes it, then adds it.
+                let ev_removed = removed.clone();
                 if matches!(step.kind, BodyStep::AddBel(_) | BodyStep::DelAddBel(_)) {
                     match self.ground_atom(&lit) {
                         Some(a) => {
@@ -618,7 +620,14 @@ impl Semantics<'_> {
                         }
                     }
                 }
-                self.perceive(s, &added, &removed);
+                // Jason's default `sameFocus`: the first event of the change the step asks
+                // for carries the intention, which waits in it (`-+b`'s removal is a
+                // change of its own, with an event of its own).
+                let focus = match step.kind {
+                    BodyStep::DelBel(_) => ev_removed.first().map(|a| (TriggerOp::Del, *a)),
+                    _ => added.first().map(|a| (TriggerOp::Add, *a)),
+                };
+                let focused = self.perceive_with_focus(s, &added, &ev_removed, focus);
                 let sign = match step.kind {
                     BodyStep::AddBel(_) => "+",
                     BodyStep::DelBel(_) => "-",
@@ -631,6 +640,9 @@ impl Semantics<'_> {
                     removed,
                     origin,
                 });
+                if let Some(trigger) = focused {
+                    return self.suspend_in(s, int, trigger, (plan, step.span));
+                }
             }
             BodyStep::Constraint(op, a, b) => {
                 let (x, y) = (value!(a), value!(b));
@@ -764,6 +776,31 @@ impl Semantics<'_> {
     /// Suspends `int` on the subgoal event `trigger` (`!g`, or `?g` handled by a `+?g`
     /// plan): its top plan waits for `g` (its current step, `written`: the literal as the
     /// body has it, without the `source(self)` the event gets), in the event.
+    /// Jason's applyExecInt on a belief update that changed something, with the default
+    /// `sameFocus`: the intention is suspended in the update's event, queued whether or
+    /// not a plan is relevant for it (`updateEvents(result, curInt)`). Its step is done:
+    /// when the event's plan ends, or the event has none, the intention goes on after it.
+    fn suspend_in(
+        &self,
+        s: &mut State,
+        int: &mut Intention,
+        trigger: EventTrigger,
+        at: (u32, Span),
+    ) -> Flow {
+        let origin = int.origin;
+        if let Some(top) = int.frames.last_mut() {
+            self.normalize(top);
+        }
+        let suspended = std::mem::replace(int, empty_intention(origin));
+        s.events.push(Event {
+            trigger,
+            intention: Some(suspended),
+            origin,
+            posted_at: Some(at),
+        });
+        Flow::Suspended
+    }
+
     fn post_subgoal(
         &self,
         s: &mut State,

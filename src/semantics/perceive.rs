@@ -101,10 +101,24 @@ impl Semantics<'_> {
     /// [`State::order`] is updated, and `+p`/`-p` queued for those some plan is relevant
     /// for (deletions first, as `Agent.buf` does).
     pub(super) fn perceive(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
+        self.perceive_with_focus(s, added, removed, None);
+    }
+
+    /// As [`Semantics::perceive`], for a plan's belief update: the event of `focus` (the
+    /// last one) is not queued but returned, for the intention that waits in it; the
+    /// waiting intentions are told of it with the others.
+    pub(super) fn perceive_with_focus(
+        &self,
+        s: &mut State,
+        added: &[AtomId],
+        removed: &[AtomId],
+        focus: Option<(TriggerOp, AtomId)>,
+    ) -> Option<EventTrigger> {
         self.reorder(s, added, removed);
         let b = self.beliefs(s);
         let mut new_events = Vec::new();
         let mut told = Vec::new();
+        let mut focused = None;
         let waits = s.waiting.iter().any(|w| !w.woken);
         for (atoms, op) in [(removed, TriggerOp::Del), (added, TriggerOp::Add)] {
             for a in atoms {
@@ -117,7 +131,9 @@ impl Semantics<'_> {
                     // A `.wait` hears of every event, relevant or not.
                     told.push((trigger.clone(), *a));
                 }
-                if !self.relevant_plans(&trigger).is_empty() {
+                if focus == Some((op, *a)) {
+                    focused = Some(trigger);
+                } else if !self.relevant_plans(&trigger).is_empty() {
                     new_events.push(Event {
                         trigger,
                         intention: None,
@@ -131,6 +147,7 @@ impl Semantics<'_> {
         if waits {
             self.belief_events_added(s, &told);
         }
+        focused
     }
 }
 

@@ -42,14 +42,30 @@ pub struct Beliefs<'a> {
     pub ordered: &'a [bool],
 }
 
-thread_local! {
-    /// The first arithmetic error met by a query since [`take_trouble`] (queries answer
-    /// with substitutions only; the phase that asked turns this into a refusal).
-    static TROUBLE: std::cell::Cell<Option<ArithError>> = const { std::cell::Cell::new(None) };
+/// Why a query or a step has an outcome bdi-check does not model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Trouble {
+    /// Arithmetic with no value.
+    Arith(ArithError),
+    /// Rules calling each other deeper than [`MAX_RULE_DEPTH`].
+    RuleDepth,
 }
 
-/// Notes an arithmetic error met while answering a query or evaluating a step.
-pub(super) fn note_trouble(e: ArithError) {
+impl From<ArithError> for Trouble {
+    fn from(e: ArithError) -> Trouble {
+        Trouble::Arith(e)
+    }
+}
+
+thread_local! {
+    /// The first trouble met by a query since [`take_trouble`] (queries answer with
+    /// substitutions only; the phase that asked turns this into a refusal).
+    static TROUBLE: std::cell::Cell<Option<Trouble>> = const { std::cell::Cell::new(None) };
+}
+
+/// Notes trouble met while answering a query or evaluating a step.
+pub(super) fn note_trouble(e: impl Into<Trouble>) {
+    let e = e.into();
     TROUBLE.with(|t| {
         if t.get().is_none() {
             t.set(Some(e));
@@ -57,23 +73,24 @@ pub(super) fn note_trouble(e: ArithError) {
     });
 }
 
-/// The arithmetic error met since the last call, if any (and forgets it).
-pub(super) fn take_trouble() -> Option<ArithError> {
+/// The trouble met since the last call, if any (and forgets it).
+pub(super) fn take_trouble() -> Option<Trouble> {
     TROUBLE.with(|t| t.take())
 }
 
-/// Why a run with this arithmetic error leaves the model, as Jason 3 behaves there.
-pub(super) fn trouble_reason(e: ArithError) -> String {
+/// Why a run with this trouble leaves the model, as Jason 3 behaves there.
+pub(super) fn trouble_reason(e: Trouble) -> String {
     match e {
-        ArithError::DivisionByZero => "an integer division by zero: Jason 3 throws ArithmeticException out of the reasoning cycle here, logs \"*** ERROR in the transition system\" and creates a new circumstance, dropping every intention and event (TransitionSystem.act and deliberate, C.create()); bdi-check does not model that".into(),
-        ArithError::NotFinite => "the result is not a finite number: Jason goes on with Infinity or NaN (Java's double arithmetic), which bdi-check does not model".into(),
+        Trouble::Arith(ArithError::DivisionByZero) => "an integer division by zero: Jason 3 throws ArithmeticException out of the reasoning cycle here, logs \"*** ERROR in the transition system\" and creates a new circumstance, dropping every intention and event (TransitionSystem.act and deliberate, C.create()); bdi-check does not model that".into(),
+        Trouble::Arith(ArithError::NotFinite) => "the result is not a finite number: Jason goes on with Infinity or NaN (Java's double arithmetic), which bdi-check does not model".into(),
+        Trouble::RuleDepth => format!("rules call each other more than {MAX_RULE_DEPTH} deep: Jason recurses on its Java stack (Rule.logicalConsequence) until it overflows or answers, which bdi-check does not model"),
     }
 }
 
 /// Variables of a rule called at depth `d` have generation `RULE_GENERATION + d`.
 const RULE_GENERATION: u32 = 2_000_000;
 
-/// Deeper rule calls than this have no answer (Jason would overflow its stack).
+/// Deeper rule calls than this are refused ([`Trouble::RuleDepth`]).
 const MAX_RULE_DEPTH: u32 = 256;
 
 /// Applies `s` to `t` and evaluates every arithmetic subterm whose operands are numbers,
@@ -196,6 +213,7 @@ impl Beliefs<'_> {
         let (f, n, neg) = (lit.functor(), lit.arity(), lit.is_negated());
         let depth = self.depth.get() + 1;
         if depth > MAX_RULE_DEPTH {
+            note_trouble(Trouble::RuleDepth);
             return Vec::new();
         }
         let gen = RULE_GENERATION + depth;
