@@ -366,7 +366,9 @@ pub struct Compiled<'s, 'p> {
     events: Interner<Event>,
     intentions: Interner<Intention>,
     pendings: Interner<Pending>,
-    deliberations: Memo<Vec<Chosen>>,
+    /// Per event and read beliefs: the options, and whether the deliberation goes on to
+    /// the next event (an external belief event with no applicable plan).
+    deliberations: Memo<(Vec<Chosen>, bool)>,
     acts: Memo<Acted>,
     proc_acts: Memo<Acted>,
     /// Per request: its event and its note.
@@ -524,17 +526,32 @@ impl<'s, 'p> Compiled<'s, 'p> {
             out.push((notes, next));
             return out;
         };
-        let key = Key::new(event, &p.beliefs.value, 0);
-        // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
-        let chosen = unsafe {
-            self.deliberations
-                .get(key, || self.deliberate(event, &p.beliefs.value))
-                .get(self)
+        // The events the deliberation takes: the first, and the next one after each that
+        // is discarded (`Semantics::deliberate`).
+        let mut taken = 1;
+        let mut before = Notes::default();
+        let mut event = event;
+        let chosen = loop {
+            let key = Key::new(event, &p.beliefs.value, 0);
+            // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
+            let (chosen, goes_on) = unsafe {
+                self.deliberations
+                    .get(key, || self.deliberate(event, &p.beliefs.value))
+                    .get(self)
+            };
+            match p.events.get(taken) {
+                Some(next) if *goes_on => {
+                    before.0.push(&chosen[0].notes[..]);
+                    event = next;
+                    taken += 1;
+                }
+                _ => break chosen,
+            }
         };
         for c in chosen {
             let mut next = Packed {
                 beliefs: p.beliefs,
-                events: p.events[1..].iter().copied().collect(),
+                events: p.events[taken..].iter().copied().collect(),
                 intentions: p.intentions.clone(),
                 pending: p.pending,
                 requested: p.requested,
@@ -544,7 +561,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
                 next.events.extend(c.events.iter().map(|e| e.get(self)));
                 next.intentions.extend(c.intention.map(|i| i.get(self)));
             }
-            let mut notes = Notes(smallvec::smallvec![&c.notes[..]]);
+            let mut notes = before.clone();
+            notes.0.push(&c.notes[..]);
             self.proc_act(&mut next, &mut notes);
             self.act(&mut next, &mut notes);
             out.push((notes, next));
@@ -639,11 +657,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
     }
 
-    fn deliberate(&self, event: &Part<Event>, beliefs: &Base) -> Vec<Chosen> {
+    fn deliberate(&self, event: &Part<Event>, beliefs: &Base) -> (Vec<Chosen>, bool) {
         let read = Self::alone(beliefs, &event.reads, None);
         let before = read.beliefs.clone();
-        self.sem
-            .deliberate(read, event.value.clone())
+        let (options, goes_on) = self.sem.deliberate_event(read, event.value.clone());
+        let chosen = options
             .into_iter()
             .map(|(mut s, notes)| {
                 debug_assert!(s.beliefs == before, "deliberation changes no belief");
@@ -654,7 +672,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     notes: notes.into(),
                 }
             })
-            .collect()
+            .collect();
+        (chosen, goes_on)
     }
 
     fn compute_act(&self, intention: &Part<Intention>, base: &Base, env: usize) -> Acted {

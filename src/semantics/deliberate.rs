@@ -25,8 +25,29 @@ impl Semantics<'_> {
     }
 
     /// Handles one event (already out of the queue): every option the plan selection
-    /// allows, as its own state.
+    /// allows, as its own state. An external belief event with no applicable plan is
+    /// discarded and the next event handled in the same cycle, as Jason's
+    /// `applyRelApplPlRule2` goes back to `SelEv`.
     pub(super) fn deliberate(&self, s: State, ev: Event) -> Vec<(State, Vec<Note>)> {
+        let (mut options, goes_on) = self.deliberate_event(s, ev);
+        if goes_on {
+            let (mut s, notes) = options.pop().expect("the discarded event's outcome");
+            if s.events.is_empty() {
+                return vec![(s, notes)];
+            }
+            let next = s.events.remove(0);
+            let mut more = self.deliberate(s, next);
+            for (_, n) in &mut more {
+                n.splice(0..0, notes.iter().cloned());
+            }
+            return more;
+        }
+        options
+    }
+
+    /// [`Semantics::deliberate`] on one event, and whether the deliberation goes on to
+    /// the next event (then the one outcome is the state without the event).
+    pub(super) fn deliberate_event(&self, s: State, ev: Event) -> (Vec<(State, Vec<Note>)>, bool) {
         let mut notes = vec![Note::Event(ev.trigger.clone())];
         take_trouble();
         let applicable = self.applicable_for(&s, &ev, !self.select_any);
@@ -57,7 +78,7 @@ impl Semantics<'_> {
                 span,
                 reason: trouble_reason(e),
             });
-            return vec![(s, notes)];
+            return (vec![(s, notes)], false);
         }
         if applicable.is_empty() {
             let mut s = s;
@@ -93,12 +114,15 @@ impl Semantics<'_> {
             } else if let Some(int) = ev.intention {
                 // A belief event an intention waits in: it goes on after its belief update
                 // (TransitionSystem.applyRelApplPlRule2, an internal event:
-                // removeActionReQueue). Other belief events are discarded, as in Jason.
+                // removeActionReQueue).
                 s.intentions.push(int);
+            } else {
+                // An external one is discarded, and another event selected.
+                return (vec![(s, notes)], true);
             }
-            return vec![(s, notes)];
+            return (vec![(s, notes)], false);
         }
-        applicable
+        let options = applicable
             .into_iter()
             .map(|(pi, answer)| {
                 let mut s = s.clone();
@@ -181,7 +205,8 @@ impl Semantics<'_> {
                 });
                 (s, notes)
             })
-            .collect()
+            .collect();
+        (options, false)
     }
 
     /// The applicable plans for an event in `s`, in source order, each with the first
