@@ -133,7 +133,11 @@ fn every_stage_folder_is_on_a_floor() {
 #[test]
 fn the_check_sees_an_upward_import() {
     // The checker itself: an import from `model` into `check` must be found.
-    let dir = std::env::temp_dir().join(format!("bdi-check-arch-{}", std::process::id()));
+    // Where tests/common's `temp_dir` puts its folders (and sweeps them once they end).
+    let dir = std::env::temp_dir()
+        .join("bdi-check-tests")
+        .join(std::process::id().to_string())
+        .join("arch");
     let model = dir.join("model");
     std::fs::create_dir_all(&model).expect("temp dir");
     std::fs::write(

@@ -121,8 +121,7 @@ fn usage_errors_exit_2_and_help_exits_0() {
 fn quiet_prints_the_verdict_line_only_and_output_writes_a_file() {
     let o = bdi_check(&["parse", "-q", "specs/paper/paper.asl"]);
     assert_eq!(stdout(&o), "parsed 1 file: no errors\n");
-    let dir = std::env::temp_dir().join(format!("bdi-check-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir("cli");
     let file = dir.join("report.json");
     let o = bdi_check(&[
         "parse",
@@ -507,7 +506,7 @@ fn colour_follows_the_flag_and_the_environment() {
     assert!(run(&paper, &[("CLICOLOR_FORCE", "1")]));
     assert!(!run(&paper, &[("CLICOLOR_FORCE", "1"), ("NO_COLOR", "1")]));
     // A report written to a file never holds escapes.
-    let dir = std::env::temp_dir().join(format!("bdi-check-colour-{}.txt", std::process::id()));
+    let dir = common::temp_dir("colour").join("report.txt");
     let f = dir.to_str().unwrap();
     run(&[&paper[..], &["--color", "always", "-o", f]].concat(), &[]);
     assert!(!std::fs::read_to_string(&dir).unwrap().contains('\u{1b}'));
@@ -524,7 +523,7 @@ fn the_catalogues_scenarios_paste_into_a_scenario_file() {
         .position(|l| l.trim() == "scenario:")
         .expect("a scenario");
     let sentence = lines[at - 1].trim().trim_matches('"').to_string();
-    let file = std::env::temp_dir().join(format!("bdi-check-pasted-{}.toml", std::process::id()));
+    let file = common::temp_dir("pasted").join("scenario.toml");
     let toml = format!("{}\n{}\n", lines[at + 1].trim(), lines[at + 2].trim());
     std::fs::write(&file, toml).unwrap();
     let o = bdi_check(&[

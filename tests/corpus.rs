@@ -836,7 +836,11 @@ fn jason_examples_in_verify_match_the_readme() {
         "no agents under {}/examples and demos",
         root.display()
     );
-    let work = std::env::temp_dir().join(format!("bdi-check-jason-verify-{}", std::process::id()));
+    // Where tests/common's `temp_dir` puts its folders (and sweeps them once they end).
+    let work = std::env::temp_dir()
+        .join("bdi-check-tests")
+        .join(std::process::id().to_string())
+        .join("jason-verify");
     let _ = std::fs::remove_dir_all(&work);
     let started = std::time::Instant::now();
     let mut accepted = Vec::new();

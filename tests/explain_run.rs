@@ -118,9 +118,7 @@ fn the_catalogue_lists_distinct_explanations_with_scenarios() {
         for f in &entries[i + 1..] {
             assert!(e != f);
         }
-        let dir =
-            std::env::temp_dir().join(format!("bdi-check-catalogue-{}-{i}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = common::temp_dir(&format!("catalogue-{i}"));
         let quote = |v: &serde_json::Value| {
             strings(v)
                 .iter()
@@ -165,8 +163,7 @@ fn the_catalogue_lists_distinct_explanations_with_scenarios() {
 
 #[test]
 fn explain_refuses_bad_scenarios_with_exit_2() {
-    let dir = std::env::temp_dir().join(format!("bdi-check-bad-scenario-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir("bad-scenario");
     let file = dir.join("s.toml");
     std::fs::write(
         &file,

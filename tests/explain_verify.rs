@@ -185,11 +185,7 @@ fn the_syntactic_test_misleads_where_the_semantic_one_does_not() {
 /// A copy of specs/kitchen-explaining with `edit` applied to its agent.
 fn kitchen_explaining_with(tag: &str, edit: impl Fn(&str) -> String) -> String {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir = std::env::temp_dir().join(format!(
-        "bdi-check-kitchen-explaining-{}-{tag}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir(&format!("kitchen-explaining-{tag}"));
     let src = root.join("specs/kitchen-explaining");
     let asl = std::fs::read_to_string(src.join("kitchen.asl")).unwrap();
     let edited = edit(&asl);
@@ -297,9 +293,7 @@ fn the_semantic_test_agrees_with_the_runs_on_the_kitchen() {
     // changes; content-covers and content-concise find it in the runs: on the kitchen,
     // whose bodies change their context only through actions, the two must agree.
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir =
-        std::env::temp_dir().join(format!("bdi-check-kitchen-semantic-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir("kitchen-semantic");
     for f in ["kitchen.asl", "kitchen.pddl"] {
         std::fs::copy(root.join("specs/kitchen").join(f), dir.join(f)).unwrap();
     }

@@ -400,8 +400,7 @@ fn deny_warnings_makes_warnings_fail() {
 
 #[test]
 fn errors_exit_1_and_the_report_goes_to_a_file() {
-    let dir = std::env::temp_dir().join(format!("bdi-check-lint-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir("lint-test");
     let out = dir.join("report.json");
     let o = bdi_check(&[
         "lint",
@@ -501,7 +500,13 @@ fn desires_and_intentions_are_free_but_consistent_booleans() {
 fn a_budget_too_small_gives_unknown_never_a_wrong_answer() {
     let p = project("specs/kitchen");
     let full = run_lint(&p);
-    let tiny = lint(&p, &LintOptions { rlimit: 1 });
+    let tiny = lint(
+        &p,
+        &LintOptions {
+            rlimit: 1,
+            deadline: None,
+        },
+    );
     assert!(tiny.iter().any(|f| f.finding.status == Status::Unknown));
     let key = |f: &LintFinding| (f.finding.check.clone(), f.finding.id.clone());
     let full_status: BTreeMap<_, _> = full.iter().map(|f| (key(f), f.finding.status)).collect();

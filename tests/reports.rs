@@ -374,10 +374,7 @@ fn junit_of_a_passing_project_bad_input_and_lint() {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bdi-check-reports-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::temp_dir(&format!("reports-{name}"))
 }
 
 fn copy_dir(from: &Path, to: &Path) {

@@ -61,9 +61,7 @@ fn states(r: &Value) -> u64 {
 /// A copy of `specs/kitchen` in a fresh temporary folder, with `edit` applied to the text
 /// of each file (name, text).
 fn kitchen_copy(name: &str, edit: impl Fn(&str, String) -> String) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("bdi-check-scale-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let dir = common::temp_dir(&format!("scale-{name}"));
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
     for e in std::fs::read_dir(src).expect("specs/kitchen").flatten() {
         let file = e.file_name().to_string_lossy().to_string();
@@ -292,6 +290,7 @@ fn reports_are_byte_identical_for_any_thread_count() {
 
 #[test]
 fn sharded_runs_merge_to_the_unsharded_verdict() {
+    let dir = common::temp_dir("shards");
     for p in ["specs/kitchen", "specs/paper"] {
         let (full, code) = verify_json(Path::new(p), &[]);
         for n in [2, 3] {
@@ -299,11 +298,7 @@ fn sharded_runs_merge_to_the_unsharded_verdict() {
             for k in 1..=n {
                 let (part, _) = verify_json(Path::new(p), &["--shard", &format!("{k}/{n}")]);
                 assert!(states(&part) < states(&full), "{p} {k}/{n}");
-                let f = std::env::temp_dir().join(format!(
-                    "bdi-check-shard-{}-{k}-{n}-{}.json",
-                    p.replace('/', "-"),
-                    std::process::id()
-                ));
+                let f = dir.join(format!("{}-{k}-{n}.json", p.replace('/', "-")));
                 std::fs::write(&f, serde_json::to_string(&part).expect("JSON")).expect("writable");
                 files.push(f);
             }
@@ -330,8 +325,7 @@ fn merge_keeps_every_reports_warnings_once() {
     // whichever shard has it, once, and drops the empty shard's own warning.
     let write = |name: &str, extra: &[&str]| {
         let (r, _) = verify_json(Path::new("tests/verify/hash_order"), extra);
-        let f =
-            std::env::temp_dir().join(format!("bdi-check-warn-{name}-{}.json", std::process::id()));
+        let f = common::temp_dir(&format!("warn-{name}")).join("report.json");
         std::fs::write(&f, serde_json::to_string(&r).expect("JSON")).expect("writable");
         (f, r)
     };
@@ -364,7 +358,7 @@ fn merge_keeps_every_reports_warnings_once() {
 
 #[test]
 fn merge_takes_each_shard_of_one_run_once() {
-    let dir = std::env::temp_dir();
+    let dir = common::temp_dir("merge-once");
     let shard = |k: u32, n: u32| {
         let (r, _) = verify_json(Path::new("specs/paper"), &["--shard", &format!("{k}/{n}")]);
         assert_eq!(r["shard"]["index"], k);
@@ -419,7 +413,7 @@ fn bad_shards_and_merges_are_refused() {
     assert_eq!(out.status.code(), Some(2));
     let (a, _) = verify_json(Path::new("specs/paper"), &[]);
     let (b, _) = verify_json(Path::new("tests/verify/tiny"), &[]);
-    let dir = std::env::temp_dir();
+    let dir = common::temp_dir("merge-projects");
     let (fa, fb) = (
         dir.join(format!("bdi-check-merge-a-{}.json", std::process::id())),
         dir.join(format!("bdi-check-merge-b-{}.json", std::process::id())),
@@ -437,7 +431,7 @@ fn bad_shards_and_merges_are_refused() {
 
 #[test]
 fn merge_in_human_lists_the_failing_findings() {
-    let dir = std::env::temp_dir();
+    let dir = common::temp_dir("merge-human");
     let shard = |k: u32| {
         let (r, _) = verify_json(Path::new("specs/paper"), &["--shard", &format!("{k}/2")]);
         let f = dir.join(format!("bdi-check-human-{k}-{}.json", std::process::id()));

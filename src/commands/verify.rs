@@ -112,12 +112,26 @@ pub fn run(
     if !bad.is_empty() {
         return input_failure(name, project.map, bad);
     }
-    let lim = limits(&project, bounds);
+    let mut lim = limits(&project, bounds);
     // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
-    let lint: Vec<Finding> = crate::smt::lint(&project, &crate::smt::LintOptions::default())
+    // `--timeout` bounds the two together: lint begins no check past it, and the search
+    // has what lint left.
+    let started = std::time::Instant::now();
+    let deadline = lim
+        .timeout
+        .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
+        .and_then(|d| started.checked_add(d));
+    let lint_opts = crate::smt::LintOptions {
+        deadline,
+        ..Default::default()
+    };
+    let lint: Vec<Finding> = crate::smt::lint(&project, &lint_opts)
         .into_iter()
         .map(|l| l.finding)
         .collect();
+    lim.timeout = lim
+        .timeout
+        .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
     match verify_with(&project, lim, opts, progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
         Ok(mut v) => {

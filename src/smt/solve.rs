@@ -1,5 +1,6 @@
 //! One z3 solver with a deterministic budget, and what its answers mean.
 
+use std::time::Instant;
 use z3::ast::{Bool, Int};
 use z3::{Model, Params, SatResult, Solver};
 
@@ -22,20 +23,30 @@ pub enum Outcome {
 pub struct Session {
     /// The z3 solver.
     pub solver: Solver,
+    /// Past this moment every check is `Unknown` without asking z3 (`verify --timeout`);
+    /// a check begun before it still ends within its `rlimit`.
+    deadline: Option<Instant>,
 }
 
+/// Why a check past its deadline was not made.
+pub const OUT_OF_TIME: &str = "the time limit (--timeout) ran out before this check";
+
 impl Session {
-    /// A solver in the current context whose every check may spend `rlimit` resource units.
-    pub fn new(rlimit: u32) -> Session {
+    /// A solver in the current context whose every check may spend `rlimit` resource units,
+    /// and none is begun after `deadline`.
+    pub fn new(rlimit: u32, deadline: Option<Instant>) -> Session {
         let solver = Solver::new();
         let mut p = Params::new();
         p.set_u32("rlimit", rlimit);
         solver.set_params(&p);
-        Session { solver }
+        Session { solver, deadline }
     }
 
     /// Checks the assertions under `assumptions`.
     pub fn check(&self, assumptions: &[Bool]) -> Outcome {
+        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            return Outcome::Unknown(OUT_OF_TIME.into());
+        }
         match self.solver.check_assumptions(assumptions) {
             SatResult::Sat => match self.solver.get_model() {
                 Some(m) => Outcome::Sat(m),

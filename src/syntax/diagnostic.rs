@@ -185,23 +185,65 @@ impl fmt::Display for Diagnostic {
 
 /// The miette view of a diagnostic, for its graphical excerpt.
 #[derive(Debug)]
-struct MietteView {
+struct MietteView<'f> {
     message: String,
     severity: miette::Severity,
-    source: miette::NamedSource<String>,
+    source: Excerpt<'f>,
     labels: Vec<miette::LabeledSpan>,
     help: Option<String>,
 }
 
-impl fmt::Display for MietteView {
+/// A file as miette reads it for an excerpt: only the lines around a span, found by the
+/// file's line index. (miette's own `[u8]` source counts lines from the top of the file
+/// for every excerpt, and each report copied the whole file: a library with many findings
+/// cost the square of its size.)
+#[derive(Debug)]
+struct Excerpt<'f>(&'f super::source::SourceFile);
+
+impl miette::SourceCode for Excerpt<'_> {
+    fn read_span<'a>(
+        &'a self,
+        span: &miette::SourceSpan,
+        before: usize,
+        after: usize,
+    ) -> Result<Box<dyn miette::SpanContents<'a> + 'a>, miette::MietteError> {
+        let file = self.0;
+        let text = file.text.as_bytes();
+        let (start, end) = (span.offset(), span.offset() + span.len());
+        if end > text.len() {
+            return Err(miette::MietteError::OutOfBounds);
+        }
+        let (line, _) = file.line_col(start);
+        let (last, _) = file.line_col(end);
+        // From the start of the first context line to past the last one: the lines
+        // miette's reader would see, with every offset and line number kept.
+        let first = (line - 1).saturating_sub(before);
+        let from = file.line_start(first).unwrap_or(0);
+        let to = file.line_start(last + after).unwrap_or(text.len());
+        let window = &text[from..to];
+        let inner = miette::SourceSpan::new((start - from).into(), span.len());
+        let c = window.read_span(&inner, before, after)?;
+        let at = miette::SourceSpan::new((c.span().offset() + from).into(), c.span().len());
+        Ok(Box::new(miette::MietteSpanContents::new_named(
+            file.name.clone(),
+            c.data(),
+            at,
+            c.line() + first,
+            c.column(),
+            c.line_count(),
+        )))
+    }
+}
+
+impl fmt::Display for MietteView<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.message)
     }
 }
 
-impl std::error::Error for MietteView {}
+impl std::error::Error for MietteView<'_> {}
 
-impl miette::Diagnostic for MietteView {
+impl miette::Diagnostic for MietteView<'_> {
     fn severity(&self) -> Option<miette::Severity> {
         Some(self.severity)
     }
@@ -255,7 +297,7 @@ fn render_excerpt(
             Severity::Warning => miette::Severity::Warning,
             Severity::Note => miette::Severity::Advice,
         },
-        source: miette::NamedSource::new(file.name.clone(), file.text.clone()),
+        source: Excerpt(file),
         labels,
         help: d.help.clone(),
     };

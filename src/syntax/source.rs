@@ -107,6 +107,11 @@ impl SourceFile {
         (line + 1, col + 1)
     }
 
+    /// Where the 0-based line `line` starts, if the file has it.
+    pub fn line_start(&self, line: usize) -> Option<usize> {
+        self.line_starts.get(line).copied()
+    }
+
     /// The text of a span (empty when the span is not on a char boundary).
     pub fn slice(&self, span: Span) -> &str {
         self.text

@@ -11,13 +11,36 @@ pub fn bdi_check(args: &[&str]) -> Output {
         .expect("bdi-check runs")
 }
 
-/// A fresh, empty directory for one test's files.
+/// A fresh, empty directory for one test's files, under `bdi-check-tests/PID` in the
+/// system's temporary directory. The test harness has no hook at exit, so the first call of
+/// a process removes what test processes no longer running left there.
 #[allow(dead_code)] // not every test target writes files
 pub fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("bdi-check-{}-{name}", std::process::id()));
+    static SWEPT: std::sync::Once = std::sync::Once::new();
+    let root = std::env::temp_dir().join("bdi-check-tests");
+    SWEPT.call_once(|| sweep(&root));
+    let d = root.join(std::process::id().to_string()).join(name);
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
+}
+
+/// Removes the folders of `root` named after a process that has ended (Linux: no
+/// `/proc/PID`); elsewhere, none.
+#[allow(dead_code)]
+fn sweep(root: &std::path::Path) {
+    if !std::path::Path::new("/proc/self").exists() {
+        return;
+    }
+    for e in std::fs::read_dir(root).into_iter().flatten().flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let ended = name.parse::<u32>().is_ok_and(|pid| {
+            pid != std::process::id() && !std::path::Path::new(&format!("/proc/{pid}")).exists()
+        });
+        if ended {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
 }
 
 /// Runs `verify --format json` on a project; returns the exit code, the report, and where

@@ -64,12 +64,15 @@ mod plans;
 pub struct LintOptions {
     /// The z3 resource budget of each check (see [`DEFAULT_RLIMIT`]).
     pub rlimit: u32,
+    /// No check is begun after this moment: the rest say `unknown` (`verify --timeout`).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl Default for LintOptions {
     fn default() -> LintOptions {
         LintOptions {
             rlimit: DEFAULT_RLIMIT,
+            deadline: None,
         }
     }
 }
@@ -258,7 +261,7 @@ impl<'p> Linter<'p> {
 
     /// A new solver with the invariants and the initial-state guard.
     pub fn base(&self) -> Base {
-        let sess = Session::new(self.opts.rlimit);
+        let sess = Session::new(self.opts.rlimit, self.opts.deadline);
         let st = &self.enc.base;
         let invs = self
             .p
