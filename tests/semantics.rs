@@ -6,6 +6,7 @@ mod common;
 
 use bdi_check::model::project::{load_project, Project};
 use bdi_check::semantics::{Note, Semantics, State};
+use bdi_check::syntax::ast::TriggerKind;
 use common::temp_dir;
 use std::collections::{HashSet, VecDeque};
 
@@ -396,4 +397,143 @@ fn a_condition_wait_sees_the_beliefs_between_one_action_s_percepts() {
         "+!go <- !!w; ping; ping; two(a, b).\n+!w <- .wait(.count(p(_), 1)); ping.\n",
     );
     assert!(all_woken(&Semantics::new(&p).expect("the semantics"), 1));
+}
+
+#[test]
+fn random_has_one_outcome_per_element_or_declared_value() {
+    // stdlib `random`: an element of its list, or (`.random(X)`) a number, here each value
+    // of `[bounds] random`; any other step has one outcome.
+    let d = temp_dir("semantics-random");
+    std::fs::write(
+        d.join("agent.asl"),
+        "+!go <- .random([a, b], X); act(X); .random(R); .print(R); ping.\n",
+    )
+    .unwrap();
+    std::fs::write(d.join("domain.pddl"), DOMAIN).unwrap();
+    std::fs::write(
+        d.join("bdi-check.toml"),
+        "[agent]\nplans = \"agent.asl\"\nactions = \"domain.pddl\"\n\n\
+         [objects]\nthing = [\"a\", \"b\"]\n\n[initial]\nvary = []\n\n\
+         [requests]\ngoals = [\"go\"]\nmax = 1\n\n[bounds]\nrandom = [0.25, 0.75, 0.5]\n",
+    )
+    .unwrap();
+    let p = load_project(&d).unwrap_or_else(|e| panic!("{:?}", e.diagnostics));
+    let _ = std::fs::remove_dir_all(&d);
+    let sem = Semantics::new(&p).expect("the semantics");
+    let (mut acted, mut printed) = (HashSet::new(), HashSet::new());
+    let mut most = 0;
+    for (from, t) in transitions(&sem) {
+        most = most.max(sem.successors(&from).len());
+        for n in t.notes {
+            match n {
+                Note::Action { text, .. } => {
+                    acted.insert(text);
+                }
+                Note::Printed(p) => {
+                    printed.insert(p);
+                }
+                _ => {}
+            }
+        }
+    }
+    let want = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<HashSet<_>>();
+    assert_eq!(acted, want(&["act(a)", "act(b)", "ping"]));
+    assert_eq!(printed, want(&["0.25", "0.75", "0.5"]));
+    assert_eq!(most, 3, "three values at most from one state");
+}
+
+#[test]
+fn print_shows_an_unbound_variable_as_no_value() {
+    // stdlib println: a variable with no value prints as itself and `<no-value>`.
+    let p = project("print-var", "+!go <- .print(\"x \", X); ping.\n");
+    let sem = Semantics::new(&p).expect("the semantics");
+    let printed: Vec<String> = all_notes(&sem)
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Printed(s) => Some(s),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(printed.len(), 1, "{printed:?}");
+    assert!(
+        printed[0].starts_with("x ") && printed[0].ends_with("<no-value>"),
+        "{printed:?}"
+    );
+}
+
+#[test]
+fn an_intention_deeper_than_the_bound_fails_its_goal() {
+    // `!r` before a step is no tail call: each one adds a plan to the stack.
+    let p = project("deep-stack", "+!go <- !r.\n+!r <- !r; ping.\n");
+    let sem = Semantics::new(&p).expect("the semantics");
+    let failed = all_notes(&sem).into_iter().any(
+        |n| matches!(n, Note::GoalFailed { reason, .. } if reason.contains("would hold more than")),
+    );
+    assert!(failed);
+}
+
+#[test]
+fn rules_called_one_after_another_do_not_add_up_to_a_deep_call() {
+    // The depth bound is of nested calls: 333 calls of rules in one context, each ended
+    // before the next, are at most 3 deep.
+    let ten = |r: &str| vec![r; 10].join(" & ");
+    let asl = format!(
+        "t :- 1 == 1.\nt10 :- {}.\nt100 :- {}.\n+!go : t100 & t100 & t100 <- ping.\n",
+        ten("t"),
+        ten("t10")
+    );
+    let p = project("rule-siblings", &asl);
+    let sem = Semantics::new(&p).expect("the semantics");
+    let notes = all_notes(&sem);
+    assert!(
+        notes
+            .iter()
+            .any(|n| matches!(n, Note::Plan { plan: 0, .. })),
+        "{notes:?}"
+    );
+}
+
+#[test]
+fn intend_counts_goals_not_the_belief_plans_on_the_stack() {
+    // stdlib intend: an intention's achievement goals; the +q(a) plan a belief update
+    // pushed on the same intention (sameFocus) is not the goal q(a).
+    let p = project(
+        "intend-belief-frame",
+        "+!go <- +q(a); ping.\n+q(X) <- if (.intend(q(X))) { act(a) } else { act(b) }.\n\
+         +!q(X) <- ping.\n",
+    );
+    let acted: HashSet<String> = all_notes(&Semantics::new(&p).expect("the semantics"))
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Action { text, .. } => Some(text),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        acted,
+        HashSet::from(["act(b)".to_string(), "ping".to_string()])
+    );
+}
+
+#[test]
+fn at_most_three_timers_fire_before_one_cycle() {
+    // Four `.wait(5)` at once: a cycle may follow any one, two or three of them firing
+    // (in every order), never four.
+    let p = project(
+        "timers",
+        "+!go <- !!w; !!w; !!w; .wait(5); ping.\n+!w <- .wait(5); ping.\n",
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    let mut most = 0;
+    for (_, t) in transitions(&sem) {
+        let fired = t
+            .notes
+            .iter()
+            .filter(
+                |n| matches!(n, Note::Internal { text, .. } if text.ends_with("its time is up")),
+            )
+            .count();
+        most = most.max(fired);
+    }
+    assert_eq!(most, 3);
 }
