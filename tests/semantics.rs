@@ -537,3 +537,19 @@ fn at_most_three_timers_fire_before_one_cycle() {
     }
     assert_eq!(most, 3);
 }
+
+#[test]
+fn states_that_differ_only_in_their_waits_have_different_fingerprints() {
+    // The search keeps a state by its fingerprint: a wait woken or not is another state.
+    let p = project("wait-hash", "+!go <- .wait({+p(a)}, 5); ping.\n");
+    let sem = Semantics::new(&p).expect("the semantics");
+    let asleep = transitions(&sem)
+        .into_iter()
+        .map(|(_, t)| t.next)
+        .find(|s| !s.waiting.is_empty())
+        .expect("a state with a wait");
+    let mut woken = asleep.clone();
+    woken.waiting[0].woken = !woken.waiting[0].woken;
+    let fingerprint = bdi_check::check::explore::fingerprint::<State>;
+    assert_ne!(fingerprint(&asleep), fingerprint(&woken));
+}
