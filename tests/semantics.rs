@@ -553,3 +553,21 @@ fn states_that_differ_only_in_their_waits_have_different_fingerprints() {
     let fingerprint = bdi_check::check::explore::fingerprint::<State>;
     assert_ne!(fingerprint(&asleep), fingerprint(&woken));
 }
+
+#[test]
+fn a_subgoal_s_variables_are_apart_from_its_plan_s() {
+    // `!g(X, Y)` and `+!g(Y, X)`: the plan's X is the caller's Y (Jason renames the plan
+    // apart from the literal it unifies with), so the caller's X gets what the plan's Y does.
+    let p = project(
+        "subgoal-apart",
+        "+!go <- !g(X, Y); act(X); act(Y).\n+!g(Y, X) <- X = a; Y = b.\n",
+    );
+    let acted: Vec<String> = all_notes(&Semantics::new(&p).expect("the semantics"))
+        .into_iter()
+        .filter_map(|n| match n {
+            Note::Action { text, .. } => Some(text),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(acted, ["act(b)", "act(a)"]);
+}
