@@ -6,7 +6,6 @@ mod common;
 
 use bdi_check::model::project::{load_project, Project};
 use bdi_check::semantics::{Note, Semantics, State};
-use bdi_check::syntax::ast::TriggerKind;
 use common::temp_dir;
 use std::collections::{HashSet, VecDeque};
 
@@ -476,7 +475,7 @@ fn an_intention_deeper_than_the_bound_fails_its_goal() {
 fn rules_called_one_after_another_do_not_add_up_to_a_deep_call() {
     // The depth bound is of nested calls: 333 calls of rules in one context, each ended
     // before the next, are at most 3 deep.
-    let ten = |r: &str| vec![r; 10].join(" & ");
+    let ten = |r: &str| [r; 10].join(" & ");
     let asl = format!(
         "t :- 1 == 1.\nt10 :- {}.\nt100 :- {}.\n+!go : t100 & t100 & t100 <- ping.\n",
         ten("t"),
