@@ -395,6 +395,20 @@ impl<'p> Semantics<'p> {
         }
     }
 
+    /// [`Semantics::beliefs`] for a step of an intention out of `state`, whose goals are
+    /// `running`.
+    pub(super) fn beliefs_running<'s>(
+        &'s self,
+        state: &'s State,
+        running: &'s [Term],
+    ) -> Beliefs<'s> {
+        Beliefs {
+            running,
+            ..self.beliefs(state)
+        }
+    }
+
+    /// The query view of `state`.
     pub(super) fn beliefs<'s>(&'s self, state: &'s State) -> Beliefs<'s> {
         Beliefs {
             atoms: &self.project.atoms,
@@ -402,6 +416,7 @@ impl<'p> Semantics<'p> {
             environment: &self.environment,
             state,
             selected: None,
+            running: &[],
             rules: &self.project.plans.rules,
             depth: std::cell::Cell::new(0),
             agent_name: &self.agent_name,

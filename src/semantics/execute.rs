@@ -53,7 +53,7 @@ impl Semantics<'_> {
     /// after the loop; `for` takes its next answer, and restores the bindings from before
     /// the loop when there is none (stdlib `foreach`). The answers of `for` are computed
     /// when it first runs.
-    fn loop_again(&self, f: &mut Frame, s: &State) {
+    fn loop_again(&self, f: &mut Frame, s: &State, running: &[Term]) {
         let blocks = &self.blocks[f.plan as usize];
         let Some(c) = f.cursors.last_mut() else {
             return;
@@ -66,7 +66,12 @@ impl Semantics<'_> {
                     _ => unreachable!("a while cursor points at a while step"),
                 };
                 let base = base.clone();
-                match self.beliefs(s).answers(cond, &base).into_iter().next() {
+                match self
+                    .beliefs_running(s, running)
+                    .answers(cond, &base)
+                    .into_iter()
+                    .next()
+                {
                     Some(a) => {
                         f.subst = a;
                         c.pos = 0;
@@ -206,6 +211,20 @@ impl Semantics<'_> {
         choice: usize,
     ) -> Flow {
         let depth = int.frames.len() - 1;
+        // What `.intend`/`.desire` see of this intention while it is out of the state (a
+        // library that asks about intentions is never local: the compiled search never
+        // pays for this).
+        let running: Vec<Term> = if self.is_local() {
+            Vec::new()
+        } else {
+            int.frames
+                .iter()
+                .filter(|f| {
+                    f.trigger.op == TriggerOp::Add && f.trigger.kind == TriggerKind::Achieve
+                })
+                .map(|f| f.trigger.literal.clone())
+                .collect()
+        };
         // `.drop_intention(g)` may drop the very intention that runs it.
         let drops_itself = |g: &Term| {
             int.frames.iter().any(|f| {
@@ -260,7 +279,7 @@ impl Semantics<'_> {
         let Some(step) = blocks.blocks[block as usize].get(pos as usize) else {
             // The end of a loop's body: testing the loop again is a step of its own, as
             // Jason's `.while`/`.foreach` internal actions run again after the body.
-            self.loop_again(frame, s);
+            self.loop_again(frame, s, &running);
             return Flow::Continue;
         };
         cursor.pos += 1;
@@ -492,7 +511,12 @@ impl Semantics<'_> {
                     }
                     _ => {
                         let f = Formula::Call(t.clone());
-                        match self.beliefs(s).answers(&f, &frame.subst).into_iter().next() {
+                        match self
+                            .beliefs_running(s, &running)
+                            .answers(&f, &frame.subst)
+                            .into_iter()
+                            .next()
+                        {
                             Some(a) => frame.subst = a,
                             None => no_answer!(text),
                         }
@@ -538,7 +562,12 @@ impl Semantics<'_> {
                 }
             }
             BodyStep::Test(f) => {
-                match self.beliefs(s).answers(f, &frame.subst).into_iter().next() {
+                match self
+                    .beliefs_running(s, &running)
+                    .answers(f, &frame.subst)
+                    .into_iter()
+                    .next()
+                {
                     Some(a) => frame.subst = a,
                     None => {
                         // Jason's `applyExecInt` (test): with no answer, a literal whose
@@ -576,7 +605,9 @@ impl Semantics<'_> {
                         }
                         _ => lit.clone(),
                     };
-                    let hits = self.beliefs(s).literal_answers(&pattern, &frame.subst);
+                    let hits = self
+                        .beliefs_running(s, &running)
+                        .literal_answers(&pattern, &frame.subst);
                     if let Some((a, answer)) = hits.into_iter().next() {
                         s.beliefs.remove(a);
                         removed.push(a);
@@ -703,7 +734,7 @@ impl Semantics<'_> {
             }
             BodyStep::If { branches, .. } => {
                 let kids = &blocks.children[&(block, pos)];
-                let b = self.beliefs(s);
+                let b = self.beliefs_running(s, &running);
                 let mut chosen = kids.last().copied();
                 for (k, (cond, _)) in branches.iter().enumerate() {
                     if let Some(a) = b.answers(cond, &frame.subst).into_iter().next() {
@@ -723,7 +754,12 @@ impl Semantics<'_> {
             BodyStep::While(cond, _) => {
                 let child = blocks.children[&(block, pos)][0];
                 let base = frame.subst.clone();
-                if let Some(a) = self.beliefs(s).answers(cond, &base).into_iter().next() {
+                if let Some(a) = self
+                    .beliefs_running(s, &running)
+                    .answers(cond, &base)
+                    .into_iter()
+                    .next()
+                {
                     frame.subst = a;
                     frame.cursors.push(Cursor {
                         block: child,
@@ -738,7 +774,9 @@ impl Semantics<'_> {
             }
             BodyStep::For(cond, _) => {
                 let child = blocks.children[&(block, pos)][0];
-                let mut answers = self.beliefs(s).answers(cond, &frame.subst);
+                let mut answers = self
+                    .beliefs_running(s, &running)
+                    .answers(cond, &frame.subst);
                 if !answers.is_empty() {
                     let base = std::mem::replace(&mut frame.subst, answers.remove(0));
                     frame.cursors.push(Cursor {

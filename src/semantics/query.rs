@@ -31,6 +31,9 @@ pub struct Beliefs<'a> {
     /// The event being deliberated on, already out of the queue: Jason's `.intend` and
     /// `.desire` see its intention (and its goal) too.
     pub selected: Option<&'a super::state::Event>,
+    /// The goals of the intention whose step asks, out of the state while it runs: Jason's
+    /// `.intend` and `.desire` see it too (`Circumstance.getAllIntentions`, `C.SI`).
+    pub running: &'a [Term],
     /// The rules of the belief base.
     pub rules: &'a [Rule],
     /// How deep in rule calls the query being answered is (rules' variables are renamed
@@ -357,6 +360,7 @@ impl Beliefs<'_> {
         for i in self.state.all_intentions().chain(selected) {
             frames(i).iter().for_each(&mut consider);
         }
+        self.running.iter().for_each(&mut consider);
         if with_events {
             for e in self.state.events.iter().chain(self.selected) {
                 if e.trigger.op == TriggerOp::Add && e.trigger.kind == TriggerKind::Achieve {
