@@ -217,13 +217,7 @@ impl Semantics<'_> {
         let running: Vec<Term> = if self.is_local() {
             Vec::new()
         } else {
-            int.frames
-                .iter()
-                .filter(|f| {
-                    f.trigger.op == TriggerOp::Add && f.trigger.kind == TriggerKind::Achieve
-                })
-                .map(|f| f.trigger.literal.clone())
-                .collect()
+            int.goals().cloned().collect()
         };
         // `.drop_intention(g)` may drop the very intention that runs it.
         let drops_itself = |g: &Term| {

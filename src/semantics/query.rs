@@ -8,7 +8,7 @@
 //! Environment atoms carry `source(percept)` and mental notes `source(self)`, as in Jason,
 //! so `p[source(percept)]` matches percepts only.
 
-use super::state::{Intention, State};
+use super::state::State;
 use crate::model::arith::{self, ArithError, OPERATORS};
 use crate::model::atoms::{AtomId, AtomTable};
 use crate::model::internal;
@@ -347,18 +347,9 @@ impl Beliefs<'_> {
                 out.push(s2);
             }
         };
-        let frames = |i: &Intention| -> Vec<Term> {
-            i.frames
-                .iter()
-                .filter(|f| {
-                    f.trigger.op == TriggerOp::Add && f.trigger.kind == TriggerKind::Achieve
-                })
-                .map(|f| f.trigger.literal.clone())
-                .collect()
-        };
         let selected = self.selected.and_then(|e| e.intention.as_ref());
         for i in self.state.all_intentions().chain(selected) {
-            frames(i).iter().for_each(&mut consider);
+            i.goals().for_each(&mut consider);
         }
         self.running.iter().for_each(&mut consider);
         if with_events {

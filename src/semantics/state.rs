@@ -132,6 +132,17 @@ pub struct Intention {
     pub origin: Origin,
 }
 
+impl Intention {
+    /// The literals of its achievement goals, bottom first: what `.intend` and `.desire`
+    /// see of it (`Intention.hasTrigger` with `+!g`).
+    pub fn goals(&self) -> impl Iterator<Item = &Term> {
+        self.frames
+            .iter()
+            .filter(|f| f.trigger.op == TriggerOp::Add && f.trigger.kind == TriggerKind::Achieve)
+            .map(|f| &f.trigger.literal)
+    }
+}
+
 /// An intention whose environment action waits for its feedback: Jason's pending action
 /// (`Circumstance.PA`). It returns to the queue, or fails, in the next cycle's `ProcAct`,
 /// after that cycle's deliberation.
