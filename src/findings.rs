@@ -172,6 +172,9 @@ pub struct TraceStep {
     pub removed: Vec<String>,
     /// The explanation given at this step, if any.
     pub explanation: Option<String>,
+    /// In a project of several agents: the agent whose step it is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub agent: Option<String>,
 }
 
 /// The agent's whole state at one point of a run, for people (`bdi-check trace`).

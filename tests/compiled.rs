@@ -5,7 +5,7 @@
 
 use bdi_check::check::explore::fingerprint;
 use bdi_check::model::atoms::{AtomId, AtomSet};
-use bdi_check::model::project::load_project;
+use bdi_check::model::project::{load_project, load_system};
 use bdi_check::semantics::compiled::Sizes;
 use bdi_check::semantics::{Compiled, Packed, Semantics, State};
 use std::collections::{HashSet, VecDeque};
@@ -33,7 +33,23 @@ fn projects() -> Vec<PathBuf> {
 /// each state's successors with the compiled system's: the states, what the search asks of
 /// them, and how they compare. Returns the states compared and the compiled tables' sizes.
 fn agree(dir: &Path, cap: usize) -> (usize, Option<Sizes>) {
-    let p = load_project(dir).unwrap_or_else(|e| panic!("{}: {e:?}", dir.display()));
+    // Each agent of a project of several is compared alone (its own transition system).
+    let agents = load_system(dir).unwrap_or_else(|e| panic!("{}: {e:?}", dir.display()));
+    let mut total = 0;
+    let mut sizes = None;
+    for p in &agents {
+        let (n, s) = agree_agent(dir, p, cap);
+        total += n;
+        sizes = sizes.or(s);
+    }
+    (total, sizes)
+}
+
+fn agree_agent(
+    dir: &Path,
+    p: &bdi_check::model::project::Project,
+    cap: usize,
+) -> (usize, Option<Sizes>) {
     let sem = Semantics::new(&p).expect("the semantics");
     let Some(compiled) = Compiled::new(&sem) else {
         return (0, None);
@@ -169,6 +185,9 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
     };
     let mut compared = 0;
     for dir in projects() {
+        if load_system(&dir).expect("the project loads").len() > 1 {
+            continue;
+        }
         let p = load_project(&dir).expect("the project loads");
         if !Semantics::new(&p).is_ok_and(|s| s.is_local()) {
             continue;

@@ -786,6 +786,7 @@ pub fn counterexample(
                     added: Vec::new(),
                     removed: Vec::new(),
                     explanation: Some(g.text),
+                    agent: None,
                 });
             }
             let before = b.steps().len();

@@ -30,6 +30,7 @@ pub mod run;
 pub mod sample;
 pub mod store;
 pub mod symmetry;
+pub mod system;
 pub mod trace;
 
 mod checker;

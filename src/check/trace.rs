@@ -112,6 +112,11 @@ impl<'a> Builder<'a> {
         &self.steps
     }
 
+    /// The requests made so far, in order.
+    pub fn requests(&self) -> &[String] {
+        &self.requests
+    }
+
     fn intention(&mut self, o: Origin) -> usize {
         let next = self.intentions.len() + 1;
         *self.intentions.entry(o).or_insert(next)
@@ -145,6 +150,7 @@ impl<'a> Builder<'a> {
             added: Vec::new(),
             removed: Vec::new(),
             explanation: None,
+            agent: None,
         }
     }
 
@@ -321,7 +327,12 @@ impl<'a> Builder<'a> {
                         Some(place),
                     )
                 }
-                Note::Finished(_) | Note::NoApplicablePlan(_) | Note::Printed(_) => continue,
+                Note::Finished(_)
+                | Note::NoApplicablePlan(_)
+                | Note::Printed(_)
+                | Note::Sent { .. }
+                | Note::Perceived { .. }
+                | Note::Received { .. } => continue,
             };
             self.steps.push(step);
         }

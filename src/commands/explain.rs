@@ -217,6 +217,7 @@ fn execute(
                     added: Vec::new(),
                     removed: Vec::new(),
                     explanation: Some(g.text.clone()),
+                    agent: None,
                 });
                 given.push(Given {
                     user: u.name.clone(),

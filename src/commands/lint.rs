@@ -3,9 +3,9 @@
 
 use super::{Output, Style};
 use crate::findings::{Report, Status};
-use crate::model::project::load_project;
+use crate::model::project::{load_system, Project};
 use crate::report::lint::{render, LintRun};
-use crate::smt::{lint, LintOptions};
+use crate::smt::{lint, LintFinding, LintOptions};
 use crate::syntax::{Diagnostic, Severity, SourceMap};
 use std::path::Path;
 
@@ -31,15 +31,16 @@ pub fn command(project: &Path, deny_warnings: bool, style: &Style) -> Output {
 /// fails the verdict), as with rustc's `-D warnings`.
 pub fn run(path: &Path, opts: &LintOptions, deny_warnings: bool) -> LintRun {
     let name = path.display().to_string();
-    let project = match load_project(path) {
+    let projects = match load_system(path) {
         Ok(p) => p,
         Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
+    let mut findings = lint_agents(&projects, opts);
+    let project = projects.into_iter().next().expect("an agent");
     let bad = super::allow::check(&project);
     if !bad.is_empty() {
         return input_failure(name, project.map, bad);
     }
-    let mut findings = lint(&project, opts);
     let unused = super::allow::apply(
         &project,
         findings.iter_mut().map(|f| &mut f.finding),
@@ -74,4 +75,30 @@ fn input_failure(name: String, map: SourceMap, diagnostics: Vec<Diagnostic>) -> 
         findings: Vec::new(),
         tree: Default::default(),
     }
+}
+
+/// Lints every agent's plan library (each file once, instances share it). The domain's
+/// checks are the same for every agent and reported once; an action is unused only when
+/// no agent calls it.
+pub fn lint_agents(projects: &[Project], opts: &LintOptions) -> Vec<LintFinding> {
+    let mut out: Vec<LintFinding> = Vec::new();
+    let mut linted = Vec::new();
+    for p in projects {
+        if linted.contains(&&p.manifest.agent.plans.path) {
+            continue;
+        }
+        linted.push(&p.manifest.agent.plans.path);
+        for l in lint(p, opts) {
+            let f = &l.finding;
+            match out
+                .iter_mut()
+                .find(|g| g.finding.id == f.id && g.finding.check == f.check)
+            {
+                Some(g) if g.finding.check == "unused-action" && f.status == Status::Pass => *g = l,
+                Some(_) => {}
+                None => out.push(l),
+            }
+        }
+    }
+    out
 }

@@ -3,7 +3,7 @@
 
 use super::{Output, Style};
 use crate::findings::{verdict_of, Finding, Tool};
-use crate::model::project::load_project;
+use crate::model::project::load_system;
 use crate::report::domain::{domain_outline, project_outline};
 use crate::report::outline::{
     render, Entry, FileOutline, FileReport, ParseReport, ParseRun, PlanOutline,
@@ -70,11 +70,23 @@ pub fn parse_files_with(paths: &[PathBuf], source_path: &[PathBuf]) -> ParseRun 
                     Diagnostic::error("input", format!("cannot read `{name}`: {e}")).in_file(name),
                 ),
             },
-            Some("toml") => match load_project(path) {
-                Ok(p) => {
-                    files.push(FileReport::Project(project_outline(&name, &p)));
+            Some("toml") => match load_system(path) {
+                Ok(agents) => {
+                    let several = agents.len() > 1;
+                    let mut kept = None;
+                    for p in agents {
+                        let shown = if several {
+                            format!("{name} ({})", p.name)
+                        } else {
+                            name.clone()
+                        };
+                        files.push(FileReport::Project(project_outline(&shown, &p)));
+                        kept.get_or_insert(p.map);
+                    }
                     // Keep the project's files so that later diagnostics still render.
-                    absorb(&mut map, p.map);
+                    if let Some(m) = kept {
+                        absorb(&mut map, m);
+                    }
                 }
                 Err(e) => {
                     // Diagnostics point into the project's own source map: re-home them.

@@ -5,7 +5,7 @@ use super::{Output, Style};
 use crate::check::explore::Limits;
 use crate::check::{verify_with, VerifyOptions};
 use crate::findings::{Finding, Report, Shard, Verdict};
-use crate::model::project::{load_project, Project};
+use crate::model::project::{load_system, Project};
 use crate::report::verify::{render_human, write_scenarios, VerifyRun};
 use crate::report::Format;
 use crate::syntax::{Diagnostic, SourceMap};
@@ -104,10 +104,14 @@ pub fn run(
     progress: impl FnMut(usize, u32, f64),
 ) -> VerifyRun {
     let name = path.display().to_string();
-    let project = match load_project(path) {
+    let mut projects = match load_system(path) {
         Ok(p) => p,
         Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
+    if projects.len() > 1 {
+        return run_system(name, projects, bounds, opts, progress);
+    }
+    let project = projects.remove(0);
     let bad = super::allow::check(&project);
     if !bad.is_empty() {
         return input_failure(name, project.map, bad);
@@ -134,7 +138,66 @@ pub fn run(
         .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
     match verify_with(&project, lim, opts, progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
+        Ok(v) => report_of(name, project, v, opts),
+    }
+}
+
+/// Lints and verifies a project of several agents: each agent's plan library is linted
+/// on its own (its warnings stay warnings: they are not settled against the runs yet),
+/// then every interleaving is explored ([`crate::check::system`]).
+fn run_system(
+    name: String,
+    projects: Vec<Project>,
+    bounds: &Bounds,
+    opts: &VerifyOptions,
+    progress: impl FnMut(usize, u32, f64),
+) -> VerifyRun {
+    let bad = super::allow::check(&projects[0]);
+    if !bad.is_empty() {
+        let map = projects.into_iter().next().expect("an agent").map;
+        return input_failure(name, map, bad);
+    }
+    let mut lim = limits(&projects[0], bounds);
+    let started = std::time::Instant::now();
+    let deadline = lim
+        .timeout
+        .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
+        .and_then(|d| started.checked_add(d));
+    let lint_opts = crate::smt::LintOptions {
+        deadline,
+        ..Default::default()
+    };
+    let mut lint: Vec<Finding> = super::lint::lint_agents(&projects, &lint_opts)
+        .into_iter()
+        .map(|l| l.finding)
+        .collect();
+    lim.timeout = lim
+        .timeout
+        .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
+    match crate::check::system::verify_system(&projects, lim, opts.threads, progress) {
+        Err(diagnostics) => {
+            let map = projects.into_iter().next().expect("an agent").map;
+            input_failure(name, map, diagnostics)
+        }
         Ok(mut v) => {
+            lint.append(&mut v.findings);
+            v.findings = lint;
+            let project = projects.into_iter().next().expect("an agent");
+            report_of(name, project, v, opts)
+        }
+    }
+}
+
+/// The report of a verification.
+fn report_of(
+    name: String,
+    project: Project,
+    v: crate::check::Verification,
+    opts: &VerifyOptions,
+) -> VerifyRun {
+    let mut v = v;
+    {
+        {
             let unused = super::allow::apply(&project, &mut v.findings, |_| true);
             let mut report = Report::new(name, v.findings);
             report.warnings.extend(unused);

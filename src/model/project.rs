@@ -37,6 +37,9 @@ pub struct Project {
     pub map: SourceMap,
     /// `bdi-check.toml`.
     pub manifest: Manifest,
+    /// The agent's name, as Jason names it: its `.mas2j` or `[[agent]]` name (`name1` ...
+    /// for instances), or the stem of its source file (`kitchen.asl` is `kitchen`).
+    pub name: String,
     /// The agent and the files it includes.
     pub agent: LoadedAgent,
     /// The PDDL action model.
@@ -69,8 +72,42 @@ pub struct LoadError {
 }
 
 /// Loads the project at `path` (its folder or its manifest): every stage runs as far as the
-/// earlier ones allow, and all their errors are returned together.
+/// earlier ones allow, and all their errors are returned together. A project of several
+/// agents is refused here (see [`load_system`]).
 pub fn load_project(path: &Path) -> Result<Project, LoadError> {
+    let mut agents = load_agents(path)?;
+    if agents.len() > 1 {
+        let p = &agents[0];
+        let span = p.manifest.agent.agents[1].name.span;
+        let d = Diagnostic::error(
+            "input",
+            format!(
+                "this project has {} agents, and this command runs one agent",
+                agents.len()
+            ),
+        )
+        .with_label(span, "a second agent")
+        .with_help("`lint` and `verify` check multi-agent projects");
+        let map = agents.swap_remove(0).map;
+        return Err(LoadError {
+            map,
+            diagnostics: vec![d],
+        });
+    }
+    Ok(agents.remove(0))
+}
+
+/// The agents of a project: one [`Project`] per running agent (every instance of an
+/// agent of a `.mas2j` or `[[agent]]`, named as Jason names them), in order. They share
+/// the manifest, the domain, the objects and one table of atoms (built from what all of
+/// them use), so a state of one reads as a state of any other; each has its own plans and
+/// initial beliefs, and its `initial.states` are those of the shared environment (plus
+/// its own initial beliefs).
+pub fn load_system(path: &Path) -> Result<Vec<Project>, LoadError> {
+    load_agents(path)
+}
+
+fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
     let mut map = SourceMap::new();
     let fail = |map: SourceMap, diagnostics: Vec<Diagnostic>| Err(LoadError { map, diagnostics });
     let manifest = match load_manifest(path, &mut map) {
@@ -78,28 +115,94 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         Err(d) => return fail(map, d),
     };
     let mut errors = Vec::new();
-    let agent = crate::syntax::loader::load_agent_with(
-        &manifest.agent.plans.path,
-        &mut map,
-        &manifest.agent.source_path,
-    )
-    .map_err(|d| errors.extend(d));
+    // (name, where named, the file) per running agent.
+    let mut named: Vec<(String, Span, crate::syntax::manifest::FileRef)> = Vec::new();
+    if manifest.agent.agents.is_empty() {
+        let stem = manifest
+            .agent
+            .plans
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "agent".into());
+        named.push((
+            stem,
+            manifest.agent.plans.written.span,
+            manifest.agent.plans.clone(),
+        ));
+    }
+    for a in &manifest.agent.agents {
+        let names: Vec<String> = if a.instances == 1 {
+            vec![a.name.value.clone()]
+        } else {
+            (1..=a.instances)
+                .map(|i| format!("{}{i}", a.name.value))
+                .collect()
+        };
+        for n in names {
+            if let Some((_, first, _)) = named.iter().find(|(m, _, _)| *m == n) {
+                errors.push(
+                    Diagnostic::error("input", format!("two agents are named `{n}`"))
+                        .with_label(a.name.span, "this agent or one of its instances")
+                        .with_secondary(*first, "and this one")
+                        .with_help("Jason would rename one (RuntimeServices.getNewAgentName), and bdi-check does not guess which"),
+                );
+            }
+            named.push((n, a.name.span, a.plans.clone()));
+        }
+    }
+    if named.len() > MAX_AGENTS {
+        errors.push(
+            Diagnostic::error(
+                "input",
+                format!(
+                    "{} agents run in this project; at most {MAX_AGENTS} are supported",
+                    named.len()
+                ),
+            )
+            .in_file(manifest.path.display().to_string()),
+        );
+        return fail(map, errors);
+    }
+    // Each file is read once; instances share it.
+    let mut loaded: Vec<(std::path::PathBuf, LoadedAgent)> = Vec::new();
+    for (_, _, f) in &named {
+        if loaded.iter().any(|(p, _)| *p == f.path) {
+            continue;
+        }
+        match crate::syntax::loader::load_agent_with(&f.path, &mut map, &manifest.agent.source_path)
+        {
+            Ok(a) => loaded.push((f.path.clone(), a)),
+            Err(d) => errors.extend(d),
+        }
+    }
     let domain = load_domain(&manifest, &mut map).map_err(|d| errors.extend(d));
-    let (Ok(agent), Ok(domain)) = (agent, domain) else {
+    let Ok(domain) = domain else {
         return fail(map, errors);
     };
+    if !errors.is_empty() {
+        return fail(map, errors);
+    }
     let universe = match Universe::build(&domain, &manifest) {
         Ok(u) => u,
         Err(d) => return fail(map, d),
     };
-    let vocabulary = match vocabulary::check(&agent, &domain, &manifest, &universe, &map) {
+    let all_items: Vec<&Item> = loaded.iter().flat_map(|(_, a)| a.items()).collect();
+    let vocabulary = match vocabulary::check_items(&all_items, &domain, &manifest, &universe, &map)
+    {
         Ok(v) => v,
         Err(d) => return fail(map, d),
     };
-    let plans = match PlanLibrary::compile(&agent) {
-        Ok(p) => p,
-        Err(d) => return fail(map, d),
-    };
+    let mut libraries = Vec::new();
+    for (_, a) in &loaded {
+        match PlanLibrary::compile(a) {
+            Ok(p) => libraries.push(p),
+            Err(d) => errors.extend(d),
+        }
+    }
+    if !errors.is_empty() {
+        return fail(map, errors);
+    }
     let predicates: Vec<(Arc<str>, Vec<_>)> = vocabulary
         .predicates
         .iter()
@@ -152,19 +255,42 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
             ),
         }
     }
-    // The agent's initial beliefs hold at the start of every run, as in Jason.
-    let mut agent_beliefs = Vec::new();
-    for item in agent.items() {
-        if let Item::Belief(b) = item {
-            match ground_atom(&b.literal, &atoms, &universe) {
-                Ok(a) => {
-                    facts.insert(a);
-                    if !agent_beliefs.contains(&a) {
-                        agent_beliefs.push(a);
+    let several = named.len() > 1;
+    // The agents' initial beliefs hold at the start of every run, as in Jason. With one
+    // agent they are facts of its states; with several, each agent's are its own.
+    let mut initial_beliefs: Vec<Vec<AtomId>> = Vec::new();
+    for (_, a) in &loaded {
+        let mut mine = Vec::new();
+        for item in a.items() {
+            if let Item::Belief(b) = item {
+                match ground_atom(&b.literal, &atoms, &universe) {
+                    Ok(at) => {
+                        if several && vocabulary_is_environment(&vocabulary, &atoms, at) {
+                            errors.push(
+                                Diagnostic::error(
+                                    "input",
+                                    format!(
+                                        "`{}` is an initial belief of a percept in a project of several agents",
+                                        crate::syntax::printer::print_literal(&b.literal)
+                                    ),
+                                )
+                                .with_label(b.literal.span, "a predicate of the PDDL domain")
+                                .with_help("the environment is shared: give its atoms in `[initial] facts`"),
+                            );
+                        }
+                        if !mine.contains(&at) {
+                            mine.push(at);
+                        }
                     }
+                    Err(d) => errors.push(d),
                 }
-                Err(d) => errors.push(d),
             }
+        }
+        initial_beliefs.push(mine);
+    }
+    if !several {
+        for &a in &initial_beliefs[0] {
+            facts.insert(a);
         }
     }
     let mut vary = Vec::new();
@@ -217,25 +343,46 @@ pub fn load_project(path: &Path) -> Result<Project, LoadError> {
         .with_help("every check would pass vacuously; look for contradicting constraints");
         return fail(map, vec![d]);
     }
-    Ok(Project {
-        map,
-        manifest,
-        agent,
-        domain,
-        universe,
-        vocabulary,
-        plans,
-        atoms,
-        actions,
-        constraints,
-        invariants,
-        initial: InitialStates {
-            facts,
-            vary,
-            agent_beliefs,
-            states,
-        },
-    })
+    let mut out = Vec::new();
+    for (name, _, f) in &named {
+        let k = loaded
+            .iter()
+            .position(|(p, _)| *p == f.path)
+            .expect("loaded");
+        let mut manifest = manifest.clone();
+        manifest.agent.plans = f.clone();
+        out.push(Project {
+            map: map.clone(),
+            manifest,
+            name: name.clone(),
+            agent: loaded[k].1.clone(),
+            domain: domain.clone(),
+            universe: universe.clone(),
+            vocabulary: vocabulary.clone(),
+            plans: libraries[k].clone(),
+            atoms: atoms.clone(),
+            actions: actions.clone(),
+            constraints: constraints.clone(),
+            invariants: invariants.clone(),
+            initial: InitialStates {
+                facts: facts.clone(),
+                vary: vary.clone(),
+                agent_beliefs: initial_beliefs[k].clone(),
+                states: states.clone(),
+            },
+        });
+    }
+    Ok(out)
+}
+
+/// Most agents one project runs.
+pub const MAX_AGENTS: usize = 64;
+
+/// Whether atom `a` is of a predicate of the PDDL domain.
+fn vocabulary_is_environment(v: &Vocabulary, atoms: &AtomTable, a: AtomId) -> bool {
+    let (p, _) = atoms.decode(a);
+    v.predicate(atoms.pred_name(p))
+        .is_some_and(|(_, sig)| sig.is_environment())
 }
 
 /// Reads and parses the manifest's PDDL domain.

@@ -134,6 +134,29 @@ pub enum Note {
         /// Whose intention.
         origin: Origin,
     },
+    /// `.send` or `.broadcast` of `achieve`: the goal (its content) goes to the mailboxes
+    /// of these agents (indices in [`super::System`]).
+    Sent {
+        /// The receivers.
+        to: Vec<u8>,
+        /// The goal, as written in the message.
+        goal: Term,
+    },
+    /// Among several agents: what the agent perceived at the start of its cycle (the
+    /// environment changed since its last sense).
+    Perceived {
+        /// Atoms it now believes.
+        added: Vec<AtomId>,
+        /// Atoms it no longer believes.
+        removed: Vec<AtomId>,
+    },
+    /// Among several agents: the message the agent read at the start of its cycle.
+    Received {
+        /// The sender's index.
+        from: u8,
+        /// The event it posted.
+        trigger: EventTrigger,
+    },
     /// An intention ended successfully.
     Finished(Origin),
     /// A goal event had no applicable plan (whether or not a failure plan then handles it).
@@ -232,9 +255,15 @@ pub struct Semantics<'p> {
     pub(super) local: bool,
     /// Per rule head (functor, arity): every atom proving it may read.
     pub(super) rule_reads: HashMap<(String, usize), AtomSet>,
-    /// The agent's name: Jason names an agent run without a `.mas2j` after its source
-    /// file (`kitchen.asl` is `kitchen`).
-    agent_name: String,
+    /// The agent's name ([`Project::name`]).
+    pub(super) agent_name: String,
+    /// Every agent of the system, by index (this one alone, outside a [`super::System`]).
+    pub(super) agents: Vec<String>,
+    /// This agent's index in `agents`.
+    pub(super) me: u8,
+    /// Whether the environment is shared with other agents: an action's effects are then
+    /// perceived at the agent's next sense, not queued when it acts.
+    pub(super) shared_world: bool,
     /// Per predicate: whether the order of its beliefs can decide an answer (some query
     /// asks it with a variable, or `-b`/`-+b` removes the first of several).
     pub(super) ordered: Vec<bool>,
@@ -343,13 +372,10 @@ impl<'p> Semantics<'p> {
                 .map(|a| a.touched().len())
                 .max()
                 .unwrap_or(0),
-            agent_name: m
-                .agent
-                .plans
-                .path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_else(|| "agent".into()),
+            agent_name: project.name.clone(),
+            agents: vec![project.name.clone()],
+            me: 0,
+            shared_world: false,
         };
         sem.rule_reads = sem.compute_rule_reads();
         sem.ordered = ordered_predicates(project);
@@ -519,7 +545,7 @@ impl<'p> Semantics<'p> {
     /// One reasoning cycle: the intentions whose `.wait` ended resume (for an agent that
     /// waits, one branch per choice of timers fired before the cycle), then deliberate on
     /// the first event, then act on the first intention.
-    fn cycle(&self, state: &State) -> Vec<Transition> {
+    pub(super) fn cycle(&self, state: &State) -> Vec<Transition> {
         if state.waiting.is_empty() {
             return self.cycle_from(state.clone(), Vec::new());
         }

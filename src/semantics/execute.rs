@@ -286,11 +286,13 @@ impl Semantics<'_> {
                     notes: &mut Vec<Note>| {
             let failed = int.frames.last().map(|f| f.trigger.clone()).expect("frame");
             // The `error(Id)` Jason's `createBasicErrorAnnots` gives the failure event.
-            let error = match step.kind {
+            let error = match &step.kind {
                 BodyStep::Test(_) => "test_goal_failed",
                 BodyStep::Constraint(..) => "constraint_failed",
                 // A JasonException's default error (`JasonException.defaultError`).
                 BodyStep::Library { .. } => "internal_action",
+                // The only way a `.send` fails here (`LocalAgArch.sendMsg`).
+                BodyStep::Internal(t) if t.functor() == Some(".send") => "receiver_not_found",
                 BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
                     "belief_revision_failed"
                 }
@@ -385,7 +387,11 @@ impl Semantics<'_> {
                 let after = env_before + added.len() - removed.len();
                 self.java_order(&mut removed, env_before);
                 self.java_order(&mut added, after);
-                self.perceive(s, &added, &removed);
+                // Among several agents the change is perceived at the agent's next sense,
+                // with every other agent's (see `System`).
+                if !self.shared_world {
+                    self.perceive(s, &added, &removed);
+                }
                 notes.push(Note::Action {
                     text,
                     term,
@@ -502,6 +508,89 @@ impl Semantics<'_> {
                             notes.push(Note::Internal { text, plan, origin });
                             return Flow::Gone;
                         }
+                    }
+                    f @ (".send" | ".broadcast") => {
+                        let args = term.args();
+                        let content = if f == ".send" { &args[2] } else { &args[1] };
+                        let beyond = |reason: String, notes: &mut Vec<Note>| {
+                            notes.push(Note::Beyond {
+                                text: text.clone(),
+                                plan,
+                                span: step.span,
+                                reason,
+                            });
+                            Flow::Gone
+                        };
+                        if !content.is_ground() {
+                            return beyond(
+                                "the message's content is not ground, and bdi-check sends ground goals only".into(),
+                                notes,
+                            );
+                        }
+                        if content
+                            .annots()
+                            .iter()
+                            .any(|a| a.functor() == Some("source"))
+                        {
+                            return beyond(
+                                "the content names a source already (Jason nests the sender's `source` around it), which bdi-check does not model".into(),
+                                notes,
+                            );
+                        }
+                        let to: Vec<u8> = if f == ".broadcast" {
+                            // `LocalAgArch.broadcast`: every agent but the sender.
+                            (0..self.agents.len() as u8)
+                                .filter(|&k| k != self.me)
+                                .collect()
+                        } else {
+                            let name = match &args[0] {
+                                Term::Atom(n) => n.to_string(),
+                                Term::Str(n) => n.to_string(),
+                                r => {
+                                    return beyond(
+                                        format!("the receiver `{r}` is not an agent's name"),
+                                        notes,
+                                    )
+                                }
+                            };
+                            let name = if name == "self" {
+                                self.agent_name.clone()
+                            } else {
+                                name
+                            };
+                            match self.agents.iter().position(|a| *a == name) {
+                                Some(k) => vec![k as u8],
+                                None => {
+                                    // `LocalAgArch.sendMsg`: ReceiverNotFoundException.
+                                    let int = std::mem::replace(int, empty_intention(origin));
+                                    return fail(
+                                        self,
+                                        s,
+                                        int,
+                                        &text,
+                                        format!("no agent is named `{name}` (receiver_not_found)"),
+                                        notes,
+                                    );
+                                }
+                            }
+                        };
+                        if !self.shared_world && !to.is_empty() {
+                            return beyond(
+                                "a message to the agent itself: bdi-check delivers messages in projects of several agents".into(),
+                                notes,
+                            );
+                        }
+                        notes.push(Note::Internal {
+                            text: text.clone(),
+                            plan,
+                            origin,
+                        });
+                        notes.push(Note::Sent {
+                            to,
+                            goal: content.clone(),
+                        });
+                        self.normalize(frame);
+                        return Flow::Continue;
                     }
                     _ => {
                         let f = Formula::Call(t.clone());

@@ -19,8 +19,10 @@ mod perceive;
 pub mod query;
 mod reads;
 pub mod state;
+pub mod system;
 mod wait;
 
 pub use compiled::{Compiled, Notes, Packed};
 pub use cycle::{FrameView, Note, Semantics, Transition};
 pub use state::{Event, EventTrigger, Frame, InLibrary, Intention, Origin, State};
+pub use system::{Message, Step, System, SystemState};

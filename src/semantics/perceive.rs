@@ -15,6 +15,11 @@ impl Semantics<'_> {
         self.ordered[p.0 as usize]
     }
 
+    /// Whether atom `a` is the environment's (of a PDDL predicate), not a mental note.
+    pub fn is_environment_atom(&self, a: AtomId) -> bool {
+        self.env_atoms.contains(a)
+    }
+
     /// How many of the environment's atoms hold in `beliefs`.
     pub fn env_count(&self, beliefs: &AtomSet) -> usize {
         let env = self.env_atoms.words();

@@ -9,6 +9,7 @@ pub mod diagnostic;
 pub mod lexer;
 pub mod loader;
 pub mod manifest;
+pub mod mas2j;
 pub mod parser;
 pub mod pddl;
 pub mod printer;

@@ -218,6 +218,8 @@ impl Checker<'_> {
             ".drop_intention" => &[0, 1],
             ".add_plan" => &[1, 2, 3],
             ".remove_plan" => &[1, 2],
+            ".send" => &[3, 4, 5],
+            ".broadcast" => &[2],
             ".fail" => &[0],
             // The third (the time waited) is refused where the step is compiled.
             ".wait" => &[1, 2, 3],
@@ -317,6 +319,7 @@ impl Checker<'_> {
                 }
             }
             ".remove_plan" => {}
+            ".send" | ".broadcast" => self.message(cl, l, scope),
             _ if GOAL_ACTIONS.contains(&name) => {
                 if let Some(g) = l.args.first() {
                     match &g.kind {
@@ -339,6 +342,71 @@ impl Checker<'_> {
                     self.term(cl, a, scope);
                 }
             }
+        }
+    }
+
+    /// `.send(Receiver, Performative, Content)` and `.broadcast(Performative, Content)`:
+    /// the performatives bdi-check models (`achieve`), with their content checked as the
+    /// step they stand for (`achieve g` as `!g`); the others are refused where written.
+    fn message(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
+        let send = l.functor == ".send";
+        let (ilf, content) = if send {
+            (&l.args[1], &l.args[2])
+        } else {
+            (&l.args[0], &l.args[1])
+        };
+        if send {
+            match &l.args[0].kind {
+                ExprKind::Literal(r) if r.args.is_empty() && !r.is_internal_action() => {}
+                ExprKind::Var(_) => {}
+                _ => {
+                    self.unsupported(
+                        l.args[0].span,
+                        "a receiver that is not an agent's name or a variable (a list, a string)",
+                        "receiver",
+                    );
+                    return;
+                }
+            }
+        }
+        let performative = match &ilf.kind {
+            ExprKind::Literal(p) if p.args.is_empty() && p.annots.is_none() => p.functor.as_str(),
+            _ => {
+                self.unsupported(
+                    ilf.span,
+                    "a performative that is not written out",
+                    "performative",
+                );
+                return;
+            }
+        };
+        match performative {
+            "achieve" if l.args.len() == 3 || !send => match &content.kind {
+                ExprKind::Literal(g) if !g.is_internal_action() => {
+                    self.goal_literal(cl, g, super::Role::Use, scope)
+                }
+                _ => self.unsupported(
+                    content.span,
+                    "`achieve` of something other than a goal literal (a list, a variable)",
+                    "content",
+                ),
+            },
+            "achieve" => self.unsupported(
+                l.span,
+                "`.send` of `achieve` with an answer or a timeout",
+                "extra arguments",
+            ),
+            "tell" | "untell" | "unachieve" | "askOne" | "askAll" | "tellHow" | "untellHow"
+            | "askHow" | "signal" => self.unsupported(
+                ilf.span,
+                &format!("the performative `{performative}` (bdi-check models `achieve` so far)"),
+                "performative",
+            ),
+            other => self.diags.push(
+                Diagnostic::error("input", format!("`{other}` is not a KQML performative Jason knows"))
+                    .with_label(ilf.span, "performative")
+                    .with_help("Jason's performatives: tell, untell, achieve, unachieve, askOne, askAll, tellHow, untellHow, askHow"),
+            ),
         }
     }
 }

@@ -250,6 +250,8 @@ pub const INTERNAL_ACTIONS: &[&str] = &[
     ".random",
     ".add_plan",
     ".remove_plan",
+    ".send",
+    ".broadcast",
 ];
 
 /// Whether the reasoning cycle models the internal action `name` (those above, and the
@@ -289,7 +291,19 @@ pub fn check(
     universe: &Universe,
     map: &SourceMap,
 ) -> Result<Vocabulary, Vec<Diagnostic>> {
-    let items = agent.items();
+    check_items(&agent.items(), domain, manifest, universe, map)
+}
+
+/// [`check`] of the items of one agent or of several together (a multi-agent project has
+/// one vocabulary, so that what one agent tells another means the same to both).
+pub fn check_items(
+    items: &[&crate::syntax::ast::Item],
+    domain: &pddl::Domain,
+    manifest: &Manifest,
+    universe: &Universe,
+    map: &SourceMap,
+) -> Result<Vocabulary, Vec<Diagnostic>> {
+    let items = items.to_vec();
     let mut c = Checker::new(domain, manifest, universe, map);
     c.declare(&items, manifest);
     c.collect_agent(&items);

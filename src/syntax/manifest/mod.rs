@@ -31,9 +31,10 @@ mod types;
 mod validate;
 
 pub use types::{
-    AgentSection, Allow, Arrival, Bounds, ExpectedPair, ExplanationSection, FileRef, Formula,
-    InitialSection, Invariant, Located, Manifest, Modifies, ObjectType, Phrase, PlanSelection,
-    Property, PropertyKind, RequestsSection, Scenario, StepFormula, User, MAX_NUMBERS,
+    AgentEntry, AgentSection, Allow, Arrival, Bounds, ExpectedPair, ExplanationSection, FileRef,
+    Formula, InitialSection, Invariant, Located, Manifest, Modifies, ObjectType, Phrase,
+    PlanSelection, Property, PropertyKind, RequestsSection, Scenario, StepFormula, User,
+    MAX_NUMBERS,
 };
 
 use super::diagnostic::Diagnostic;
@@ -92,7 +93,77 @@ pub fn load_manifest(path: &Path, map: &mut SourceMap) -> Result<Manifest, Vec<D
         path.to_path_buf()
     };
     let file = read_into(&file_path, map)?;
-    parse_manifest(file, &map.file(file).text, &file_path)
+    let mut manifest = parse_manifest(file, &map.file(file).text, &file_path)?;
+    if let Some(mas) = manifest.agent.mas.clone() {
+        read_mas(&mas, &mut manifest.agent, map)?;
+    }
+    Ok(manifest)
+}
+
+/// Reads the agents of the `.mas2j` that `[agent] mas` names into `agent`: each agent's
+/// source is found as Jason finds it (`SourcePath.fixPath`: the file itself, relative to
+/// the project file's folder, then in each `aslSourcePath` folder), and those folders are
+/// added to where `include` looks.
+fn read_mas(
+    mas: &FileRef,
+    agent: &mut AgentSection,
+    map: &mut SourceMap,
+) -> Result<(), Vec<Diagnostic>> {
+    let file = read_into(&mas.path, map)?;
+    let text = map.file(file).text.clone();
+    let project = crate::syntax::mas2j::parse_mas2j(file, &text)?;
+    let dir = mas.path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let folders: Vec<std::path::PathBuf> = project
+        .source_path
+        .iter()
+        .map(|p| dir.join(p.trim_end_matches('/')))
+        .collect();
+    let mut errors = Vec::new();
+    for a in &project.agents {
+        let found = std::iter::once(dir.join(&a.source))
+            .chain(folders.iter().map(|f| f.join(&a.source)))
+            .find(|p| p.is_file());
+        match found {
+            Some(path) => agent.agents.push(AgentEntry {
+                name: Located {
+                    value: a.name.clone(),
+                    span: a.span,
+                },
+                plans: FileRef {
+                    written: Located {
+                        value: a.source.clone(),
+                        span: a.span,
+                    },
+                    path,
+                },
+                instances: a.instances,
+            }),
+            None => errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!(
+                        "the source of agent `{}`, `{}`, does not exist",
+                        a.name, a.source
+                    ),
+                )
+                .with_label(a.span, "no such file")
+                .with_help(format!(
+                    "Jason looks for it in `{}` and in the `aslSourcePath` folders",
+                    dir.display()
+                )),
+            ),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    for f in folders.into_iter().filter(|f| f.is_dir()) {
+        if !agent.source_path.contains(&f) {
+            agent.source_path.push(f);
+        }
+    }
+    agent.plans = agent.agents[0].plans.clone();
+    Ok(())
 }
 
 /// Validates a manifest text already in a [`SourceMap`] under `file`; `path` is where it was

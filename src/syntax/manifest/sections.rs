@@ -9,9 +9,10 @@ use super::validate::{
 };
 use crate::syntax::ast::*;
 use crate::syntax::diagnostic::Diagnostic;
+use crate::syntax::mas2j::MAX_INSTANCES;
 use std::ops::Range;
-use std::path::Path;
-use toml::de::{DeString, DeTable, DeValue};
+use std::path::{Path, PathBuf};
+use toml::de::{DeArray, DeString, DeTable, DeValue};
 use toml::Spanned;
 
 impl<'a> Cx<'a> {
@@ -121,65 +122,212 @@ impl<'a> Cx<'a> {
     }
 
     fn agent(&mut self, root: &DeTable, dir: &Path) -> Option<AgentSection> {
-        if root.get("agent").is_none() {
+        let Some(v) = root.get("agent") else {
             self.err(
                 0..0,
                 "missing section [agent]: the manifest must name the plan library and the action model",
                 "expected `[agent]` with `plans` and `actions`",
             );
             return None;
-        }
-        let t = self.section(root, "agent", &["plans", "actions", "source_path"])?;
-        let header = root.get("agent").map_or(0..0, |v| v.span());
-        let file = |cx: &mut Self, key: &str, kind: &str| -> Option<FileRef> {
-            let Some(v) = t.get(key) else {
-                cx.missing(header.clone(), key, "[agent]");
-                return None;
-            };
-            let written = cx.string(v, &format!("`agent.{key}`"))?;
-            let path = dir.join(&written.value);
-            if written.value.is_empty() || !path.is_file() {
-                let why = if path.is_dir() {
-                    "is a folder"
-                } else if path.exists() {
-                    "is not a regular file"
-                } else {
-                    "does not exist"
-                };
-                let d =
-                    Diagnostic::error("input", format!("{kind} file `{}` {why}", written.value))
-                        .with_label(cx.span(v.span()), "no such file")
-                        .with_help(format!(
-                            "paths are relative to the manifest's folder; looked for `{}`",
-                            path.display()
-                        ));
-                cx.errors.push(d);
-                return None;
-            }
-            Some(FileRef { written, path })
         };
-        let plans = file(self, "plans", "plan library");
-        let actions = file(self, "actions", "action model");
-        let mut source_path = Vec::new();
-        if let Some(v) = t.get("source_path") {
-            for (folder, span) in self.strings(v, "`agent.source_path`") {
-                let path = dir.join(&folder.value);
-                if path.is_dir() {
-                    source_path.push(path);
-                } else {
-                    self.err(
-                        span,
-                        format!("source path folder `{}` does not exist", folder.value),
-                        "no such folder",
-                    );
-                }
-            }
+        if let DeValue::Array(entries) = v.get_ref() {
+            return self.agent_list(entries, v.span(), dir);
         }
+        let t = self.section(root, "agent", &["plans", "mas", "actions", "source_path"])?;
+        let header = v.span();
+        let actions = match t.get("actions") {
+            Some(a) => self.file_ref(a, "actions", "action model", dir),
+            None => {
+                self.missing(header.clone(), "actions", "[agent]");
+                None
+            }
+        };
+        let source_path = t
+            .get("source_path")
+            .map(|v| self.source_path(v, dir))
+            .unwrap_or_default();
+        let (plans, mas) = match (t.get("plans"), t.get("mas")) {
+            (Some(p), None) => (self.file_ref(p, "plans", "plan library", dir), None),
+            (None, Some(m)) => {
+                // The agents are read from the project file once it is loaded; until then
+                // `plans` names the project file.
+                let mas = self.file_ref(m, "mas", "Jason project", dir);
+                (mas.clone(), mas)
+            }
+            (Some(_), Some(m)) => {
+                self.err(
+                    m.span(),
+                    "`plans` and `mas` are both given in [agent]",
+                    "a project names one agent's plans or a Jason project file, not both",
+                );
+                return None;
+            }
+            (None, None) => {
+                self.missing(header, "plans", "[agent]");
+                return None;
+            }
+        };
         Some(AgentSection {
             source_path,
             plans: plans?,
             actions: actions?,
+            agents: Vec::new(),
+            mas,
         })
+    }
+
+    /// `[[agent]]`: the agents of a multi-agent project, each with `name`, `plans` and
+    /// `instances`; `actions` (the shared environment) and `source_path` are given in one
+    /// entry, or the same in several.
+    fn agent_list(
+        &mut self,
+        entries: &DeArray,
+        header: std::ops::Range<usize>,
+        dir: &Path,
+    ) -> Option<AgentSection> {
+        const KEYS: &[&str] = &["name", "plans", "instances", "actions", "source_path"];
+        let mut agents: Vec<AgentEntry> = Vec::new();
+        let mut actions: Option<(FileRef, std::ops::Range<usize>)> = None;
+        let mut source_path: Vec<PathBuf> = Vec::new();
+        let mut ok = true;
+        for (i, av) in entries.iter().enumerate() {
+            let Some(t) = self.table(av, &format!("[[agent]] #{}", i + 1)) else {
+                ok = false;
+                continue;
+            };
+            self.check_keys(t, KEYS, "in [[agent]]");
+            let name = match t.get("name") {
+                Some(n) => self.string(n, "`agent.name`"),
+                None => {
+                    self.missing(av.span(), "name", "[[agent]]");
+                    None
+                }
+            };
+            if let Some(n) = &name {
+                let v = &n.value;
+                let good = v.starts_with(|c: char| c.is_ascii_lowercase())
+                    && v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+                if !good {
+                    let r = n.span.start as usize..n.span.end as usize;
+                    self.err(
+                        r,
+                        format!("\"{}\" is not an agent's name", v.escape_debug()),
+                        "expected a Jason atom: a lower-case letter, then letters, digits or `_`",
+                    );
+                }
+            }
+            let plans = match t.get("plans") {
+                Some(p) => self.file_ref(p, "plans", "plan library", dir),
+                None => {
+                    self.missing(av.span(), "plans", "[[agent]]");
+                    None
+                }
+            };
+            let instances = t
+                .get("instances")
+                .and_then(|x| self.integer(x, "`agent.instances`", 1, MAX_INSTANCES as u64))
+                .unwrap_or(1) as u32;
+            if let Some(a) = t.get("actions") {
+                if let Some(f) = self.file_ref(a, "actions", "action model", dir) {
+                    match &actions {
+                        Some((first, _)) if first.path != f.path => {
+                            let d = Diagnostic::error(
+                                "input",
+                                "the agents of a project share one environment: `actions` names two domains",
+                            )
+                            .with_label(f.written.span, "a second domain")
+                            .with_secondary(first.written.span, "the first");
+                            self.errors.push(d);
+                        }
+                        Some(_) => {}
+                        None => actions = Some((f, a.span())),
+                    }
+                }
+            }
+            if let Some(v) = t.get("source_path") {
+                for p in self.source_path(v, dir) {
+                    if !source_path.contains(&p) {
+                        source_path.push(p);
+                    }
+                }
+            }
+            match (name, plans) {
+                (Some(name), Some(plans)) => agents.push(AgentEntry {
+                    name,
+                    plans,
+                    instances,
+                }),
+                _ => ok = false,
+            }
+        }
+        let names: Vec<Located<String>> = agents.iter().map(|a| a.name.clone()).collect();
+        self.no_duplicates(&names, "agent");
+        let Some((actions, _)) = actions else {
+            self.err(
+                header,
+                "missing key `actions` in [[agent]]",
+                "one `[[agent]]` names the PDDL domain the agents share",
+            );
+            return None;
+        };
+        if !ok || agents.is_empty() {
+            return None;
+        }
+        Some(AgentSection {
+            plans: agents[0].plans.clone(),
+            actions,
+            source_path,
+            agents,
+            mas: None,
+        })
+    }
+
+    /// A file the manifest names under `key`, resolved against `dir` and checked to exist.
+    fn file_ref(
+        &mut self,
+        v: &Spanned<DeValue>,
+        key: &str,
+        kind: &str,
+        dir: &Path,
+    ) -> Option<FileRef> {
+        let written = self.string(v, &format!("`agent.{key}`"))?;
+        let path = dir.join(&written.value);
+        if written.value.is_empty() || !path.is_file() {
+            let why = if path.is_dir() {
+                "is a folder"
+            } else if path.exists() {
+                "is not a regular file"
+            } else {
+                "does not exist"
+            };
+            let d = Diagnostic::error("input", format!("{kind} file `{}` {why}", written.value))
+                .with_label(self.span(v.span()), "no such file")
+                .with_help(format!(
+                    "paths are relative to the manifest's folder; looked for `{}`",
+                    path.display()
+                ));
+            self.errors.push(d);
+            return None;
+        }
+        Some(FileRef { written, path })
+    }
+
+    /// `source_path`: folders that must exist.
+    fn source_path(&mut self, v: &Spanned<DeValue>, dir: &Path) -> Vec<PathBuf> {
+        let mut out = Vec::new();
+        for (folder, span) in self.strings(v, "`agent.source_path`") {
+            let path = dir.join(&folder.value);
+            if path.is_dir() {
+                out.push(path);
+            } else {
+                self.err(
+                    span,
+                    format!("source path folder `{}` does not exist", folder.value),
+                    "no such folder",
+                );
+            }
+        }
+        out
     }
 
     fn objects(&mut self, root: &DeTable) -> Vec<ObjectType> {

@@ -48,7 +48,7 @@ pub struct FileRef {
     pub path: PathBuf,
 }
 
-/// `[agent]`: the files of the project. Both keys are required.
+/// `[agent]` (or `[[agent]]`): the files of the project.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AgentSection {
     /// `plans`: the Jason AgentSpeak plan library.
@@ -58,6 +58,22 @@ pub struct AgentSection {
     /// `source_path`: folders (relative to the manifest) where `include` also looks, as
     /// Jason's `aslSourcePath`. Default: none.
     pub source_path: Vec<PathBuf>,
+    /// The agents of a multi-agent project, in order (a `.mas2j`'s or `[[agent]]`'s); empty
+    /// when the project is the one agent of `plans`. Then `plans` is the first agent's.
+    pub agents: Vec<AgentEntry>,
+    /// `mas`: the Jason project file the agents are read from, when the manifest names one.
+    pub mas: Option<FileRef>,
+}
+
+/// One agent of a multi-agent project.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AgentEntry {
+    /// Its name (the instances' names are built from it), where it is written.
+    pub name: Located<String>,
+    /// Its plan library.
+    pub plans: FileRef,
+    /// How many instances run (`#N` in a `.mas2j`; `instances`, default 1).
+    pub instances: u32,
 }
 
 /// One entry of `[objects]`: a PDDL type and its objects.

@@ -1,0 +1,495 @@
+//! `verify` of a project of several agents: every interleaving of their reasoning cycles
+//! ([`System`]) is explored, and the checks that one state or one transition decides are
+//! made: invariants, `always` and `reachable` properties over the shared environment,
+//! action failures and goal failures of every agent, and deadlock. Each violation comes
+//! with the shortest run to it, every step naming its agent.
+//!
+//! Not yet for several agents, and refused where written: formulas over an agent's mental
+//! notes, `eventually` properties, and the explanation checks.
+
+use super::explore::{explore_with, Graph, Limits, Options, Walk};
+use super::model::{beyond_of, Model};
+use super::trace::Builder;
+use super::Verification;
+use crate::findings::{Counterexample, Finding, Stats, Status};
+use crate::model::cond::Cond;
+use crate::model::formula;
+use crate::model::project::Project;
+use crate::semantics::{Note, Step, System, SystemState};
+use crate::syntax::manifest::PropertyKind;
+use crate::syntax::{Diagnostic, Severity, Span};
+use std::collections::BTreeMap;
+
+impl Model for System<'_> {
+    type State = SystemState;
+    type Label = Step;
+
+    fn init_states(&self) -> Vec<SystemState> {
+        self.initial_states()
+    }
+
+    fn next_states(&self, s: &SystemState) -> Vec<(Step, SystemState)> {
+        self.successors(s)
+    }
+
+    fn beyond(&self, label: &Step) -> Option<(Span, String)> {
+        beyond_of(label.notes.iter())
+    }
+}
+
+/// A transition that shows a failure: where it starts, its number there, its target's
+/// fingerprint, its agent and the note.
+struct Failure {
+    src: u32,
+    k: u32,
+    fp: u64,
+    agent: u8,
+    note: Note,
+}
+
+/// What one stored state decides: which conditions fail or hold, and whether it is stuck
+/// (no successor, some agent not done).
+struct Summary {
+    fails: Vec<bool>,
+    stuck: Option<Vec<u8>>,
+}
+
+/// Explores every interleaving of the agents of `projects` and runs the checks.
+pub fn verify_system(
+    projects: &[Project],
+    limits: Limits,
+    threads: usize,
+    progress: impl FnMut(usize, u32, f64),
+) -> Result<Verification, Vec<Diagnostic>> {
+    let project = &projects[0];
+    let system = System::new(projects)?;
+    let env = &system.agents[0];
+    let mut errors = Vec::new();
+    let mut conds: Vec<(String, &'static str, PropertyKind, Cond, Span)> = Vec::new();
+    let mental = |c: &Cond| c.atoms().into_iter().find(|a| !env.is_environment_atom(*a));
+    for (name, c) in &project.invariants {
+        let span = project
+            .manifest
+            .invariants
+            .iter()
+            .find(|i| &i.name.value == name)
+            .map_or(Span::default(), |i| i.formula.span);
+        conds.push((
+            name.clone(),
+            "invariant",
+            PropertyKind::Always,
+            c.clone(),
+            span,
+        ));
+    }
+    for p in &project.manifest.properties {
+        if p.kind == PropertyKind::Eventually {
+            errors.push(
+                Diagnostic::error(
+                    "input",
+                    "an `eventually` property in a project of several agents is not supported yet",
+                )
+                .with_label(p.formula.span, "here"),
+            );
+            continue;
+        }
+        match formula::compile(&p.formula.expr, &project.atoms, &project.universe) {
+            Ok(c) => conds.push((p.name.value.clone(), "property", p.kind, c, p.formula.span)),
+            Err(d) => errors.push(d),
+        }
+    }
+    for (_, _, _, c, span) in &conds {
+        if let Some(a) = mental(c) {
+            errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!(
+                        "`{}` is a mental note, and in a project of several agents a formula reads the shared environment only",
+                        project.atoms.display(a, &project.universe)
+                    ),
+                )
+                .with_label(*span, "this formula"),
+            );
+        }
+    }
+    if project.manifest.explanation.is_some() {
+        errors.push(
+            Diagnostic::error(
+                "input",
+                "the explanation checks of a project of several agents are not supported yet",
+            )
+            .in_file(project.manifest.path.display().to_string())
+            .with_help("leave `[explanation]` out of this manifest"),
+        );
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let mut first_fails: Vec<Option<u32>> = vec![None; conds.len()];
+    let mut first_stuck: Option<(u32, Vec<u8>)> = None;
+    let mut actions: BTreeMap<(u8, u32, u32, u32), Failure> = BTreeMap::new();
+    let mut goals: BTreeMap<(u8, String), Failure> = BTreeMap::new();
+    let opts = Options {
+        threads,
+        keep_edges: true,
+        ..Options::default()
+    };
+    let graph: Graph<SystemState> = explore_with(
+        &system,
+        limits,
+        &opts,
+        |s| Summary {
+            fails: conds
+                .iter()
+                .map(|(_, _, _, c, _)| !c.eval(&s.world))
+                .collect(),
+            stuck: {
+                let busy: Vec<u8> = (0..s.agents.len())
+                    .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
+                    .map(|k| k as u8)
+                    .collect();
+                (!busy.is_empty() && system.successors(s).is_empty()).then_some(busy)
+            },
+        },
+        |i, sum| {
+            for (j, f) in sum.fails.iter().enumerate() {
+                if *f && first_fails[j].is_none() {
+                    first_fails[j] = Some(i);
+                }
+            }
+            if let (Some(b), None) = (sum.stuck, &first_stuck) {
+                first_stuck = Some((i, b));
+            }
+        },
+        |src, k, label, fp| {
+            for n in &label.notes {
+                let x = || Failure {
+                    src,
+                    k,
+                    fp,
+                    agent: label.agent,
+                    note: n.clone(),
+                };
+                match n {
+                    Note::ActionFailed { span, .. } => {
+                        actions
+                            .entry((label.agent, span.file.0, span.start, span.end))
+                            .or_insert_with(x);
+                    }
+                    Note::GoalFailed { goal, cause, .. } => {
+                        goals
+                            .entry((label.agent, format!("{goal} {cause}")))
+                            .or_insert_with(x);
+                    }
+                    _ => {}
+                }
+            }
+        },
+        progress,
+    );
+    let cx = Cx {
+        projects,
+        system: &system,
+        graph: &graph,
+    };
+    let held = if graph.complete() {
+        Status::Pass
+    } else {
+        Status::Unknown
+    };
+    let n = graph.len();
+    let mut findings = Vec::new();
+    for (j, (name, check, kind, _, span)) in conds.iter().enumerate() {
+        let f = match (kind, first_fails[j]) {
+            (PropertyKind::Reachable, _) => {
+                // Reached where the negation fails to hold, i.e. where the formula holds.
+                match (0..n as u32).find(|&i| {
+                    graph
+                        .state(&system, i)
+                        .is_some_and(|s| conds[j].3.eval(&s.world))
+                }) {
+                    Some(i) => cx.reached(
+                        check,
+                        name,
+                        *span,
+                        Status::Pass,
+                        format!("`{name}` is reached after {} steps", graph.depth(i)),
+                        i,
+                        Severity::Note,
+                    ),
+                    None => cx.finding(
+                        check,
+                        name,
+                        *span,
+                        if graph.complete() {
+                            Status::Fail
+                        } else {
+                            Status::Unknown
+                        },
+                        format!("`{name}` is never reached"),
+                    ),
+                }
+            }
+            (_, Some(i)) => {
+                let what = if *check == "invariant" {
+                    format!(
+                        "invariant `{name}` is violated after {} steps",
+                        graph.depth(i)
+                    )
+                } else {
+                    format!(
+                        "`{name}` does not always hold: it is false after {} steps",
+                        graph.depth(i)
+                    )
+                };
+                cx.reached(check, name, *span, Status::Fail, what, i, Severity::Error)
+            }
+            (_, None) => cx.finding(
+                check,
+                name,
+                *span,
+                held,
+                if *check == "invariant" {
+                    format!("invariant `{name}` holds in all {n} reached states")
+                } else {
+                    format!("`{name}` holds in all {n} reached states")
+                },
+            ),
+        };
+        findings.push(f);
+    }
+    let whole = project.manifest.agent.plans.written.span;
+    let place = project
+        .manifest
+        .agent
+        .mas
+        .as_ref()
+        .map_or(whole, |m| m.written.span);
+    match first_stuck {
+        Some((i, busy)) => {
+            let names: Vec<String> = busy
+                .iter()
+                .map(|&k| format!("`{}`", system.names()[k as usize]))
+                .collect();
+            findings.push(cx.reached(
+                "deadlock",
+                "system",
+                place,
+                Status::Fail,
+                format!(
+                    "no agent can take a step, but {} {} not done",
+                    names.join(", "),
+                    if names.len() == 1 { "is" } else { "are" }
+                ),
+                i,
+                Severity::Error,
+            ));
+        }
+        None => findings.push(cx.finding(
+            "deadlock",
+            "system",
+            place,
+            held,
+            "no reachable state is stuck".into(),
+        )),
+    }
+    if actions.is_empty() {
+        findings.push(cx.finding(
+            "action-failure",
+            "all",
+            place,
+            held,
+            "no agent ever attempts an action whose precondition does not hold".into(),
+        ));
+    }
+    for x in actions.values() {
+        if let Note::ActionFailed {
+            text,
+            plan,
+            span,
+            reason,
+        } = &x.note
+        {
+            let who = &system.names()[x.agent as usize];
+            let p = &projects[x.agent as usize];
+            let loc = p.map.location(*span);
+            let mut f = cx.finding(
+                "action-failure",
+                &format!("{}:{}", loc.file, loc.line),
+                *span,
+                Status::Fail,
+                format!(
+                    "`{text}` of agent `{who}` in plan {} fails: {reason}",
+                    p.plans.plans[*plan as usize].name()
+                ),
+            );
+            f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
+            findings.push(f);
+        }
+    }
+    if goals.is_empty() {
+        findings.push(cx.finding(
+            "goal-failure",
+            "all",
+            place,
+            held,
+            "no agent's goal ever fails without a failure plan to handle it".into(),
+        ));
+    }
+    for x in goals.values() {
+        if let Note::GoalFailed {
+            goal,
+            cause,
+            span,
+            reason,
+            ..
+        } = &x.note
+        {
+            let who = &system.names()[x.agent as usize];
+            let at = span.unwrap_or(projects[x.agent as usize].manifest.agent.plans.written.span);
+            let loc = project.map.location(at);
+            let what = if goal == cause {
+                format!("goal {goal} of agent `{who}` fails ({reason})")
+            } else {
+                format!("{cause} fails ({reason}), so goal {goal} of agent `{who}` fails")
+            };
+            let mut f = cx.finding(
+                "goal-failure",
+                "",
+                at,
+                Status::Fail,
+                format!("{what}, and no failure plan handles it: the intention is dropped"),
+            );
+            f.id = format!("goal-failure:{}:{}", loc.file, loc.line);
+            f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
+            findings.push(f);
+        }
+    }
+    let seconds = graph.seconds;
+    Ok(Verification {
+        findings,
+        stats: Stats {
+            initial_states: graph.initial_covered,
+            states: n,
+            transitions: graph.transitions,
+            depth: graph.max_depth() as usize,
+            seconds,
+            states_per_second: if seconds > 0.0 {
+                n as f64 / seconds
+            } else {
+                0.0
+            },
+            complete: graph.complete(),
+        },
+        bound: graph.bound,
+        beyond: graph.beyond.as_ref().map(|(span, why)| {
+            let at = project.map.location(*span);
+            format!("{}:{}:{}: {why}", at.file, at.line, at.column)
+        }),
+        memory: (graph.store_bytes(), graph.edge_bytes()),
+        peak_memory: graph.peak_memory,
+        symmetric_types: Vec::new(),
+        symmetry_caveat: None,
+    })
+}
+
+struct Cx<'a> {
+    projects: &'a [Project],
+    system: &'a System<'a>,
+    graph: &'a Graph<SystemState>,
+}
+
+impl Cx<'_> {
+    fn finding(
+        &self,
+        check: &str,
+        name: &str,
+        span: Span,
+        status: Status,
+        message: String,
+    ) -> Finding {
+        let message = if status == Status::Unknown {
+            format!("{message}, as far as the search went: it was cut short before every state was reached")
+        } else {
+            message
+        };
+        Finding {
+            id: format!("{check}:{name}"),
+            check: check.into(),
+            severity: Severity::Error,
+            status,
+            message,
+            location: Some(self.projects[0].map.location(span)),
+            counterexample: None,
+            span: Some(span),
+            related: Vec::new(),
+            suppressed: None,
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn reached(
+        &self,
+        check: &str,
+        name: &str,
+        span: Span,
+        status: Status,
+        message: String,
+        at: u32,
+        severity: Severity,
+    ) -> Finding {
+        let mut f = self.finding(check, name, span, status, message);
+        f.severity = severity;
+        f.counterexample = Some(self.counterexample(&self.graph.path_to(at), None));
+        f
+    }
+
+    /// The run along `path`, then the failing transition `extra`: every step names its
+    /// agent.
+    fn counterexample(&self, path: &[u32], extra: Option<&Failure>) -> Counterexample {
+        let p = &self.projects[0];
+        let Some(mut walk) = path
+            .first()
+            .and_then(|&i| Walk::start(self.system, self.graph, i))
+        else {
+            return Counterexample::default();
+        };
+        let initial = walk
+            .state
+            .world
+            .iter()
+            .map(|a| p.atoms.display(a, &p.universe))
+            .collect();
+        let mut builders: Vec<Builder> = self
+            .projects
+            .iter()
+            .zip(&self.system.agents)
+            .map(|(p, sem)| Builder::new(p, sem))
+            .collect();
+        let mut steps = Vec::new();
+        let mut push = |label: Option<Step>, steps: &mut Vec<crate::findings::TraceStep>| {
+            let Some(label) = label else { return };
+            let b = &mut builders[label.agent as usize];
+            let from = b.steps().len();
+            b.push(label.notes);
+            for mut st in b.steps()[from..].iter().cloned() {
+                st.agent = Some(self.system.names()[label.agent as usize].clone());
+                steps.push(st);
+            }
+        };
+        for &j in &path[1..] {
+            let l = walk.step_to(j);
+            push(l, &mut steps);
+        }
+        if let Some(x) = extra {
+            let l = walk.step_by(x.k, x.fp, |l: &Step| l.agent == x.agent);
+            push(l, &mut steps);
+        }
+        Counterexample {
+            initial,
+            requests: builders[0].requests().to_vec(),
+            steps,
+            loop_start: None,
+        }
+    }
+}
