@@ -50,7 +50,7 @@ fn agree_agent(
     p: &bdi_check::model::project::Project,
     cap: usize,
 ) -> (usize, Option<Sizes>) {
-    let sem = Semantics::new(&p).expect("the semantics");
+    let sem = Semantics::new(p).expect("the semantics");
     let Some(compiled) = Compiled::new(&sem) else {
         return (0, None);
     };
