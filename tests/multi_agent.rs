@@ -269,8 +269,54 @@ fn messages_follow_jason_where_one_agent_runs_alone() {
             .contains("receiver_not_found"),
         "{r:#}"
     );
-    // A multi-agent report is not replayed yet: said, exit 2.
-    let (_, _, file) = verify_json("tests/verify/mas-race", "race-replay");
-    let o = bdi_check(&["replay", file.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn counterexamples_replay_until_the_defect_is_fixed() {
+    for case in ["mas-lost-wakeup", "mas-race"] {
+        // A copy, to fix afterwards.
+        let d = temp_dir(&format!("{case}-fix"));
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/verify")
+            .join(case);
+        for e in std::fs::read_dir(&src).unwrap().flatten() {
+            std::fs::copy(e.path(), d.join(e.file_name())).unwrap();
+        }
+        let (code, r, file) = verify_json(d.to_str().unwrap(), &format!("{case}-report"));
+        assert_eq!(code, 1, "{r:#}");
+        let failed = r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| f["status"] == "fail" && f["severity"] == "error")
+            .count();
+        assert!(failed >= 1);
+        let o = bdi_check(&["replay", file.to_str().unwrap()]);
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "{out}{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert_eq!(
+            out.matches("still reaches its violation").count(),
+            failed,
+            "{out}"
+        );
+        // The loader of specs/two-robots has neither defect.
+        std::fs::copy(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/two-robots/loader.asl"),
+            d.join("loader.asl"),
+        )
+        .unwrap();
+        let o = bdi_check(&["replay", file.to_str().unwrap()]);
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert_eq!(o.status.code(), Some(0), "{out}");
+        assert_eq!(
+            out.matches("no longer reaches its violation").count(),
+            failed,
+            "{out}"
+        );
+    }
 }

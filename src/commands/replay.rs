@@ -8,7 +8,7 @@ use crate::check::explore::fingerprint;
 use crate::check::trace::Builder;
 use crate::model::atoms::AtomSet;
 use crate::model::formula;
-use crate::model::project::{load_project, Project};
+use crate::model::project::{load_system, Project};
 use crate::report::replay::{render, Replayed};
 use crate::semantics::{Note, Semantics, State};
 use crate::syntax::ast::{TriggerKind, TriggerOp};
@@ -96,6 +96,9 @@ struct CounterexampleIn {
 struct StepIn {
     kind: String,
     text: String,
+    /// In a project of several agents, whose step it is.
+    #[serde(default)]
+    agent: Option<String>,
 }
 
 /// Bad input, with the files read (the report, or the project) for excerpts.
@@ -109,6 +112,8 @@ struct Opened {
     map: SourceMap,
     report: ReportIn,
     project: Project,
+    /// Every agent, when the project has several (`project` is the first).
+    agents: Vec<Project>,
     /// For stderr: whether the project changed since the report was made.
     notice: String,
     /// The report names its files and none changed.
@@ -150,7 +155,9 @@ fn open(report: &Path) -> Result<Opened, Refusal> {
             )),
         ));
     }
-    let project = load_project(Path::new(&r.project)).map_err(|e| (e.map, e.diagnostics))?;
+    let agents = load_system(Path::new(&r.project)).map_err(|e| (e.map, e.diagnostics))?;
+    let project = agents[0].clone();
+    let agents = if agents.len() > 1 { agents } else { Vec::new() };
     // What changed since the report: with its files' digests, an unchanged project must
     // give back every run (a run that no longer reaches its violation on it means the
     // report is not the one the project gave).
@@ -182,6 +189,7 @@ fn open(report: &Path) -> Result<Opened, Refusal> {
         map,
         report: r,
         project,
+        agents,
         notice,
         unchanged,
     })
@@ -236,6 +244,9 @@ fn check_unchanged(o: &Opened, results: &[&Replayed]) -> Result<(), Refusal> {
 /// Replays the failing findings of a report (or the one named). Errors are bad input.
 pub fn replay(report: &Path, finding: Option<&str>) -> Result<Replay, Refusal> {
     let o = open(report)?;
+    if !o.agents.is_empty() {
+        return replay_system(&o, finding);
+    }
     let sem = Semantics::new(&o.project).map_err(|d| (o.project.map.clone(), d))?;
     let selected: Vec<&FindingIn> = match finding {
         Some(id) => vec![with_run(&o, id)?],
@@ -289,6 +300,13 @@ pub fn walk<R>(
     f: impl FnOnce(&Project, &Semantics, &Walk) -> R,
 ) -> Result<(R, String), Refusal> {
     let o = open(report)?;
+    if !o.agents.is_empty() {
+        let d = Diagnostic::error(
+            "input",
+            "`trace` of a project of several agents is not supported yet; `replay` re-runs its counterexamples",
+        );
+        return Err((o.map.clone(), vec![d.in_file(o.path.clone())]));
+    }
     let sem = Semantics::new(&o.project).map_err(|d| (o.project.map.clone(), d))?;
     let finding = with_run(&o, id)?;
     let mut walked = Vec::new();
@@ -413,7 +431,9 @@ fn replay_one(
             .map(|t| (t.notes, t.next))
             .collect()
     };
-    let run = find_run(&state, &recorded, &next, &|n| shown(project, sem, n));
+    let run = find_run(&state, &recorded, &next, &|n: &Vec<Note>| {
+        shown(project, sem, n)
+    });
     let budget = budget + run.as_ref().map_or(0, Vec::len);
     for turn in 0..budget {
         if check.settles(&state) {
@@ -524,7 +544,9 @@ fn replay_explained(
             .map(|(step, t)| (step.notes, t))
             .collect::<Vec<_>>()
     };
-    let run = find_run(&state, &recorded, &next, &|n| shown(project, sem, n));
+    let run = find_run(&state, &recorded, &next, &|n: &Vec<Note>| {
+        shown(project, sem, n)
+    });
     for turn in 0..recorded.len() + 64 + run.as_ref().map_or(0, Vec::len) {
         let succ = model.next_states(&state);
         if succ.is_empty() {
@@ -575,35 +597,35 @@ fn replay_explained(
 /// say) which a recorded run may hide between two of its steps.
 const MAX_SILENT: usize = 4;
 
-/// A state's successors with their notes.
-type Next<'a, S> = &'a dyn Fn(&S) -> Vec<(Vec<Note>, S)>;
-/// The steps notes show, as `(kind, text)`.
-type Shown<'a> = &'a dyn Fn(&[Note]) -> Vec<(&'static str, String)>;
+/// A state's successors with their labels.
+type Next<'a, S, L> = &'a dyn Fn(&S) -> Vec<(L, S)>;
+/// The steps a label shows, as `(kind, text)`.
+type Shown<'a, L> = &'a dyn Fn(&L) -> Vec<(String, String)>;
 
 /// The successor to take at each transition so that the run shows exactly the recorded
 /// steps, silent transitions taken where the recording hides them (a depth-first search:
 /// a request and a silent cycle may both fit the next step, and only the rest of the run
 /// tells them apart). `None` when the project no longer gives that run.
-fn find_run<S: Clone>(
+fn find_run<S: Clone, L>(
     start: &S,
     recorded: &[(&str, &str)],
-    next: Next<'_, S>,
-    shown: Shown<'_>,
+    next: Next<'_, S, L>,
+    shown: Shown<'_, L>,
 ) -> Option<Vec<usize>> {
-    fn go<S: Clone>(
+    fn go<S: Clone, L>(
         s: &S,
         pos: usize,
         silent: usize,
         recorded: &[(&str, &str)],
-        next: Next<'_, S>,
-        shown: Shown<'_>,
+        next: Next<'_, S, L>,
+        shown: Shown<'_, L>,
         path: &mut Vec<usize>,
     ) -> bool {
         if pos == recorded.len() {
             return true;
         }
-        for (k, (notes, t)) in next(s).into_iter().enumerate() {
-            let steps = shown(&notes);
+        for (k, (label, t)) in next(s).into_iter().enumerate() {
+            let steps = shown(&label);
             let fits = steps.len() <= recorded.len() - pos
                 && steps
                     .iter()
@@ -626,12 +648,12 @@ fn find_run<S: Clone>(
 }
 
 /// The steps notes show, as `(kind, text)`.
-fn shown(project: &Project, sem: &Semantics, notes: &[Note]) -> Vec<(&'static str, String)> {
+fn shown(project: &Project, sem: &Semantics, notes: &[Note]) -> Vec<(String, String)> {
     let mut b = Builder::new(project, sem);
     b.push(notes.to_vec());
     b.steps()
         .iter()
-        .map(|s| (s.kind.name(), s.text.clone()))
+        .map(|s| (s.kind.name().to_string(), s.text.clone()))
         .collect()
 }
 
@@ -745,8 +767,13 @@ impl Check {
     }
 
     fn state_violated(&self, s: &State) -> bool {
+        self.atoms_violate(&s.beliefs)
+    }
+
+    /// Whether a state with these atoms violates the finding's state property.
+    fn atoms_violate(&self, atoms: &AtomSet) -> bool {
         match self {
-            Check::State(c, must_hold) => c.eval(&s.beliefs) != *must_hold,
+            Check::State(c, must_hold) => c.eval(atoms) != *must_hold,
             _ => false,
         }
     }
@@ -779,4 +806,123 @@ impl Check {
             _ => true,
         }
     }
+}
+
+/// Replays the failing findings of a report of several agents (or the one named): each
+/// run is followed as recorded, every step by its agent, then checked for its violation.
+fn replay_system(o: &Opened, finding: Option<&str>) -> Result<Replay, Refusal> {
+    let system =
+        crate::semantics::System::new(&o.agents).map_err(|d| (o.project.map.clone(), d))?;
+    let selected: Vec<&FindingIn> = match finding {
+        Some(id) => vec![with_run(o, id)?],
+        None => o
+            .report
+            .findings
+            .iter()
+            .filter(|f| has_run(f).is_ok() && f.suppressed.is_none())
+            .collect(),
+    };
+    let results: Vec<Replayed> = selected
+        .into_iter()
+        .map(|f| replay_system_one(&o.agents, &system, f))
+        .collect();
+    check_unchanged(o, &results.iter().collect::<Vec<_>>())?;
+    Ok(Replay {
+        results,
+        notice: o.notice.clone(),
+    })
+}
+
+/// Replays one finding's run among several agents.
+fn replay_system_one(
+    agents: &[Project],
+    system: &crate::semantics::System,
+    f: &FindingIn,
+) -> Replayed {
+    use crate::semantics::{Step, SystemState};
+    let project = &agents[0];
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    let Some(c) = &f.counterexample else {
+        return no("the finding has no counterexample");
+    };
+    let mut atoms = AtomSet::empty(project.atoms.len());
+    let names: HashSet<&str> = c.initial.iter().map(String::as_str).collect();
+    for a in 0..project.atoms.len() as u32 {
+        let a = crate::model::atoms::AtomId(a);
+        if names.contains(project.atoms.display(a, &project.universe).as_str()) {
+            atoms.insert(a);
+        }
+    }
+    if atoms.count() != names.len() {
+        return no("its initial state mentions atoms the project no longer has");
+    }
+    let Some(mut state) = system
+        .initial_states()
+        .into_iter()
+        .find(|s| s.world == atoms)
+    else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    let check = Check::of(project, f);
+    let kinds: Vec<String> = c
+        .steps
+        .iter()
+        .map(|s| format!("{}:{}", s.agent.as_deref().unwrap_or(""), s.kind))
+        .collect();
+    let recorded: Vec<(&str, &str)> = kinds
+        .iter()
+        .zip(&c.steps)
+        .map(|(k, s)| (k.as_str(), s.text.as_str()))
+        .collect();
+    let shown = |l: &Step| -> Vec<(String, String)> {
+        let k = l.agent as usize;
+        let name = &system.names()[k];
+        let mut b = Builder::new(&agents[k], &system.agents[k]);
+        b.push(l.notes.clone());
+        b.steps()
+            .iter()
+            .map(|s| (format!("{name}:{}", s.kind.name()), s.text.clone()))
+            .collect()
+    };
+    let next = |s: &SystemState| system.successors(s);
+    let Some(run) = find_run(&state, &recorded, &next, &shown) else {
+        return no("the project no longer gives this run");
+    };
+    let mut steps = 0;
+    for &k in &run {
+        let (label, t) = system.successors(&state).swap_remove(k);
+        steps += shown(&label).len();
+        if label.notes.iter().any(|n| check.note_violates(n, project)) {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {steps} steps"),
+            };
+        }
+        state = t;
+    }
+    // The recorded run may end in cycles that show no step (an agent perceiving): the
+    // violation is looked for after up to MAX_SILENT of them.
+    let violated = |s: &SystemState| {
+        let busy = (0..s.agents.len()).any(|k| !s.agents[k].is_idle() || !s.mail[k].is_empty());
+        check.atoms_violate(&s.world)
+            || (matches!(check, Check::Deadlock) && busy && system.successors(s).is_empty())
+    };
+    let mut frontier = vec![state];
+    for _ in 0..=MAX_SILENT {
+        if frontier.iter().any(violated) {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {steps} steps"),
+            };
+        }
+        frontier = frontier
+            .iter()
+            .flat_map(|s| system.successors(s))
+            .filter(|(l, _)| shown(l).is_empty())
+            .map(|(_, t)| t)
+            .collect();
+    }
+    no("the run no longer reaches the violation")
 }
