@@ -113,7 +113,7 @@ impl Semantics<'_> {
                     .expect("a frame");
                 let reason = format!("{}: {}", f.action, f.why);
                 let at = Some((f.plan, f.span));
-                self.fail_intention(s, int, &failed, at, &reason, "action_failed", notes);
+                self.fail_intention(s, int, &failed, at, &reason, ("action_failed", &[]), notes);
             }
             None => {
                 if self.clear_finished(&mut int, notes) {
@@ -291,8 +291,6 @@ impl Semantics<'_> {
                 BodyStep::Constraint(..) => "constraint_failed",
                 // A JasonException's default error (`JasonException.defaultError`).
                 BodyStep::Library { .. } => "internal_action",
-                // The only way a `.send` fails here (`LocalAgArch.sendMsg`).
-                BodyStep::Internal(t) if t.functor() == Some(".send") => "receiver_not_found",
                 BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
                     "belief_revision_failed"
                 }
@@ -304,7 +302,7 @@ impl Semantics<'_> {
                 &failed,
                 Some((plan, step.span)),
                 &format!("{text}: {reason}"),
-                error,
+                (error, &[]),
                 notes,
             );
             Flow::Gone
@@ -561,16 +559,26 @@ impl Semantics<'_> {
                             match self.agents.iter().position(|a| *a == name) {
                                 Some(k) => vec![k as u8],
                                 None => {
-                                    // `LocalAgArch.sendMsg`: ReceiverNotFoundException.
+                                    // `LocalAgArch.sendMsg`: ReceiverNotFoundException,
+                                    // annotated `agent_not_found(Name)`.
                                     let int = std::mem::replace(int, empty_intention(origin));
-                                    return fail(
-                                        self,
+                                    let failed = int
+                                        .frames
+                                        .last()
+                                        .map(|f| f.trigger.clone())
+                                        .expect("frame");
+                                    let missing =
+                                        Term::structure("agent_not_found", vec![Term::atom(&name)]);
+                                    self.fail_intention(
                                         s,
                                         int,
-                                        &text,
-                                        format!("no agent is named `{name}` (receiver_not_found)"),
+                                        &failed,
+                                        Some((plan, step.span)),
+                                        &format!("{text}: no agent is named `{name}` (receiver_not_found)"),
+                                        ("receiver_not_found", &[missing]),
                                         notes,
                                     );
+                                    return Flow::Gone;
                                 }
                             }
                         };

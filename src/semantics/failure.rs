@@ -45,7 +45,7 @@ impl Semantics<'_> {
             (Some(fail), Some(int)) => self.post_event(
                 s,
                 Event {
-                    trigger: with_error(fail, error, self.line_of(ev.posted_at)),
+                    trigger: with_error(fail, (error, &[]), self.line_of(ev.posted_at)),
                     intention: Some(int),
                     origin: ev.origin,
                     posted_at: ev.posted_at,
@@ -124,7 +124,7 @@ impl Semantics<'_> {
         failed: &EventTrigger,
         step: Option<(u32, Span)>,
         reason: &str,
-        error: &str,
+        error: (&str, &[Term]),
         notes: &mut Vec<Note>,
     ) {
         if let Some(top) = int.frames.last_mut() {
@@ -238,12 +238,18 @@ impl Semantics<'_> {
 }
 
 /// A failure event's trigger with Jason's `error(Id)` and `code_line(Line)` annotations
-/// (`setDefaultFailureAnnots`; `error_msg`, `code` and `code_src` are not given). The line
+/// and the exception's own (`agent_not_found(A)` of a `.send`) (`setDefaultFailureAnnots`;
+/// `error_msg`, `code` and `code_src` are not given). The line
 /// matters beyond plans that read it: when a failure plan ends, Jason drops the plans above
 /// down to one whose goal unifies with the handled one, annotations included, so two
 /// failures at different lines do not unify.
-fn with_error(mut t: EventTrigger, error: &str, line: Option<usize>) -> EventTrigger {
+fn with_error(
+    mut t: EventTrigger,
+    (error, extra): (&str, &[Term]),
+    line: Option<usize>,
+) -> EventTrigger {
     let mut annots = vec![Term::structure("error", vec![Term::atom(error)])];
+    annots.extend(extra.iter().cloned());
     if let Some(n) = line {
         annots.push(Term::structure("code_line", vec![Term::int(n as i64)]));
     }

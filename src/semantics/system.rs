@@ -16,7 +16,7 @@
 
 use super::cycle::{Note, Semantics, Transition};
 use super::state::{Event, EventTrigger, Origin, State};
-use crate::model::atoms::{AtomId, AtomSet};
+use crate::model::atoms::AtomSet;
 use crate::model::project::Project;
 use crate::model::term::Term;
 use crate::syntax::ast::{TriggerKind, TriggerOp};
@@ -162,14 +162,15 @@ impl<'p> System<'p> {
         }
         for k in 0..self.agents.len() {
             if self.enabled(s, k) {
-                out.extend(self.cycle(s, k));
+                out.extend(self.cycle_of(s, k));
             }
         }
         out
     }
 
-    /// One reasoning cycle of agent `k`.
-    fn cycle(&self, s: &SystemState, k: usize) -> Vec<(Step, SystemState)> {
+    /// One reasoning cycle of agent `k` (enabled or not: an agent with nothing to do
+    /// has one outcome, which changes nothing), one successor per outcome.
+    pub fn cycle_of(&self, s: &SystemState, k: usize) -> Vec<(Step, SystemState)> {
         let sem = &self.agents[k];
         let mut agent = s.agents[k].clone();
         let mut mail = s.mail[k].clone();
@@ -278,7 +279,9 @@ impl<'p> System<'p> {
     }
 }
 
-/// The atoms of `set` that are the environment's.
-pub fn env_part(sem: &Semantics, set: &AtomSet) -> Vec<AtomId> {
-    set.iter().filter(|a| sem.env_atoms.contains(*a)).collect()
+impl System<'_> {
+    /// Whether agent `k` has perceived the environment as it is now.
+    pub fn has_perceived(&self, s: &SystemState, k: usize) -> bool {
+        !self.unperceived(s, k)
+    }
 }

@@ -215,7 +215,7 @@ impl Semantics<'_> {
                     &failed,
                     Some((plan, span)),
                     &format!("{text}: nothing it waited for came"),
-                    "wait_timeout",
+                    ("wait_timeout", &[]),
                     notes,
                 );
             } else if self.clear_finished(&mut int, notes) {

@@ -1,0 +1,2 @@
+!start.
++!start <- .send(ponger, achieve, ping).

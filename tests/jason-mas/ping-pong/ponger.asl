@@ -1,0 +1,1 @@
++!ping[source(A)] <- pong(A).

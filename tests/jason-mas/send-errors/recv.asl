@@ -1,0 +1,1 @@
++!g[source(A)] : .my_name(Me) <- greet(Me, A).
