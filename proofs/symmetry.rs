@@ -237,6 +237,7 @@ impl Fixture {
                 .collect(),
             requested,
             library: s.library.clone(),
+            told: s.told.clone(),
         }
     }
 }

@@ -572,6 +572,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 waiting: Vec::new(),
                 requested: 0,
                 library: None,
+                told: Vec::new(),
             };
             (fp(&c), Some(c))
         })

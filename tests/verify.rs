@@ -572,7 +572,8 @@ fn every_spec_has_its_expected_outcome() {
             "kitchen",
             "kitchen-explaining",
             "misleading-content",
-            "paper"
+            "paper",
+            "two-robots"
         ]
     );
 }

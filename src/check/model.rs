@@ -217,6 +217,7 @@ impl AgentState for Packed<'_> {
             waiting: Vec::new(),
             requested: 0,
             library: None,
+            told: Vec::new(),
         };
         sem.applicable(&beliefs, trigger, false)
     }

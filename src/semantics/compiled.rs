@@ -283,6 +283,8 @@ impl Hash for Packed<'_> {
             self.requested,
             // An agent that changes its plan library is not local, so never compiled.
             None,
+            // Nor is one of several agents.
+            None,
         );
     }
 }
@@ -477,6 +479,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             waiting: Vec::new(),
             requested: p.requested,
             library: None,
+            told: Vec::new(),
         }
     }
 
@@ -654,6 +657,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             waiting: Vec::new(),
             requested: 0,
             library: None,
+            told: Vec::new(),
         }
     }
 

@@ -134,13 +134,15 @@ pub enum Note {
         /// Whose intention.
         origin: Origin,
     },
-    /// `.send` or `.broadcast` of `achieve`: the goal (its content) goes to the mailboxes
-    /// of these agents (indices in [`super::System`]).
+    /// `.send` or `.broadcast`: the message goes to the mailboxes of these agents
+    /// (indices in [`super::System`]).
     Sent {
         /// The receivers.
         to: Vec<u8>,
-        /// The goal, as written in the message.
-        goal: Term,
+        /// `achieve` or `tell`.
+        performative: Performative,
+        /// The goal or belief, as written in the message.
+        content: Term,
     },
     /// Among several agents: what the agent perceived at the start of its cycle (the
     /// environment changed since its last sense).
@@ -154,8 +156,10 @@ pub enum Note {
     Received {
         /// The sender's index.
         from: u8,
-        /// The event it posted.
-        trigger: EventTrigger,
+        /// `achieve` or `tell`.
+        performative: Performative,
+        /// The goal or belief.
+        content: Term,
     },
     /// An intention ended successfully.
     Finished(Origin),
@@ -177,6 +181,15 @@ pub enum Note {
     /// What `.print`/`.println` printed (stdlib `println.argsToString`: strings without
     /// quotes, other terms as Jason writes them, unbound variables as `X<no-value>`).
     Printed(String),
+}
+
+/// The KQML performatives bdi-check delivers (the others are refused where written).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Performative {
+    /// `achieve g`: the receiver gets the external event `+!g[source(sender)]`.
+    Achieve,
+    /// `tell b`: the receiver believes `b[source(sender)]`.
+    Tell,
 }
 
 /// A frame of the running intention as an action saw it: the plan, its bindings, and (for
@@ -446,6 +459,7 @@ impl<'p> Semantics<'p> {
             rules: &self.project.plans.rules,
             depth: std::cell::Cell::new(0),
             agent_name: &self.agent_name,
+            agents: &self.agents,
             ordered: &self.ordered,
         }
     }
@@ -475,6 +489,7 @@ impl<'p> Semantics<'p> {
             waiting: Vec::new(),
             requested: 0,
             library: None,
+            told: Vec::new(),
         };
         let notes = &self.project.initial.agent_beliefs;
         let noted: Vec<AtomId> = notes.iter().rev().copied().collect();

@@ -449,6 +449,8 @@ impl Semantics<'_> {
                             .map(|(a, _)| a)
                             .collect();
                         gone.iter().for_each(|a| s.beliefs.remove(*a));
+                        // Every source goes (`Agent.abolish` removes the whole belief).
+                        s.told.retain(|t| !gone.contains(&t.atom));
                         self.perceive(s, &[], &gone);
                         notes.push(Note::Belief {
                             text: text.clone(),
@@ -509,7 +511,16 @@ impl Semantics<'_> {
                     }
                     f @ (".send" | ".broadcast") => {
                         let args = term.args();
-                        let content = if f == ".send" { &args[2] } else { &args[1] };
+                        let (ilf, content) = if f == ".send" {
+                            (&args[1], &args[2])
+                        } else {
+                            (&args[0], &args[1])
+                        };
+                        let performative = if ilf == &Term::atom("tell") {
+                            super::cycle::Performative::Tell
+                        } else {
+                            super::cycle::Performative::Achieve
+                        };
                         let beyond = |reason: String, notes: &mut Vec<Note>| {
                             notes.push(Note::Beyond {
                                 text: text.clone(),
@@ -522,6 +533,14 @@ impl Semantics<'_> {
                         if !content.is_ground() {
                             return beyond(
                                 "the message's content is not ground, and bdi-check sends ground goals only".into(),
+                                notes,
+                            );
+                        }
+                        if performative == super::cycle::Performative::Tell
+                            && (!content.annots().is_empty() || self.ground_atom(content).is_none())
+                        {
+                            return beyond(
+                                "the told belief is not an atom of the model without annotations, and bdi-check keeps only the sources of a belief".into(),
                                 notes,
                             );
                         }
@@ -595,7 +614,8 @@ impl Semantics<'_> {
                         });
                         notes.push(Note::Sent {
                             to,
-                            goal: content.clone(),
+                            performative,
+                            content: content.clone(),
                         });
                         self.normalize(frame);
                         return Flow::Continue;
@@ -700,6 +720,9 @@ impl Semantics<'_> {
                         .beliefs_running(s, &running)
                         .literal_answers(&pattern, &frame.subst);
                     if let Some((a, answer)) = hits.into_iter().next() {
+                        if s.told(a).is_some() {
+                            return told_beyond(self, step, plan, notes);
+                        }
                         s.beliefs.remove(a);
                         removed.push(a);
                         if matches!(step.kind, BodyStep::DelBel(_)) {
@@ -711,6 +734,9 @@ impl Semantics<'_> {
                 let ev_removed = removed.clone();
                 if matches!(step.kind, BodyStep::AddBel(_) | BodyStep::DelAddBel(_)) {
                     match self.ground_atom(&lit) {
+                        Some(a) if s.told(a).is_some() => {
+                            return told_beyond(self, step, plan, notes);
+                        }
                         Some(a) => {
                             if !s.beliefs.contains(a) {
                                 s.beliefs.insert(a);
@@ -1021,6 +1047,23 @@ enum Flow {
     Suspended,
     /// It was dropped or handed to a failure event.
     Gone,
+}
+
+/// A belief update of a belief other agents told: Jason's `+b`/`-b` add or remove only
+/// the agent's own source (`source(self)`), which bdi-check does not model yet.
+fn told_beyond(
+    sem: &Semantics,
+    step: &crate::model::plans::Step,
+    plan: u32,
+    notes: &mut Vec<Note>,
+) -> Flow {
+    notes.push(Note::Beyond {
+        text: step_text(sem, step.span),
+        plan,
+        span: step.span,
+        reason: "the belief was told by another agent: Jason would change only its own source of it (`source(self)`), and bdi-check does not model that yet".into(),
+    });
+    Flow::Gone
 }
 
 fn empty_intention(origin: Origin) -> Intention {

@@ -86,6 +86,12 @@ impl Semantics<'_> {
         order.insert(at, a);
     }
 
+    /// Records a belief just added to `s` where the order of its predicate's beliefs is
+    /// kept (the newest in front), with no event.
+    pub(super) fn note_added(&self, s: &mut State, a: AtomId) {
+        self.reorder(s, &[a], &[]);
+    }
+
     /// Keeps [`State::order`] for a belief added (in front of its predicate's beliefs)
     /// or removed.
     fn reorder(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {

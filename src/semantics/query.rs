@@ -41,6 +41,8 @@ pub struct Beliefs<'a> {
     pub depth: std::cell::Cell<u32>,
     /// The agent's name, for `.my_name`.
     pub agent_name: &'a str,
+    /// Every agent's name, by index (for the sources of told beliefs).
+    pub agents: &'a [String],
     /// Per predicate: whether answers follow [`State::order`] (else atom order).
     pub ordered: &'a [bool],
 }
@@ -157,17 +159,30 @@ impl Beliefs<'_> {
     /// The believed atom as a Jason literal with its source annotation.
     pub fn atom_term(&self, a: AtomId) -> Term {
         let (p, args) = self.atoms.decode(a);
-        let source = if self.environment[p.0 as usize] {
-            "percept"
-        } else {
-            "self"
+        let source = |who: &str| Term::structure("source", vec![Term::atom(who)]);
+        let sources = match self.state.told(a) {
+            // Told by others (and perhaps its own too): Jason keeps every source.
+            Some(t) => {
+                let mut v: Vec<Term> = (0..64)
+                    .filter(|k| t.from >> k & 1 == 1)
+                    .filter_map(|k| self.agents.get(k))
+                    .map(|n| source(n))
+                    .collect();
+                if t.own {
+                    v.push(source("self"));
+                }
+                v.sort();
+                v
+            }
+            None if self.environment[p.0 as usize] => vec![source("percept")],
+            None => vec![source("self")],
         };
         let (name, negated) = self.atoms.pred_literal(p);
         Term::literal(
             name,
             negated,
             args.iter().map(|o| self.universe.object_term(*o)).collect(),
-            vec![Term::structure("source", vec![Term::atom(source)])],
+            sources,
         )
     }
 

@@ -193,6 +193,19 @@ pub struct InLibrary {
     pub sources: u64,
 }
 
+/// A belief other agents told (Jason: `b[source(a)]`, by a `tell` message): who told it
+/// (bit `k`: the agent of index `k`), and whether the agent also believes it of its own
+/// (`source(self)`). Beliefs with no such entry have their one usual source.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Told {
+    /// The belief.
+    pub atom: AtomId,
+    /// The agents that told it, one bit each (never none).
+    pub from: u64,
+    /// Whether it is also the agent's own.
+    pub own: bool,
+}
+
 /// The whole agent state.
 ///
 /// Its hash is built from the hashes of its parts ([`part_hash`] of the beliefs, of each
@@ -221,6 +234,8 @@ pub struct State {
     /// The plan library in Jason's order, when steps have made it differ from the agent's
     /// own plans (`None`: those, in source order, as loaded).
     pub library: Option<Arc<[InLibrary]>>,
+    /// The beliefs other agents told, by atom (empty outside a system of several agents).
+    pub told: Vec<Told>,
 }
 
 /// The hash of one part of a state: std's SipHash with fixed keys, so it is the same in
@@ -243,6 +258,7 @@ pub fn hash_parts<H: Hasher>(
     waiting: impl ExactSizeIterator<Item = u64>,
     requested: u64,
     library: Option<u64>,
+    told: Option<u64>,
 ) {
     h.write_u64(beliefs);
     h.write_usize(events.len());
@@ -262,6 +278,10 @@ pub fn hash_parts<H: Hasher>(
     if let Some(l) = library {
         h.write_u64(l);
     }
+    // Only agents told something by others: every other state hashes as before.
+    if let Some(t) = told {
+        h.write_u64(t);
+    }
 }
 
 impl Hash for State {
@@ -275,11 +295,20 @@ impl Hash for State {
             self.waiting.iter().map(part_hash),
             self.requested,
             self.library.as_ref().map(part_hash),
+            (!self.told.is_empty()).then(|| part_hash(&self.told)),
         );
     }
 }
 
 impl State {
+    /// What other agents told of atom `a`, if anything.
+    pub fn told(&self, a: AtomId) -> Option<&Told> {
+        self.told
+            .binary_search_by_key(&a, |t| t.atom)
+            .ok()
+            .map(|i| &self.told[i])
+    }
+
     /// Whether the agent has nothing to do: no event, no intention (suspended ones wait
     /// inside events).
     pub fn is_idle(&self) -> bool {
@@ -399,6 +428,7 @@ mod tests {
             waiting: Vec::new(),
             requested: 0,
             library: None,
+            told: Vec::new(),
         };
         assert_eq!(state.pending_requests(), 0b10_0110);
     }

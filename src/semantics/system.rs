@@ -14,8 +14,8 @@
 //!
 //! The user's requests go to the first agent.
 
-use super::cycle::{Note, Semantics, Transition};
-use super::state::{Event, EventTrigger, Origin, State};
+use super::cycle::{Note, Performative, Semantics, Transition};
+use super::state::{Event, EventTrigger, Origin, State, Told};
 use crate::model::atoms::AtomSet;
 use crate::model::project::Project;
 use crate::model::term::Term;
@@ -27,8 +27,10 @@ use crate::syntax::Diagnostic;
 pub struct Message {
     /// The sender's index.
     pub from: u8,
-    /// The goal to achieve.
-    pub goal: Term,
+    /// `achieve` or `tell`.
+    pub performative: Performative,
+    /// The goal to achieve or the belief told.
+    pub content: Term,
 }
 
 /// The state of every agent, the environment and the messages in transit.
@@ -204,25 +206,39 @@ impl<'p> System<'p> {
             } else {
                 self.names()[m.from as usize].clone()
             };
-            let literal = super::cycle::with_source(&m.goal, &sender);
-            let trigger = EventTrigger {
-                op: TriggerOp::Add,
-                kind: TriggerKind::Achieve,
-                literal,
+            let literal = super::cycle::with_source(&m.content, &sender);
+            let trigger = match m.performative {
+                Performative::Achieve => Some(EventTrigger {
+                    op: TriggerOp::Add,
+                    kind: TriggerKind::Achieve,
+                    literal,
+                }),
+                Performative::Tell => {
+                    self.tell(&mut agent, m.from, &m.content, k)
+                        .then_some(EventTrigger {
+                            op: TriggerOp::Add,
+                            kind: TriggerKind::Belief,
+                            literal,
+                        })
+                }
             };
             before.push(Note::Received {
                 from: m.from,
-                trigger: trigger.clone(),
+                performative: m.performative,
+                content: m.content.clone(),
             });
-            sem.post_event(
-                &mut agent,
-                Event {
-                    trigger,
-                    intention: None,
-                    origin: Origin::Spawned,
-                    posted_at: None,
-                },
-            );
+            if let Some(trigger) = trigger {
+                // The achieve shortcut and `Agent.addBel`: an external event.
+                sem.post_event(
+                    &mut agent,
+                    Event {
+                        trigger,
+                        intention: None,
+                        origin: Origin::Spawned,
+                        posted_at: None,
+                    },
+                );
+            }
         }
         let perceived = agent.beliefs.clone();
         let transitions = if agent.is_idle() {
@@ -254,11 +270,17 @@ impl<'p> System<'p> {
                     }
                 }
                 for n in &t.notes {
-                    if let Note::Sent { to, goal } = n {
+                    if let Note::Sent {
+                        to,
+                        performative,
+                        content,
+                    } = n
+                    {
                         for &r in to {
                             next.mail[r as usize].push(Message {
                                 from: k as u8,
-                                goal: goal.clone(),
+                                performative: *performative,
+                                content: content.clone(),
                             });
                         }
                     }
@@ -283,5 +305,58 @@ impl System<'_> {
     /// Whether agent `k` has perceived the environment as it is now.
     pub fn has_perceived(&self, s: &SystemState, k: usize) -> bool {
         !self.unperceived(s, k)
+    }
+}
+
+impl System<'_> {
+    /// Agent `k` believes `b[source(from)]` (`Agent.addBel`, `DefaultBeliefBase.add`):
+    /// whether anything changed (a new belief, or a new source of one already held).
+    /// Only mental notes are told (a percept is refused where the `tell` is written).
+    fn tell(&self, agent: &mut State, from: u8, content: &Term, k: usize) -> bool {
+        let sem = &self.agents[k];
+        let Some(a) = sem.ground_atom(content) else {
+            return false;
+        };
+        let at = agent.told.binary_search_by_key(&a, |t| t.atom);
+        // A message from the agent itself is `source(self)`: its own belief.
+        if from as usize == k {
+            return match at {
+                Ok(i) if agent.told[i].own => false,
+                Ok(i) => {
+                    agent.told[i].own = true;
+                    true
+                }
+                Err(_) if agent.beliefs.contains(a) => false,
+                Err(_) => {
+                    agent.beliefs.insert(a);
+                    sem.note_added(agent, a);
+                    true
+                }
+            };
+        }
+        let bit = 1u64 << from;
+        match at {
+            Ok(i) if agent.told[i].from & bit != 0 => false,
+            Ok(i) => {
+                agent.told[i].from |= bit;
+                true
+            }
+            Err(i) => {
+                let own = agent.beliefs.contains(a);
+                agent.told.insert(
+                    i,
+                    Told {
+                        atom: a,
+                        from: bit,
+                        own,
+                    },
+                );
+                if !own {
+                    agent.beliefs.insert(a);
+                    sem.note_added(agent, a);
+                }
+                true
+            }
+        }
     }
 }

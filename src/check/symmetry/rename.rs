@@ -222,6 +222,8 @@ impl Symmetry {
             requested,
             // Plans name no interchangeable object (`Symmetry::new` refuses them).
             library: s.library.clone(),
+            // Symmetry reduction runs on one agent, never told anything.
+            told: Vec::new(),
         }
     }
 }

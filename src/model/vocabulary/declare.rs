@@ -99,6 +99,20 @@ impl Checker<'_> {
                             for p in l.args.first().map(added_plans).unwrap_or_default() {
                                 self.declare_plan(p, true);
                             }
+                        } else if let Some((ilf, content)) = message(l) {
+                            // What a message tells is a belief of its receiver; what it
+                            // asks to achieve, a goal.
+                            if let ExprKind::Literal(c) = &content.kind {
+                                match ilf {
+                                    "tell" if !c.is_internal_action() => {
+                                        self.declare_note(c, content.span)
+                                    }
+                                    "achieve" if !c.is_internal_action() => {
+                                        self.declare_goal(c, content.span, false)
+                                    }
+                                    _ => {}
+                                }
+                            }
                         }
                     }
                 }
@@ -203,5 +217,19 @@ pub(super) fn added_plans(e: &Expr) -> Vec<&Plan> {
         },
         ExprKind::List(l) => l.elems.iter().flat_map(added_plans).collect(),
         _ => Vec::new(),
+    }
+}
+
+/// The performative (written out) and the content of `.send(R, Ilf, Content)` or
+/// `.broadcast(Ilf, Content)`.
+fn message(l: &Literal) -> Option<(&str, &Expr)> {
+    let (ilf, content) = match (l.functor.as_str(), l.args.as_slice()) {
+        (".send", [_, ilf, content, ..]) => (ilf, content),
+        (".broadcast", [ilf, content]) => (ilf, content),
+        _ => return None,
+    };
+    match &ilf.kind {
+        ExprKind::Literal(p) if p.args.is_empty() => Some((p.functor.as_str(), content)),
+        _ => None,
     }
 }

@@ -346,8 +346,9 @@ impl Checker<'_> {
     }
 
     /// `.send(Receiver, Performative, Content)` and `.broadcast(Performative, Content)`:
-    /// the performatives bdi-check models (`achieve`), with their content checked as the
-    /// step they stand for (`achieve g` as `!g`); the others are refused where written.
+    /// the performatives bdi-check models (`achieve`, `tell`), with their content checked as
+    /// the step they stand for (`achieve g` as `!g`, `tell b` as `+b`); the others are
+    /// refused where written.
     fn message(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
         let send = l.functor == ".send";
         let (ilf, content) = if send {
@@ -396,10 +397,25 @@ impl Checker<'_> {
                 "`.send` of `achieve` with an answer or a timeout",
                 "extra arguments",
             ),
-            "tell" | "untell" | "unachieve" | "askOne" | "askAll" | "tellHow" | "untellHow"
+            "tell" if l.args.len() == 3 || !send => match &content.kind {
+                ExprKind::Literal(b) if !b.is_internal_action() => {
+                    self.belief_literal(cl, b, Usage::Add, scope)
+                }
+                _ => self.unsupported(
+                    content.span,
+                    "`tell` of something other than a belief literal (a list, a variable)",
+                    "content",
+                ),
+            },
+            "tell" => self.unsupported(
+                l.span,
+                "`.send` of `tell` in reply to a message (`in_reply_to`)",
+                "extra argument",
+            ),
+            "untell" | "unachieve" | "askOne" | "askAll" | "tellHow" | "untellHow"
             | "askHow" | "signal" => self.unsupported(
                 ilf.span,
-                &format!("the performative `{performative}` (bdi-check models `achieve` so far)"),
+                &format!("the performative `{performative}` (bdi-check models `achieve` and `tell` so far)"),
                 "performative",
             ),
             other => self.diags.push(
