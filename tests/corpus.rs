@@ -933,6 +933,143 @@ fn jason_examples_in_verify_match_the_readme() {
     let _ = std::fs::remove_dir_all(&work);
 }
 
+/// The README's claim about Jason's projects of several agents.
+const README_MAS_CLAIM: &str = "Given a PDDL stub of their shared environment,";
+
+#[test]
+fn jason_projects_in_verify_match_the_readme() {
+    // Every `.mas2j` of the checkout's `examples/` and `demos/` gets a generated project
+    // (`mas = ` the file itself, and a PDDL stub of what all its agents call and read) and
+    // goes through `bdi-check verify`, as the agents one by one do above.
+    let Some(root) = std::env::var_os("BDI_CHECK_JASON").map(PathBuf::from) else {
+        return;
+    };
+    let mut projects: Vec<PathBuf> = ["examples", "demos"]
+        .iter()
+        .map(|d| root.join(d))
+        .flat_map(|d| mas2j_files(&d))
+        .collect();
+    projects.sort();
+    assert!(!projects.is_empty(), "no .mas2j under {}", root.display());
+    let work = std::env::temp_dir()
+        .join("bdi-check-tests")
+        .join(std::process::id().to_string())
+        .join("jason-mas-verify");
+    let _ = std::fs::remove_dir_all(&work);
+    let mut accepted = Vec::new();
+    let mut refused: Vec<(PathBuf, String)> = Vec::new();
+    let mut broken = String::new();
+    for (i, path) in projects.iter().enumerate() {
+        let rel = path.strip_prefix(&root).unwrap_or(path);
+        let dir = work.join(format!("{i:03}"));
+        std::fs::create_dir_all(&dir).unwrap();
+        // The agents as bdi-check finds them (a project it cannot read is refused by
+        // `verify` itself, with its place).
+        let mut map = SourceMap::new();
+        let text = read(path);
+        let id = map.add(path, path.display().to_string(), text.clone());
+        let folder = path.parent().unwrap_or(&root);
+        let agents: Vec<bdi_check::syntax::LoadedAgent> =
+            match bdi_check::syntax::mas2j::parse_mas2j(id, &text) {
+                Ok(p) => p
+                    .agents
+                    .iter()
+                    .filter_map(|a| {
+                        let f = std::iter::once(folder.join(&a.source))
+                            .chain(
+                                p.source_path
+                                    .iter()
+                                    .map(|sp| folder.join(sp).join(&a.source)),
+                            )
+                            .find(|f| f.is_file())?;
+                        load_agent_with(&f, &mut map, &jason_source_path(&root, &f)).ok()
+                    })
+                    .collect(),
+                Err(_) => Vec::new(),
+            };
+        let stub = Stub::of_all(&agents);
+        std::fs::write(dir.join("stub.pddl"), stub.pddl(rel)).unwrap();
+        let manifest = stub
+            .manifest(rel, path, &jason_source_path(&root, path))
+            .replacen("plans = ", "mas = ", 1);
+        std::fs::write(dir.join("bdi-check.toml"), manifest).unwrap();
+        match run_verify(&dir) {
+            Ok((code @ (0 | 1 | 3), _)) => accepted.push((rel.to_path_buf(), code)),
+            Ok((2, message)) => refused.push((rel.to_path_buf(), message)),
+            Ok((code, message)) => {
+                let _ = writeln!(broken, "{}: exit {code}: {message}", rel.display());
+            }
+            Err(e) => {
+                let _ = writeln!(broken, "{}: {e}", rel.display());
+            }
+        }
+    }
+    let mut groups: Vec<(String, usize)> = Vec::new();
+    for (_, message) in &refused {
+        let reason = refusal_reason(message);
+        match groups.iter_mut().find(|(r, _)| *r == reason) {
+            Some((_, n)) => *n += 1,
+            None => groups.push((reason, 1)),
+        }
+    }
+    groups.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+    eprintln!(
+        "{} of {} projects accepted by `verify`",
+        accepted.len(),
+        projects.len()
+    );
+    for (p, code) in &accepted {
+        eprintln!("  accepted (exit {code})  {}", p.display());
+    }
+    for (reason, n) in &groups {
+        eprintln!("  {n:3}  {reason}");
+    }
+    for (path, message) in &refused {
+        eprintln!("refused {}: {message}", path.display());
+    }
+    assert!(
+        broken.is_empty(),
+        "bdi-check did not answer properly:\n{broken}"
+    );
+    let readme = read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"));
+    let text = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let claim = text
+        .find(README_MAS_CLAIM)
+        .map(|i| &text[i + README_MAS_CLAIM.len()..])
+        .and_then(|rest| {
+            let w: Vec<&str> = rest.split_whitespace().take(4).collect();
+            match w.as_slice() {
+                [n, "of", "the", m] => Some((n.parse::<usize>().ok()?, m.parse::<usize>().ok()?)),
+                _ => None,
+            }
+        })
+        .unwrap_or_else(|| panic!("README.md has no `{README_MAS_CLAIM} N of the M`"));
+    assert_eq!(
+        claim,
+        (accepted.len(), projects.len()),
+        "README.md's count of Jason projects is not the one measured (projects in {})",
+        work.display()
+    );
+    let _ = std::fs::remove_dir_all(&work);
+}
+
+/// Every `.mas2j` under `dir`.
+fn mas2j_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return out;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            out.extend(mas2j_files(&p));
+        } else if p.extension().is_some_and(|x| x == "mas2j") {
+            out.push(p);
+        }
+    }
+    out
+}
+
 /// The source path Jason would give `path`: the folders above it up to the checkout (a
 /// project's `aslSourcePath`), then what `$jasonJar/...` names: the jar's sources
 /// (`src/main/resources`, `src` of the interpreter) and the folder Jason's own test agents
@@ -1134,6 +1271,20 @@ impl Stub {
         for item in agent.items() {
             s.item(item);
         }
+        s
+    }
+
+    /// The stub of the environment several agents share: what any of them calls, reads,
+    /// adds or posts. Requests are the first agent's goals that no agent posts.
+    fn of_all(agents: &[bdi_check::syntax::LoadedAgent]) -> Stub {
+        let mut s = Stub::default();
+        for a in agents {
+            for item in a.items() {
+                s.item(item);
+            }
+        }
+        let first = agents.first().map(Stub::of).unwrap_or_default();
+        s.handled = first.handled;
         s
     }
 
@@ -1412,6 +1563,26 @@ impl Stub {
     /// An internal action: the queries among its arguments are reads.
     fn internal(&mut self, l: &Literal) {
         match (l.functor.as_str(), l.args.as_slice()) {
+            // What one agent tells another is a belief the receiver has (not a percept);
+            // what it asks to achieve, a goal posted.
+            (".send", [_, ilf, c, ..]) | (".broadcast", [ilf, c]) => {
+                let performative = match &ilf.kind {
+                    ExprKind::Literal(p) => p.functor.as_str(),
+                    _ => "",
+                };
+                if let ExprKind::Literal(c) = &c.kind {
+                    match performative {
+                        "tell" => {
+                            self.added.insert(c.belief_name().into_owned());
+                        }
+                        "achieve" => {
+                            self.posted.insert((c.functor.clone(), c.args.len()));
+                        }
+                        _ => {}
+                    }
+                }
+                l.args.iter().for_each(|a| self.term(a));
+            }
             (".findall", [t, q, r]) => {
                 self.term(t);
                 self.formula(q, true);

@@ -152,7 +152,16 @@ fn run_system(
     opts: &VerifyOptions,
     progress: impl FnMut(usize, u32, f64),
 ) -> VerifyRun {
-    let bad = super::allow::check(&projects[0]);
+    let mut bad = super::allow::check(&projects[0]);
+    if opts.shard.is_some() || opts.sample.is_some() {
+        bad.push(
+            Diagnostic::error(
+                "input",
+                "a project of several agents is verified whole: `--shard` and sampling are not supported for it yet",
+            )
+            .in_file(projects[0].manifest.path.display().to_string()),
+        );
+    }
     if !bad.is_empty() {
         let map = projects.into_iter().next().expect("an agent").map;
         return input_failure(name, map, bad);

@@ -419,9 +419,12 @@ impl Checker<'_> {
                 "performative",
             ),
             other => self.diags.push(
-                Diagnostic::error("input", format!("`{other}` is not a KQML performative Jason knows"))
-                    .with_label(ilf.span, "performative")
-                    .with_help("Jason's performatives: tell, untell, achieve, unachieve, askOne, askAll, tellHow, untellHow, askHow"),
+                Diagnostic::error(
+                    "input",
+                    format!("the performative `{other}` is none of Jason's, and bdi-check does not model it"),
+                )
+                .with_label(ilf.span, "performative")
+                .with_help("kqmlPlans.asl has no plan for it, so a receiver reports a communication error, unless the project's own `+!kqml_received` plans handle it; Jason's performatives: tell, untell, achieve, unachieve, askOne, askAll, tellHow, untellHow, askHow"),
             ),
         }
     }
