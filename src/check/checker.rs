@@ -45,25 +45,7 @@ impl Checker<'_> {
         status: Status,
         message: String,
     ) -> Finding {
-        let location = self.location(span);
-        // An undecided check states only what the explored part shows.
-        let message = if status == Status::Unknown {
-            format!("{message}, as far as the search went: it was cut short before every state was reached")
-        } else {
-            message
-        };
-        Finding {
-            id: format!("{check}:{name}"),
-            check: check.into(),
-            severity: Severity::Error,
-            status,
-            message,
-            location: Some(location),
-            counterexample: None,
-            span: Some(span),
-            related: Vec::new(),
-            suppressed: None,
-        }
+        dynamic_finding(check, name, (span, self.location(span)), status, message)
     }
 
     /// Undecided when the search was cut short, passed otherwise.
@@ -104,5 +86,35 @@ impl Checker<'_> {
         let mut f = self.finding(check, name, span, status, message);
         f.counterexample = Some(self.counterexample(&self.graph.path_to(at), None, &[]));
         f
+    }
+}
+
+/// A finding of a dynamic check at `span` (located at `location`), an error unless the
+/// caller says otherwise. An undecided check states only what the explored part shows.
+pub(super) fn dynamic_finding(
+    check: &str,
+    name: &str,
+    (span, location): (Span, crate::syntax::Location),
+    status: Status,
+    message: String,
+) -> Finding {
+    let message = if status == Status::Unknown {
+        format!(
+            "{message}, as far as the search went: it was cut short before every state was reached"
+        )
+    } else {
+        message
+    };
+    Finding {
+        id: format!("{check}:{name}"),
+        check: check.into(),
+        severity: Severity::Error,
+        status,
+        message,
+        location: Some(location),
+        counterexample: None,
+        span: Some(span),
+        related: Vec::new(),
+        suppressed: None,
     }
 }

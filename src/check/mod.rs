@@ -285,33 +285,48 @@ pub fn verify_with(
         )?
         .0,
     );
-    let seconds = graph.seconds;
-    let stats = Stats {
-        initial_states: graph.initial_covered,
-        states: graph.len(),
-        transitions: graph.transitions,
-        depth: graph.max_depth() as usize,
-        seconds,
-        states_per_second: if seconds > 0.0 {
-            graph.len() as f64 / seconds
-        } else {
-            0.0
-        },
-        complete: graph.complete(),
-    };
     Ok(Verification {
-        findings,
-        stats,
-        bound: graph.bound,
-        beyond: graph.beyond.as_ref().map(|(span, why)| {
-            let at = project.map.location(*span);
-            format!("{}:{}:{}: {why}", at.file, at.line, at.column)
-        }),
-        memory: (graph.store_bytes(), graph.edge_bytes()),
-        peak_memory: graph.peak_memory,
         symmetric_types,
         symmetry_caveat: not_equivariant,
+        ..Verification::of(&graph, project, findings)
     })
+}
+
+impl Verification {
+    /// The verification a search gave: its findings, statistics, bound and memory (no
+    /// symmetry reduction said).
+    pub(crate) fn of<S>(
+        graph: &explore::Graph<S>,
+        project: &Project,
+        findings: Vec<Finding>,
+    ) -> Self {
+        let seconds = graph.seconds;
+        Verification {
+            findings,
+            stats: Stats {
+                initial_states: graph.initial_covered,
+                states: graph.len(),
+                transitions: graph.transitions,
+                depth: graph.max_depth() as usize,
+                seconds,
+                states_per_second: if seconds > 0.0 {
+                    graph.len() as f64 / seconds
+                } else {
+                    0.0
+                },
+                complete: graph.complete(),
+            },
+            bound: graph.bound,
+            beyond: graph.beyond.as_ref().map(|(span, why)| {
+                let at = project.map.location(*span);
+                format!("{}:{}:{}: {why}", at.file, at.line, at.column)
+            }),
+            memory: (graph.store_bytes(), graph.edge_bytes()),
+            peak_memory: graph.peak_memory,
+            symmetric_types: Vec::new(),
+            symmetry_caveat: None,
+        }
+    }
 }
 
 /// A coverage gap some run reaches is an error (SPEC §3) even when a failure plan handles

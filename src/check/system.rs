@@ -11,7 +11,7 @@ use super::explore::{explore_with, Graph, Limits, Options, Walk};
 use super::model::{beyond_of, Model};
 use super::trace::Builder;
 use super::Verification;
-use crate::findings::{Counterexample, Finding, Stats, Status};
+use crate::findings::{Counterexample, Finding, Status};
 use crate::model::cond::Cond;
 use crate::model::formula;
 use crate::model::project::Project;
@@ -365,32 +365,7 @@ pub fn verify_system(
             findings.push(f);
         }
     }
-    let seconds = graph.seconds;
-    Ok(Verification {
-        findings,
-        stats: Stats {
-            initial_states: graph.initial_covered,
-            states: n,
-            transitions: graph.transitions,
-            depth: graph.max_depth() as usize,
-            seconds,
-            states_per_second: if seconds > 0.0 {
-                n as f64 / seconds
-            } else {
-                0.0
-            },
-            complete: graph.complete(),
-        },
-        bound: graph.bound,
-        beyond: graph.beyond.as_ref().map(|(span, why)| {
-            let at = project.map.location(*span);
-            format!("{}:{}:{}: {why}", at.file, at.line, at.column)
-        }),
-        memory: (graph.store_bytes(), graph.edge_bytes()),
-        peak_memory: graph.peak_memory,
-        symmetric_types: Vec::new(),
-        symmetry_caveat: None,
-    })
+    Ok(Verification::of(&graph, project, findings))
 }
 
 struct Cx<'a> {
@@ -408,23 +383,8 @@ impl Cx<'_> {
         status: Status,
         message: String,
     ) -> Finding {
-        let message = if status == Status::Unknown {
-            format!("{message}, as far as the search went: it was cut short before every state was reached")
-        } else {
-            message
-        };
-        Finding {
-            id: format!("{check}:{name}"),
-            check: check.into(),
-            severity: Severity::Error,
-            status,
-            message,
-            location: Some(self.projects[0].map.location(span)),
-            counterexample: None,
-            span: Some(span),
-            related: Vec::new(),
-            suppressed: None,
-        }
+        let at = (span, self.projects[0].map.location(span));
+        super::checker::dynamic_finding(check, name, at, status, message)
     }
 
     #[allow(clippy::too_many_arguments)]

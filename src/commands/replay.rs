@@ -213,6 +213,20 @@ fn with_run<'r>(o: &'r Opened, id: &str) -> Result<&'r FindingIn, Refusal> {
     Ok(f)
 }
 
+/// The findings to replay: the one named (bad input when it has no run), or every failing
+/// one with a run that is not suppressed.
+fn selected<'o>(o: &'o Opened, finding: Option<&str>) -> Result<Vec<&'o FindingIn>, Refusal> {
+    Ok(match finding {
+        Some(id) => vec![with_run(o, id)?],
+        None => o
+            .report
+            .findings
+            .iter()
+            .filter(|f| has_run(f).is_ok() && f.suppressed.is_none())
+            .collect(),
+    })
+}
+
 /// On a project whose files are unchanged since the report, every run must come back:
 /// a lost one means the report was altered (or made by another version).
 fn check_unchanged(o: &Opened, results: &[&Replayed]) -> Result<(), Refusal> {
@@ -248,16 +262,7 @@ pub fn replay(report: &Path, finding: Option<&str>) -> Result<Replay, Refusal> {
         return replay_system(&o, finding);
     }
     let sem = Semantics::new(&o.project).map_err(|d| (o.project.map.clone(), d))?;
-    let selected: Vec<&FindingIn> = match finding {
-        Some(id) => vec![with_run(&o, id)?],
-        None => o
-            .report
-            .findings
-            .iter()
-            .filter(|f| has_run(f).is_ok() && f.suppressed.is_none())
-            .collect(),
-    };
-    let results: Vec<Replayed> = selected
+    let results: Vec<Replayed> = selected(&o, finding)?
         .into_iter()
         .map(|f| replay_one(&o.project, &sem, f, &mut Vec::new()))
         .collect();
@@ -366,6 +371,15 @@ const STATIC_WITNESSES: &[&str] = &["precondition", "coverage-gap", "action-brea
 
 /// The initial state a finding's run starts from, or why the project no longer has it.
 fn start_of(project: &Project, sem: &Semantics, f: &FindingIn) -> Result<State, &'static str> {
+    let atoms = initial_atoms(project, f)?;
+    sem.initial_states()
+        .into_iter()
+        .find(|s| s.beliefs == atoms)
+        .ok_or("its initial state is no longer an initial state of the project")
+}
+
+/// The atoms true at the start of a finding's run, or why the project no longer has them.
+fn initial_atoms(project: &Project, f: &FindingIn) -> Result<AtomSet, &'static str> {
     let Some(c) = &f.counterexample else {
         return Err("the finding has no counterexample");
     };
@@ -380,10 +394,7 @@ fn start_of(project: &Project, sem: &Semantics, f: &FindingIn) -> Result<State, 
     if atoms.count() != names.len() {
         return Err("its initial state mentions atoms the project no longer has");
     }
-    sem.initial_states()
-        .into_iter()
-        .find(|s| s.beliefs == atoms)
-        .ok_or("its initial state is no longer an initial state of the project")
+    Ok(atoms)
 }
 
 /// The initial state of a finding's run, if the project still has it.
@@ -813,16 +824,7 @@ impl Check {
 fn replay_system(o: &Opened, finding: Option<&str>) -> Result<Replay, Refusal> {
     let system =
         crate::semantics::System::new(&o.agents).map_err(|d| (o.project.map.clone(), d))?;
-    let selected: Vec<&FindingIn> = match finding {
-        Some(id) => vec![with_run(o, id)?],
-        None => o
-            .report
-            .findings
-            .iter()
-            .filter(|f| has_run(f).is_ok() && f.suppressed.is_none())
-            .collect(),
-    };
-    let results: Vec<Replayed> = selected
+    let results: Vec<Replayed> = selected(o, finding)?
         .into_iter()
         .map(|f| replay_system_one(&o.agents, &system, f))
         .collect();
@@ -845,17 +847,10 @@ fn replay_system_one(
     let Some(c) = &f.counterexample else {
         return no("the finding has no counterexample");
     };
-    let mut atoms = AtomSet::empty(project.atoms.len());
-    let names: HashSet<&str> = c.initial.iter().map(String::as_str).collect();
-    for a in 0..project.atoms.len() as u32 {
-        let a = crate::model::atoms::AtomId(a);
-        if names.contains(project.atoms.display(a, &project.universe).as_str()) {
-            atoms.insert(a);
-        }
-    }
-    if atoms.count() != names.len() {
-        return no("its initial state mentions atoms the project no longer has");
-    }
+    let atoms = match initial_atoms(project, f) {
+        Ok(a) => a,
+        Err(why) => return no(why),
+    };
     let Some(mut state) = system
         .initial_states()
         .into_iter()

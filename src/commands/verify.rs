@@ -96,6 +96,28 @@ pub fn limits(project: &Project, bounds: &Bounds) -> Limits {
     }
 }
 
+/// Runs `lint` within the limits' `--timeout` (lint begins no check past it) and returns
+/// its findings with the limits left for the search (the time lint did not use).
+fn lint_within(
+    mut lim: Limits,
+    lint: impl FnOnce(&crate::smt::LintOptions) -> Vec<crate::smt::LintFinding>,
+) -> (Vec<Finding>, Limits) {
+    let started = std::time::Instant::now();
+    let deadline = lim
+        .timeout
+        .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
+        .and_then(|d| started.checked_add(d));
+    let opts = crate::smt::LintOptions {
+        deadline,
+        ..Default::default()
+    };
+    let findings = lint(&opts).into_iter().map(|l| l.finding).collect();
+    lim.timeout = lim
+        .timeout
+        .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
+    (findings, lim)
+}
+
 /// Loads, lints and verifies a project.
 pub fn run(
     path: &Path,
@@ -116,26 +138,8 @@ pub fn run(
     if !bad.is_empty() {
         return input_failure(name, project.map, bad);
     }
-    let mut lim = limits(&project, bounds);
     // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
-    // `--timeout` bounds the two together: lint begins no check past it, and the search
-    // has what lint left.
-    let started = std::time::Instant::now();
-    let deadline = lim
-        .timeout
-        .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
-        .and_then(|d| started.checked_add(d));
-    let lint_opts = crate::smt::LintOptions {
-        deadline,
-        ..Default::default()
-    };
-    let lint: Vec<Finding> = crate::smt::lint(&project, &lint_opts)
-        .into_iter()
-        .map(|l| l.finding)
-        .collect();
-    lim.timeout = lim
-        .timeout
-        .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
+    let (lint, lim) = lint_within(limits(&project, bounds), |o| crate::smt::lint(&project, o));
     match verify_with(&project, lim, opts, progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
         Ok(v) => report_of(name, project, v, opts),
@@ -166,23 +170,9 @@ fn run_system(
         let map = projects.into_iter().next().expect("an agent").map;
         return input_failure(name, map, bad);
     }
-    let mut lim = limits(&projects[0], bounds);
-    let started = std::time::Instant::now();
-    let deadline = lim
-        .timeout
-        .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
-        .and_then(|d| started.checked_add(d));
-    let lint_opts = crate::smt::LintOptions {
-        deadline,
-        ..Default::default()
-    };
-    let mut lint: Vec<Finding> = super::lint::lint_agents(&projects, &lint_opts)
-        .into_iter()
-        .map(|l| l.finding)
-        .collect();
-    lim.timeout = lim
-        .timeout
-        .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
+    let (mut lint, lim) = lint_within(limits(&projects[0], bounds), |o| {
+        super::lint::lint_agents(&projects, o)
+    });
     match crate::check::system::verify_system(&projects, lim, opts.threads, progress) {
         Err(diagnostics) => {
             let map = projects.into_iter().next().expect("an agent").map;
