@@ -320,3 +320,89 @@ fn counterexamples_replay_until_the_defect_is_fixed() {
         );
     }
 }
+
+#[test]
+fn formulas_name_an_agent_for_its_beliefs() {
+    let d = temp_dir("mas-namespaces");
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verify/mas-lost-wakeup");
+    for e in std::fs::read_dir(&src).unwrap().flatten() {
+        std::fs::copy(e.path(), d.join(e.file_name())).unwrap();
+    }
+    let base = std::fs::read_to_string(d.join("bdi-check.toml")).unwrap();
+    let with = |extra: &str| {
+        std::fs::write(d.join("bdi-check.toml"), format!("{base}\n{extra}\n")).unwrap();
+    };
+    with(
+        r#"[[property]]
+name = "loader_gets_busy"
+reachable = "loader::busy"
+
+[[property]]
+name = "fetcher_never_busy"
+always = "not fetcher::busy"
+
+[[property]]
+name = "loader_lags"
+always = "loader::at(loader, L) | not at(loader, L)""#,
+    );
+    let (code, r, file) = verify_json(d.to_str().unwrap(), "mas-namespaces-report");
+    assert_eq!(code, 1, "{r:#}");
+    let status = |id: &str| {
+        r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["id"] == id)
+            .map(|f| f["status"].as_str().unwrap().to_string())
+            .unwrap_or_else(|| panic!("{id}: {r:#}"))
+    };
+    assert_eq!(status("property:loader_gets_busy"), "pass");
+    assert_eq!(status("property:fetcher_never_busy"), "pass");
+    // An agent believes where it is only from its next sense on: right after it moves,
+    // the world has changed and its belief has not.
+    assert_eq!(status("property:loader_lags"), "fail");
+    let o = bdi_check(&[
+        "replay",
+        file.to_str().unwrap(),
+        "--finding",
+        "property:loader_lags",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    // A mental note without its agent, and a namespace no agent has, are bad input.
+    with("[[property]]\nname = \"p\"\nreachable = \"busy\"");
+    let out = verify_error(&d);
+    assert!(
+        out.contains(
+            "`busy` is a mental note: in a project of several agents, name whose (`agent::busy`)"
+        ),
+        "{out}"
+    );
+    with("[[property]]\nname = \"p\"\nreachable = \"robot3::busy\"");
+    let out = verify_error(&d);
+    assert!(
+        out.contains("a namespace in a formula names an agent: one of `fetcher`, `loader`"),
+        "{out}"
+    );
+    // In a project of one agent, a namespace is refused, not read as the belief itself.
+    let one = project(
+        "one-agent-namespace",
+        &[
+            (
+                "bdi-check.toml",
+                "[agent]\nplans = \"a.asl\"\nactions = \"d.pddl\"\n[[property]]\nname = \"p\"\nreachable = \"a::p\"\n",
+            ),
+            ("d.pddl", DOMAIN),
+            ("a.asl", "!g.\n+!g <- a.\n"),
+        ],
+    );
+    let out = verify_error(&one);
+    assert!(
+        out.contains("a namespace in a formula names an agent, and this project has one"),
+        "{out}"
+    );
+}

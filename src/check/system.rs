@@ -66,7 +66,13 @@ pub fn verify_system(
     let env = &system.agents[0];
     let mut errors = Vec::new();
     let mut conds: Vec<(String, &'static str, PropertyKind, Cond, Span)> = Vec::new();
-    let mental = |c: &Cond| c.atoms().into_iter().find(|a| !env.is_environment_atom(*a));
+    let stride = formula::agent_stride(&project.atoms) as u32;
+    // Below the stride, the shared environment's atoms; above it, the agents' beliefs.
+    let mental = |c: &Cond| {
+        c.atoms()
+            .into_iter()
+            .find(|a| a.0 < stride && !env.is_environment_atom(*a))
+    };
     for (name, c) in &project.invariants {
         let span = project
             .manifest
@@ -93,7 +99,12 @@ pub fn verify_system(
             );
             continue;
         }
-        match formula::compile(&p.formula.expr, &project.atoms, &project.universe) {
+        match formula::compile_in(
+            &p.formula.expr,
+            &project.atoms,
+            &project.universe,
+            system.names(),
+        ) {
             Ok(c) => conds.push((p.name.value.clone(), "property", p.kind, c, p.formula.span)),
             Err(d) => errors.push(d),
         }
@@ -104,7 +115,8 @@ pub fn verify_system(
                 Diagnostic::error(
                     "input",
                     format!(
-                        "`{}` is a mental note, and in a project of several agents a formula reads the shared environment only",
+                        "`{}` is a mental note: in a project of several agents, name whose (`agent::{}`)",
+                        project.atoms.display(a, &project.universe),
                         project.atoms.display(a, &project.universe)
                     ),
                 )
@@ -139,10 +151,10 @@ pub fn verify_system(
         limits,
         &opts,
         |s| Summary {
-            fails: conds
-                .iter()
-                .map(|(_, _, _, c, _)| !c.eval(&s.world))
-                .collect(),
+            fails: {
+                let all = system.everything(s);
+                conds.iter().map(|(_, _, _, c, _)| !c.eval(&all)).collect()
+            },
             stuck: {
                 let busy: Vec<u8> = (0..s.agents.len())
                     .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
@@ -206,7 +218,7 @@ pub fn verify_system(
                 match (0..n as u32).find(|&i| {
                     graph
                         .state(&system, i)
-                        .is_some_and(|s| conds[j].3.eval(&s.world))
+                        .is_some_and(|s| conds[j].3.eval(&system.everything(&s)))
                 }) {
                     Some(i) => cx.reached(
                         check,

@@ -420,7 +420,7 @@ fn replay_one(
     if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
         return replay_explained(project, sem, f, c, state, walked);
     }
-    let check = Check::of(project, f);
+    let check = Check::of(project, f, &[]);
     let mut builder = Builder::new(project, sem);
     let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
     let recorded: Vec<(&str, &str)> = c
@@ -700,7 +700,8 @@ enum Check {
 }
 
 impl Check {
-    fn of(project: &Project, f: &FindingIn) -> Check {
+    /// `agents`: with several, the agents a formula may name (`agent::b`).
+    fn of(project: &Project, f: &FindingIn, agents: &[String]) -> Check {
         let place = f.location.as_ref().map(|l| (l.file.clone(), l.line));
         let name = f.id.split_once(':').map_or("", |(_, n)| n);
         match f.check.as_str() {
@@ -755,7 +756,7 @@ impl Check {
                 };
                 match (
                     p.kind,
-                    formula::compile(&p.formula.expr, &project.atoms, &project.universe),
+                    formula::compile_in(&p.formula.expr, &project.atoms, &project.universe, agents),
                 ) {
                     (crate::syntax::manifest::PropertyKind::Always, Ok(c)) => Check::State(c, true),
                     (crate::syntax::manifest::PropertyKind::Eventually, Ok(c)) => {
@@ -858,7 +859,7 @@ fn replay_system_one(
     else {
         return no("its initial state is no longer an initial state of the project");
     };
-    let check = Check::of(project, f);
+    let check = Check::of(project, f, system.names());
     let kinds: Vec<String> = c
         .steps
         .iter()
@@ -900,7 +901,7 @@ fn replay_system_one(
     // violation is looked for after up to MAX_SILENT of them.
     let violated = |s: &SystemState| {
         let busy = (0..s.agents.len()).any(|k| !s.agents[k].is_idle() || !s.mail[k].is_empty());
-        check.atoms_violate(&s.world)
+        check.atoms_violate(&system.everything(s))
             || (matches!(check, Check::Deadlock) && busy && system.successors(s).is_empty())
     };
     let mut frontier = vec![state];

@@ -21,7 +21,23 @@ use std::collections::BTreeMap;
 /// Compiles a formula to a ground condition that holds exactly when the formula holds for
 /// every object assigned to its free variables.
 pub fn compile(expr: &Expr, atoms: &AtomTable, universe: &Universe) -> Result<Cond, Diagnostic> {
-    let c = Compiler { atoms, universe };
+    compile_in(expr, atoms, universe, &[])
+}
+
+/// [`compile`] in a project of several agents: `ag::b` is agent `ag`'s belief `b` (Jason's
+/// namespace syntax), the atom `(k + 1) * agent_stride(atoms) + b` for the agent of index
+/// `k` in `agents`; a literal without a namespace is the shared environment's.
+pub fn compile_in(
+    expr: &Expr,
+    atoms: &AtomTable,
+    universe: &Universe,
+    agents: &[String],
+) -> Result<Cond, Diagnostic> {
+    let c = Compiler {
+        atoms,
+        universe,
+        agents,
+    };
     let mut types: BTreeMap<String, TypeId> = BTreeMap::new();
     c.infer(expr, &mut types)?;
     let names: Vec<&String> = types.keys().collect();
@@ -45,6 +61,14 @@ fn is_anonymous(name: &str) -> bool {
 struct Compiler<'a> {
     atoms: &'a AtomTable,
     universe: &'a Universe,
+    /// The agents a namespace may name (none in a project of one agent).
+    agents: &'a [String],
+}
+
+/// Where the atoms of the agents begin in a condition of [`compile_in`]: agent `k`'s atom
+/// `a` is `(k + 1) * stride + a` (a whole number of 64-bit words per agent).
+pub fn agent_stride(atoms: &AtomTable) -> usize {
+    atoms.len().div_ceil(64) * 64
 }
 
 type Env<'e> = BTreeMap<&'e str, ObjectId>;
@@ -178,6 +202,33 @@ impl Compiler<'_> {
         }
         out.sort();
         out.dedup();
+        if let Some(ns) = &l.namespace {
+            let agent = match &ns.kind {
+                crate::syntax::ast::NamespaceKind::Named(n) => {
+                    self.agents.iter().position(|a| a == n)
+                }
+                _ => None,
+            };
+            let Some(k) = agent else {
+                let what = if self.agents.is_empty() {
+                    "a namespace in a formula names an agent, and this project has one".to_string()
+                } else {
+                    format!(
+                        "a namespace in a formula names an agent: one of {}",
+                        self.agents
+                            .iter()
+                            .map(|a| format!("`{a}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                };
+                return Err(Diagnostic::error("input", what).with_label(ns.span, "no such agent"));
+            };
+            let base = (k + 1) * agent_stride(self.atoms);
+            for a in &mut out {
+                a.0 += base as u32;
+            }
+        }
         Ok(out)
     }
 

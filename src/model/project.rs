@@ -56,7 +56,8 @@ pub struct Project {
     pub actions: GroundActions,
     /// The manifest's `[initial] constraints`, compiled.
     pub constraints: Vec<Cond>,
-    /// The manifest's `[invariants]`, by name, compiled.
+    /// The manifest's `[invariants]`, by name, compiled (with several agents, over the
+    /// environment and every agent's beliefs: [`formula::compile_in`]).
     pub invariants: Vec<(String, Cond)>,
     /// The initial states.
     pub initial: InitialStates,
@@ -237,10 +238,21 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
         .iter()
         .filter_map(|f| compile(f, &mut errors))
         .collect();
+    // With several agents, an invariant may name an agent's belief (`robot1::holding(cup)`).
+    let agent_names: Vec<String> = if named.len() > 1 {
+        named.iter().map(|(n, _, _)| n.clone()).collect()
+    } else {
+        Vec::new()
+    };
     let invariants: Vec<(String, Cond)> = manifest
         .invariants
         .iter()
-        .filter_map(|i| compile(&i.formula, &mut errors).map(|c| (i.name.value.clone(), c)))
+        .filter_map(|i| {
+            formula::compile_in(&i.formula.expr, &atoms, &universe, &agent_names)
+                .map_err(|d| errors.push(d))
+                .ok()
+                .map(|c| (i.name.value.clone(), c))
+        })
         .collect();
     let mut facts = AtomSet::empty(atoms.len());
     for f in &manifest.initial.facts {
@@ -306,10 +318,17 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
     if !errors.is_empty() {
         return fail(map, errors);
     }
+    // An invariant naming an agent's beliefs is checked on the runs, from their first state.
+    let stride = formula::agent_stride(&atoms) as u32;
     let all: Vec<Cond> = constraints
         .iter()
         .cloned()
-        .chain(invariants.iter().map(|(_, c)| c.clone()))
+        .chain(
+            invariants
+                .iter()
+                .filter(|(_, c)| c.atoms().iter().all(|a| a.0 < stride))
+                .map(|(_, c)| c.clone()),
+        )
         .collect();
     // The initial states are held at once: bounded by `max_states` and by memory.
     let state_bytes = (atoms.len() / 8 + 32) as u64;

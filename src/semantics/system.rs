@@ -360,3 +360,23 @@ impl System<'_> {
         }
     }
 }
+
+impl System<'_> {
+    /// The environment's atoms and every agent's beliefs in one set, as the conditions of
+    /// [`crate::model::formula::compile_in`] read them: agent `k`'s belief `a` at
+    /// `(k + 1) * stride + a`.
+    pub fn everything(&self, s: &SystemState) -> AtomSet {
+        let atoms = &self.agents[0].project.atoms;
+        let stride = crate::model::formula::agent_stride(atoms);
+        let mut all = AtomSet::empty(stride * (s.agents.len() + 1));
+        s.world.iter().for_each(|a| all.insert(a));
+        for (k, agent) in s.agents.iter().enumerate() {
+            let base = ((k + 1) * stride) as u32;
+            agent
+                .beliefs
+                .iter()
+                .for_each(|a| all.insert(crate::model::atoms::AtomId(base + a.0)));
+        }
+        all
+    }
+}
