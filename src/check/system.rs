@@ -54,12 +54,16 @@ struct Summary {
     stuck: Option<Vec<u8>>,
 }
 
-/// Explores every interleaving of the agents of `projects` and runs the checks.
+/// Explores every interleaving of the agents of `projects` and runs the checks. The
+/// findings of `lint` on their plan libraries come first, settled where the runs decide
+/// them: a plan some run adopts is not dead nor hidden, a gap no run meets is none, and a
+/// non-inductive invariant that every run keeps is a note.
 pub fn verify_system(
     projects: &[Project],
     limits: Limits,
     threads: usize,
     progress: impl FnMut(usize, u32, f64),
+    lint: Vec<Finding>,
 ) -> Result<Verification, Vec<Diagnostic>> {
     let project = &projects[0];
     let system = System::new(projects)?;
@@ -141,6 +145,11 @@ pub fn verify_system(
     let mut first_stuck: Option<(u32, Vec<u8>)> = None;
     let mut actions: BTreeMap<(u8, u32, u32, u32), Failure> = BTreeMap::new();
     let mut goals: BTreeMap<(u8, String), Failure> = BTreeMap::new();
+    // Per agent: the plans some run adopts, and the goals some event found no plan for.
+    let mut applied: Vec<std::collections::BTreeSet<u32>> =
+        vec![Default::default(); projects.len()];
+    let mut no_plan: Vec<BTreeMap<(String, usize), Failure>> =
+        (0..projects.len()).map(|_| BTreeMap::new()).collect();
     let opts = Options {
         threads,
         keep_edges: true,
@@ -192,6 +201,16 @@ pub fn verify_system(
                         goals
                             .entry((label.agent, format!("{goal} {cause}")))
                             .or_insert_with(x);
+                    }
+                    Note::Plan { plan, .. } => {
+                        applied[label.agent as usize].insert(*plan);
+                    }
+                    Note::NoApplicablePlan(t) => {
+                        let key = (
+                            t.literal.functor().unwrap_or("").to_string(),
+                            t.literal.arity(),
+                        );
+                        no_plan[label.agent as usize].entry(key).or_insert_with(x);
                     }
                     _ => {}
                 }
@@ -377,7 +396,69 @@ pub fn verify_system(
             findings.push(f);
         }
     }
-    Ok(Verification::of(&graph, project, findings))
+    let mut all = lint;
+    all.extend(findings);
+    // Instances share their library: what one adopts, the file's plans have.
+    let mut settled: Vec<&std::path::Path> = Vec::new();
+    for p in projects {
+        let file = p.manifest.agent.plans.path.as_path();
+        if settled.contains(&file) {
+            continue;
+        }
+        settled.push(file);
+        let same: Vec<usize> = (0..projects.len())
+            .filter(|&j| projects[j].manifest.agent.plans.path == file)
+            .collect();
+        let adopted = same
+            .iter()
+            .flat_map(|&j| applied[j].iter().copied())
+            .collect();
+        let mut gaps = BTreeMap::new();
+        for &j in &same {
+            for (key, x) in &no_plan[j] {
+                gaps.entry(key.clone()).or_insert(super::failures::Failure {
+                    src: x.src,
+                    k: x.k,
+                    fp: x.fp,
+                    note: x.note.clone(),
+                });
+            }
+        }
+        super::settle::settle_undecided(&mut all, p, &adopted, &gaps, graph.complete());
+    }
+    super::settle::settle_non_inductive(&mut all, project, graph.complete());
+    // A warning of lint about one step or plan: reached by a run, an error with that run;
+    // reached by none (every state explored), a note.
+    for f in all.iter_mut() {
+        if f.status != Status::Fail || f.severity != Severity::Warning {
+            continue;
+        }
+        let Some(span) = f.span else { continue };
+        let reached = match f.check.as_str() {
+            "precondition" => actions
+                .values()
+                .find(|x| matches!(&x.note, Note::ActionFailed { span: s, .. } if *s == span)),
+            "coverage-gap" => (0..projects.len()).find_map(|k| {
+                let plan = projects[k].plans.plans.iter().find(|p| p.span == span)?;
+                let t = &plan.trigger.literal;
+                no_plan[k].get(&(t.functor().unwrap_or("").to_string(), t.arity()))
+            }),
+            _ => continue,
+        };
+        match reached {
+            Some(x) => {
+                f.severity = Severity::Error;
+                f.message = format!("{} — and a run reaches it", f.message);
+                f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
+            }
+            None if graph.complete() => {
+                f.severity = Severity::Note;
+                f.message = format!("{} — but no run reaches it", f.message);
+            }
+            None => {}
+        }
+    }
+    Ok(Verification::of(&graph, project, all))
 }
 
 struct Cx<'a> {

@@ -170,17 +170,15 @@ fn run_system(
         let map = projects.into_iter().next().expect("an agent").map;
         return input_failure(name, map, bad);
     }
-    let (mut lint, lim) = lint_within(limits(&projects[0], bounds), |o| {
+    let (lint, lim) = lint_within(limits(&projects[0], bounds), |o| {
         super::lint::lint_agents(&projects, o)
     });
-    match crate::check::system::verify_system(&projects, lim, opts.threads, progress) {
+    match crate::check::system::verify_system(&projects, lim, opts.threads, progress, lint) {
         Err(diagnostics) => {
             let map = projects.into_iter().next().expect("an agent").map;
             input_failure(name, map, diagnostics)
         }
-        Ok(mut v) => {
-            lint.append(&mut v.findings);
-            v.findings = lint;
+        Ok(v) => {
             let project = projects.into_iter().next().expect("an agent");
             report_of(name, project, v, opts)
         }
