@@ -1,0 +1,93 @@
+//! Several agents: `cargo bench --bench agents` prints, for `specs/two-robots` and for a
+//! generated ping-pong of one ponger and N pinger instances (N = 1 to 4, or up to the
+//! first argument; 5 takes about two minutes), the states and transitions of the full interleaving search, the time of
+//! the whole `verify` (loading and lint included) and the states per second. The search has
+//! no partial-order reduction nor symmetry over instances yet: these are the numbers those
+//! reductions will be measured against.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+/// A ping-pong project of `n` pingers in a fresh folder.
+fn ping_pong(n: usize) -> PathBuf {
+    let dir = std::env::temp_dir()
+        .join("bdi-check-bench")
+        .join(format!("ping-pong-{n}"));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    // Jason names one instance after its agent, several `pinger1` ... `pingerN`.
+    let names: Vec<String> = if n == 1 {
+        vec!["pinger".into()]
+    } else {
+        (1..=n).map(|i| format!("pinger{i}")).collect()
+    };
+    let pingers: Vec<String> = names.iter().map(|p| format!("\"{p}\"")).collect();
+    let all: Vec<String> = names.iter().map(|p| format!("ponged({p})")).collect();
+    let files = [
+        (
+            "bdi-check.toml",
+            format!(
+                "[[agent]]\nname = \"ponger\"\nplans = \"ponger.asl\"\nactions = \"ping.pddl\"\n\n[[agent]]\nname = \"pinger\"\nplans = \"pinger.asl\"\ninstances = {n}\n\n[objects]\nagent = [\"ponger\", {}]\n\n[invariants]\nno_pong_for_the_ponger = \"not ponged(ponger)\"\n\n[[property]]\nname = \"all_answered\"\nreachable = \"{}\"\n\n[bounds]\nmax_states = 50_000_000\n",
+                pingers.join(", "),
+                all.join(" & ")
+            ),
+        ),
+        (
+            "ping.pddl",
+            "(define (domain ping)\n  (:requirements :strips :typing)\n  (:types agent)\n  (:predicates (ponged ?a - agent))\n  (:action pong :parameters (?a - agent)\n    :precondition (not (ponged ?a)) :effect (ponged ?a)))\n".into(),
+        ),
+        ("ponger.asl", "+!ping[source(A)] <- pong(A).\n".into()),
+        ("pinger.asl", "!start.\n+!start <- .send(ponger, achieve, ping).\n".into()),
+    ];
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).expect("a project file");
+    }
+    dir
+}
+
+fn row(name: &str, dir: &Path) {
+    let started = Instant::now();
+    let bounds = bdi_check::commands::verify::Bounds::default();
+    let run = bdi_check::commands::verify::run(
+        dir,
+        &bounds,
+        &bdi_check::check::VerifyOptions {
+            threads: 1,
+            ..Default::default()
+        },
+        |_, _, _| {},
+    );
+    let seconds = started.elapsed().as_secs_f64();
+    let Some(stats) = run.report.stats.as_ref() else {
+        println!("{name:<16} not verified: {:?}", run.report.verdict);
+        return;
+    };
+    println!(
+        "{name:<16} {:>10} {:>12} {:>8.2} {:>12.0}   {:?}",
+        stats.states,
+        stats.transitions,
+        seconds,
+        stats.states as f64 / seconds,
+        run.report.verdict
+    );
+}
+
+fn main() {
+    let most: usize = std::env::args()
+        .skip(1)
+        .find_map(|a| a.parse().ok())
+        .unwrap_or(4);
+    println!(
+        "{:<16} {:>10} {:>12} {:>8} {:>12}   verdict",
+        "project", "states", "transitions", "seconds", "states/s"
+    );
+    row(
+        "two-robots",
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/two-robots"),
+    );
+    for n in 1..=most {
+        row(&format!("ping-pong {n}"), &ping_pong(n));
+    }
+}
