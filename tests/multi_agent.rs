@@ -406,3 +406,27 @@ always = "loader::at(loader, L) | not at(loader, L)""#,
         "{out}"
     );
 }
+
+#[test]
+fn parse_reads_a_jason_project_and_its_agents() {
+    let o = bdi_check(&["parse", "specs/two-robots/two-robots.mas2j"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(
+        out.contains("fetcher.asl") && out.contains("loader.asl"),
+        "{out}"
+    );
+    let d = project("parse-mas", &[("p.mas2j", "MAS p { agents: a #0; }")]);
+    let o = bdi_check(&[
+        "parse",
+        d.join("p.mas2j").to_str().unwrap(),
+        "--color",
+        "never",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned() + &String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("p.mas2j:1:20") && err.contains("from 1 to 64 instances"),
+        "{err}"
+    );
+}

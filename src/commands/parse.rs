@@ -37,7 +37,8 @@ pub fn command(files: &[PathBuf], include: &[PathBuf], quiet: bool, style: &Styl
     }
 }
 
-/// Parses every file: `.asl` agents (with their includes), `.pddl` domains, and manifests
+/// Parses every file: `.asl` agents (with their includes), `.mas2j` projects (their
+/// agents), `.pddl` domains, and manifests
 /// (`.toml`: the whole project is loaded, checked and grounded). Other files are refused.
 pub fn parse_files(paths: &[PathBuf]) -> ParseRun {
     parse_files_with(paths, &[])
@@ -64,6 +65,41 @@ pub fn parse_files_with(paths: &[PathBuf], source_path: &[PathBuf]) -> ParseRun 
                             files.push(FileReport::Domain(domain_outline(&name, &d, &map)))
                         }
                         (_, errs) => diagnostics.extend(errs),
+                    }
+                }
+                Err(e) => diagnostics.push(
+                    Diagnostic::error("input", format!("cannot read `{name}`: {e}")).in_file(name),
+                ),
+            },
+            // A Jason project file: its agents, each parsed with its includes.
+            Some("mas2j") => match crate::syntax::source::read_input(path) {
+                Ok(text) => {
+                    let id = map.add(path, name.clone(), text);
+                    let text = map.file(id).text.clone();
+                    match crate::syntax::mas2j::parse_mas2j(id, &text) {
+                        Ok(mas) => {
+                            let dir = path.parent().unwrap_or(Path::new("."));
+                            for a in &mas.agents {
+                                let found = std::iter::once(dir.join(&a.source))
+                                    .chain(mas.source_path.iter().map(|p| dir.join(p).join(&a.source)))
+                                    .find(|p| p.is_file());
+                                let Some(file) = found else {
+                                    diagnostics.push(
+                                        Diagnostic::error(
+                                            "input",
+                                            format!("the source of agent `{}`, `{}`, does not exist", a.name, a.source),
+                                        )
+                                        .with_label(a.span, "no such file"),
+                                    );
+                                    continue;
+                                };
+                                match load_agent_with(&file, &mut map, source_path) {
+                                    Ok(agent) => files.push(FileReport::Agent(outline(&file, &agent, &map))),
+                                    Err(errs) => diagnostics.extend(errs),
+                                }
+                            }
+                        }
+                        Err(errs) => diagnostics.extend(errs),
                     }
                 }
                 Err(e) => diagnostics.push(
@@ -98,10 +134,10 @@ pub fn parse_files_with(paths: &[PathBuf], source_path: &[PathBuf]) -> ParseRun 
             _ => diagnostics.push(
                 Diagnostic::error(
                     "input",
-                    format!("`{name}` is not an AgentSpeak file, a PDDL domain or a manifest"),
+                    format!("`{name}` is not an AgentSpeak file, a Jason project, a PDDL domain or a manifest"),
                 )
                 .in_file(name)
-                .with_help("`parse` reads `.asl`, `.pddl` and `bdi-check.toml` files"),
+                .with_help("`parse` reads `.asl`, `.mas2j`, `.pddl` and `bdi-check.toml` files"),
             ),
         }
     }
