@@ -430,3 +430,43 @@ fn parse_reads_a_jason_project_and_its_agents() {
         "{err}"
     );
 }
+
+#[test]
+fn lint_findings_are_settled_against_the_runs() {
+    let of = |r: &serde_json::Value, check: &str| -> Vec<serde_json::Value> {
+        r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| f["check"] == check)
+            .cloned()
+            .collect()
+    };
+    // Reached: the race's failing precondition is an error with the run that fails it.
+    let (_, r, _) = verify_json("tests/verify/mas-race", "settle-race");
+    let pre: Vec<_> = of(&r, "precondition")
+        .into_iter()
+        .filter(|f| f["severity"] == "error")
+        .collect();
+    assert_eq!(pre.len(), 1, "{r:#}");
+    assert!(pre[0]["message"]
+        .as_str()
+        .unwrap()
+        .ends_with("— and a run reaches it"));
+    assert!(!agent_steps(&pre[0]).is_empty());
+    // Never reached, every state explored: the two robots' lint warnings are notes.
+    let (_, r, _) = verify_json("specs/two-robots", "settle-robots");
+    for check in ["precondition", "coverage-gap", "action-breaks-invariant"] {
+        for f in of(&r, check).iter().filter(|f| f["status"] == "fail") {
+            assert_eq!(f["severity"], "note", "{f:#}");
+        }
+    }
+    // Undecided by lint (source annotations), decided by a run that adopts the plan.
+    let (code, r, _) = verify_json("tests/jason-mas/tell", "settle-tell");
+    assert_eq!(code, 0, "{r:#}");
+    let dead = of(&r, "dead-plan");
+    assert!(dead.iter().all(|f| f["status"] == "pass"), "{r:#}");
+    assert!(dead
+        .iter()
+        .any(|f| f["message"].as_str().unwrap().ends_with("a run adopts it")));
+}

@@ -141,7 +141,10 @@ pub fn verify_system(
     if !errors.is_empty() {
         return Err(errors);
     }
+    // The first stored state (in search order, so at least depth) where each condition
+    // fails, and where it holds.
     let mut first_fails: Vec<Option<u32>> = vec![None; conds.len()];
+    let mut first_holds: Vec<Option<u32>> = vec![None; conds.len()];
     let mut first_stuck: Option<(u32, Vec<u8>)> = None;
     let mut actions: BTreeMap<(u8, u32, u32, u32), Failure> = BTreeMap::new();
     let mut goals: BTreeMap<(u8, String), Failure> = BTreeMap::new();
@@ -160,7 +163,9 @@ pub fn verify_system(
         limits,
         &opts,
         |s| Summary {
-            fails: {
+            fails: if conds.is_empty() {
+                Vec::new()
+            } else {
                 let all = system.everything(s);
                 conds.iter().map(|(_, _, _, c, _)| !c.eval(&all)).collect()
             },
@@ -173,10 +178,13 @@ pub fn verify_system(
             },
         },
         |i, sum| {
-            for (j, f) in sum.fails.iter().enumerate() {
-                if *f && first_fails[j].is_none() {
-                    first_fails[j] = Some(i);
-                }
+            for (j, &fails) in sum.fails.iter().enumerate() {
+                let first = if fails {
+                    &mut first_fails[j]
+                } else {
+                    &mut first_holds[j]
+                };
+                first.get_or_insert(i);
             }
             if let (Some(b), None) = (sum.stuck, &first_stuck) {
                 first_stuck = Some((i, b));
@@ -232,35 +240,28 @@ pub fn verify_system(
     let mut findings = Vec::new();
     for (j, (name, check, kind, _, span)) in conds.iter().enumerate() {
         let f = match (kind, first_fails[j]) {
-            (PropertyKind::Reachable, _) => {
-                // Reached where the negation fails to hold, i.e. where the formula holds.
-                match (0..n as u32).find(|&i| {
-                    graph
-                        .state(&system, i)
-                        .is_some_and(|s| conds[j].3.eval(&system.everything(&s)))
-                }) {
-                    Some(i) => cx.reached(
-                        check,
-                        name,
-                        *span,
-                        Status::Pass,
-                        format!("`{name}` is reached after {} steps", graph.depth(i)),
-                        i,
-                        Severity::Note,
-                    ),
-                    None => cx.finding(
-                        check,
-                        name,
-                        *span,
-                        if graph.complete() {
-                            Status::Fail
-                        } else {
-                            Status::Unknown
-                        },
-                        format!("`{name}` is never reached"),
-                    ),
-                }
-            }
+            (PropertyKind::Reachable, _) => match first_holds[j] {
+                Some(i) => cx.reached(
+                    check,
+                    name,
+                    *span,
+                    Status::Pass,
+                    format!("`{name}` is reached after {} steps", graph.depth(i)),
+                    i,
+                    Severity::Note,
+                ),
+                None => cx.finding(
+                    check,
+                    name,
+                    *span,
+                    if graph.complete() {
+                        Status::Fail
+                    } else {
+                        Status::Unknown
+                    },
+                    format!("`{name}` is never reached"),
+                ),
+            },
             (_, Some(i)) => {
                 let what = if *check == "invariant" {
                     format!(
@@ -324,78 +325,60 @@ pub fn verify_system(
             "no reachable state is stuck".into(),
         )),
     }
-    if actions.is_empty() {
-        findings.push(cx.finding(
-            "action-failure",
-            "all",
-            place,
-            held,
-            "no agent ever attempts an action whose precondition does not hold".into(),
-        ));
-    }
-    for x in actions.values() {
-        if let Note::ActionFailed {
-            text,
-            plan,
-            span,
-            reason,
-        } = &x.note
-        {
-            let who = &system.names()[x.agent as usize];
-            let p = &projects[x.agent as usize];
-            let loc = p.map.location(*span);
-            let mut f = cx.finding(
-                "action-failure",
-                &format!("{}:{}", loc.file, loc.line),
+    let who = |x: &Failure| &system.names()[x.agent as usize];
+    cx.failures(
+        &mut findings,
+        ("action-failure", place, held),
+        "no agent ever attempts an action whose precondition does not hold",
+        actions.values(),
+        |x| match &x.note {
+            Note::ActionFailed {
+                text,
+                plan,
+                span,
+                reason,
+            } => Some((
                 *span,
-                Status::Fail,
                 format!(
-                    "`{text}` of agent `{who}` in plan {} fails: {reason}",
-                    p.plans.plans[*plan as usize].name()
+                    "`{text}` of agent `{}` in plan {} fails: {reason}",
+                    who(x),
+                    projects[x.agent as usize].plans.plans[*plan as usize].name()
                 ),
-            );
-            f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
-            findings.push(f);
-        }
-    }
-    if goals.is_empty() {
-        findings.push(cx.finding(
-            "goal-failure",
-            "all",
-            place,
-            held,
-            "no agent's goal ever fails without a failure plan to handle it".into(),
-        ));
-    }
-    for x in goals.values() {
-        if let Note::GoalFailed {
-            goal,
-            cause,
-            span,
-            reason,
-            ..
-        } = &x.note
-        {
-            let who = &system.names()[x.agent as usize];
-            let at = span.unwrap_or(projects[x.agent as usize].manifest.agent.plans.written.span);
-            let loc = project.map.location(at);
-            let what = if goal == cause {
-                format!("goal {goal} of agent `{who}` fails ({reason})")
-            } else {
-                format!("{cause} fails ({reason}), so goal {goal} of agent `{who}` fails")
-            };
-            let mut f = cx.finding(
-                "goal-failure",
-                "",
-                at,
-                Status::Fail,
-                format!("{what}, and no failure plan handles it: the intention is dropped"),
-            );
-            f.id = format!("goal-failure:{}:{}", loc.file, loc.line);
-            f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
-            findings.push(f);
-        }
-    }
+            )),
+            _ => None,
+        },
+    );
+    cx.failures(
+        &mut findings,
+        ("goal-failure", place, held),
+        "no agent's goal ever fails without a failure plan to handle it",
+        goals.values(),
+        |x| match &x.note {
+            Note::GoalFailed {
+                goal,
+                cause,
+                span,
+                reason,
+                ..
+            } => {
+                let at =
+                    span.unwrap_or(projects[x.agent as usize].manifest.agent.plans.written.span);
+                let what = if goal == cause {
+                    format!("goal {goal} of agent `{}` fails ({reason})", who(x))
+                } else {
+                    format!(
+                        "{cause} fails ({reason}), so goal {goal} of agent `{}` fails",
+                        who(x)
+                    )
+                };
+                Some((
+                    at,
+                    format!("{what}, and no failure plan handles it: the intention is dropped"),
+                ))
+            }
+            _ => None,
+        },
+    );
     let mut all = lint;
     all.extend(findings);
     // Instances share their library: what one adopts, the file's plans have.
@@ -478,6 +461,31 @@ impl Cx<'_> {
     ) -> Finding {
         let at = (span, self.projects[0].map.location(span));
         super::checker::dynamic_finding(check, name, at, status, message)
+    }
+
+    /// One failing finding per failure, with its run (its id `check:file:line`), or, when
+    /// there is none, one that says so (`none`).
+    fn failures<'f>(
+        &self,
+        out: &mut Vec<Finding>,
+        (check, place, held): (&str, Span, Status),
+        none: &str,
+        failures: impl ExactSizeIterator<Item = &'f Failure>,
+        describe: impl Fn(&Failure) -> Option<(Span, String)>,
+    ) {
+        if failures.len() == 0 {
+            out.push(self.finding(check, "all", place, held, none.into()));
+        }
+        for x in failures {
+            let Some((span, message)) = describe(x) else {
+                continue;
+            };
+            let loc = self.projects[0].map.location(span);
+            let name = format!("{}:{}", loc.file, loc.line);
+            let mut f = self.finding(check, &name, span, Status::Fail, message);
+            f.counterexample = Some(self.counterexample(&self.graph.path_to(x.src), Some(x)));
+            out.push(f);
+        }
     }
 
     #[allow(clippy::too_many_arguments)]

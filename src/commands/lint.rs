@@ -91,10 +91,17 @@ pub fn lint_agents(projects: &[Project], opts: &LintOptions) -> Vec<LintFinding>
         // An invariant that names an agent's beliefs is not one lint can read of a plan
         // library alone: `verify` checks it.
         let n = crate::model::formula::agent_stride(&p.atoms) as u32;
-        let mut p = p.clone();
-        p.invariants
-            .retain(|(_, c)| c.atoms().iter().all(|a| a.0 < n));
-        for l in lint(&p, opts) {
+        let of_agents = |c: &crate::model::cond::Cond| c.atoms().iter().any(|a| a.0 >= n);
+        let filtered;
+        let p = if p.invariants.iter().any(|(_, c)| of_agents(c)) {
+            let mut q = p.clone();
+            q.invariants.retain(|(_, c)| !of_agents(c));
+            filtered = q;
+            &filtered
+        } else {
+            p
+        };
+        for l in lint(p, opts) {
             let f = &l.finding;
             match out
                 .iter_mut()

@@ -189,40 +189,37 @@ fn run_system(
 fn report_of(
     name: String,
     project: Project,
-    v: crate::check::Verification,
+    mut v: crate::check::Verification,
     opts: &VerifyOptions,
 ) -> VerifyRun {
-    let mut v = v;
-    {
-        {
-            let unused = super::allow::apply(&project, &mut v.findings, |_| true);
-            let mut report = Report::new(name, v.findings);
-            report.warnings.extend(unused);
-            if report.verdict == Verdict::Pass && !v.stats.complete {
-                report.verdict = Verdict::Incomplete;
-            }
-            if let Some((index, count)) = opts.shard {
-                report.shard = Some(Shard { index, count });
-                if v.stats.initial_states == 0 {
-                    report.warnings.push(format!(
-                        "shard {index}/{count} {EMPTY_SHARD}: it checked nothing (merge it with the other shards)"
-                    ));
-                }
-            }
-            report.stats = Some(v.stats);
-            report.sources = crate::findings::sources_of(&project.map);
-            report.warnings.extend(v.beyond.as_ref().map(|b| {
-                format!("a run leaves the model, and the search does not follow it: {b}")
-            }));
-            report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
-            VerifyRun {
-                report,
-                tree: crate::report::html::PlanTree::of(&project),
-                map: project.map,
-                diagnostics: Vec::new(),
-                bound: v.bound,
-            }
+    let unused = super::allow::apply(&project, &mut v.findings, |_| true);
+    let mut report = Report::new(name, v.findings);
+    report.warnings.extend(unused);
+    if report.verdict == Verdict::Pass && !v.stats.complete {
+        report.verdict = Verdict::Incomplete;
+    }
+    if let Some((index, count)) = opts.shard {
+        report.shard = Some(Shard { index, count });
+        if v.stats.initial_states == 0 {
+            report.warnings.push(format!(
+                "shard {index}/{count} {EMPTY_SHARD}: it checked nothing (merge it with the other shards)"
+            ));
         }
+    }
+    report.stats = Some(v.stats);
+    report.sources = crate::findings::sources_of(&project.map);
+    report.warnings.extend(
+        v.beyond
+            .as_ref()
+            .map(|b| format!("a run leaves the model, and the search does not follow it: {b}")),
+    );
+    report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
+    VerifyRun {
+        report,
+        tree: crate::report::html::PlanTree::of(&project),
+        map: project.map,
+        diagnostics: Vec::new(),
+        bound: v.bound,
     }
 }
 
