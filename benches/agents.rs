@@ -1,9 +1,10 @@
-//! Several agents: `cargo bench --bench agents` prints, for `specs/two-robots` and for a
-//! generated ping-pong of one ponger and N pinger instances (N = 1 to 4, or up to the
-//! first argument; 5 takes about two minutes), the states and transitions of the full interleaving search, the time of
-//! the whole `verify` (loading and lint included) and the states per second. The search has
-//! no partial-order reduction nor symmetry over instances yet: these are the numbers those
-//! reductions will be measured against.
+//! Several agents: `cargo bench --bench agents` prints, for `specs/two-robots`, for a
+//! generated ping-pong of one ponger and N pinger instances and for a collector told by N
+//! workers that each take four cycles of their own first (N = 1 to 4, or up to the first
+//! argument; ping-pong 5 takes about two minutes), the states and transitions of the search
+//! with partial-order reduction (`por`) and over every interleaving (`full`), the time of
+//! the whole `verify` (loading and lint included) and the states per second. Symmetry
+//! over instances is not there yet.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -47,7 +48,42 @@ fn ping_pong(n: usize) -> PathBuf {
     dir
 }
 
+/// A collector told `done` by `n` workers, each of which first takes four cycles of its
+/// own (adopting its plan, three mental notes): the case partial-order reduction is for.
+fn workers(n: usize) -> PathBuf {
+    let dir = std::env::temp_dir()
+        .join("bdi-check-bench")
+        .join(format!("workers-{n}"));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let files = [
+        (
+            "bdi-check.toml",
+            format!("[[agent]]\nname = \"collector\"\nplans = \"collector.asl\"\nactions = \"d.pddl\"\n\n[[agent]]\nname = \"worker\"\nplans = \"worker.asl\"\ninstances = {n}\n\n[bounds]\nmax_states = 50_000_000\n"),
+        ),
+        (
+            "d.pddl",
+            "(define (domain d) (:requirements :strips) (:predicates (p)) (:action a :parameters () :precondition () :effect (p)))\n".into(),
+        ),
+        (
+            "worker.asl",
+            "!work.\n+!work <- +step1; +step2; +step3; .send(collector, tell, done).\n".into(),
+        ),
+        ("collector.asl", "+done[source(A)] <- .print(A).\n".into()),
+    ];
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).expect("a project file");
+    }
+    dir
+}
+
 fn row(name: &str, dir: &Path) {
+    for partial_order in [true, false] {
+        one(name, dir, partial_order);
+    }
+}
+
+fn one(name: &str, dir: &Path, partial_order: bool) {
+    let name = format!("{name} {}", if partial_order { "por" } else { "full" });
     let started = Instant::now();
     let bounds = bdi_check::commands::verify::Bounds::default();
     let run = bdi_check::commands::verify::run(
@@ -55,17 +91,18 @@ fn row(name: &str, dir: &Path) {
         &bounds,
         &bdi_check::check::VerifyOptions {
             threads: 1,
+            partial_order,
             ..Default::default()
         },
         |_, _, _| {},
     );
     let seconds = started.elapsed().as_secs_f64();
     let Some(stats) = run.report.stats.as_ref() else {
-        println!("{name:<16} not verified: {:?}", run.report.verdict);
+        println!("{name:<20} not verified: {:?}", run.report.verdict);
         return;
     };
     println!(
-        "{name:<16} {:>10} {:>12} {:>8.2} {:>12.0}   {:?}",
+        "{name:<20} {:>10} {:>12} {:>8.2} {:>12.0}   {:?}",
         stats.states,
         stats.transitions,
         seconds,
@@ -80,7 +117,7 @@ fn main() {
         .find_map(|a| a.parse().ok())
         .unwrap_or(4);
     println!(
-        "{:<16} {:>10} {:>12} {:>8} {:>12}   verdict",
+        "{:<20} {:>10} {:>12} {:>8} {:>12}   verdict",
         "project", "states", "transitions", "seconds", "states/s"
     );
     row(
@@ -89,5 +126,8 @@ fn main() {
     );
     for n in 1..=most {
         row(&format!("ping-pong {n}"), &ping_pong(n));
+    }
+    for n in 1..=most + 1 {
+        row(&format!("workers {n}"), &workers(n));
     }
 }

@@ -140,6 +140,10 @@ struct Search {
     /// Turn symmetry reduction over `[bounds] symmetry` types off.
     #[arg(long)]
     no_symmetry: bool,
+    /// Turn partial-order reduction among several agents off: every interleaving, and
+    /// shortest counterexamples.
+    #[arg(long)]
+    no_partial_order: bool,
     /// `--deny warnings`: failing warnings (static warnings no run settled) fail the run.
     #[arg(long, value_name = "LEVEL", value_parser = ["warnings"])]
     deny: Option<String>,
@@ -163,6 +167,7 @@ impl Search {
             max_memory: bdi_check::check::explore::default_max_memory(),
             compiled: defaults.compiled,
             sample,
+            partial_order: !self.no_partial_order,
         };
         let bounds = commands::verify::Bounds {
             max_states: self.max_states,

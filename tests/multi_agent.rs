@@ -470,3 +470,166 @@ fn lint_findings_are_settled_against_the_runs() {
         .iter()
         .any(|f| f["message"].as_str().unwrap().ends_with("a run adopts it")));
 }
+
+/// A collector and `n` workers: each worker takes four cycles of its own (adopt the plan,
+/// three mental notes), then tells the collector it is done. `extra` goes into the
+/// manifest, `step` is the worker's third step.
+fn workers(tag: &str, n: usize, step: &str, extra: &str) -> std::path::PathBuf {
+    project(
+        tag,
+        &[
+            (
+                "bdi-check.toml",
+                &format!(
+                    "[[agent]]\nname = \"collector\"\nplans = \"collector.asl\"\nactions = \"d.pddl\"\n\n[[agent]]\nname = \"worker\"\nplans = \"worker.asl\"\ninstances = {n}\n{extra}"
+                ),
+            ),
+            ("d.pddl", DOMAIN),
+            (
+                "worker.asl",
+                &format!("!work.\n+!work <- +step1; +step2; {step}; .send(collector, tell, done).\n"),
+            ),
+            ("collector.asl", "+done[source(A)] <- .print(A).\n"),
+        ],
+    )
+}
+
+/// Each failing and passing finding as `check id status severity`, sorted.
+fn verdicts(r: &serde_json::Value) -> Vec<String> {
+    let mut v: Vec<String> = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| {
+            format!(
+                "{} {} {} {}",
+                f["check"], f["id"], f["status"], f["severity"]
+            )
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn partial_order_reduction_keeps_every_finding_and_its_runs_replay() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut dirs: Vec<std::path::PathBuf> = vec![root.join("specs/two-robots")];
+    for case in ["mas-lost-wakeup", "mas-race", "mas-list"] {
+        dirs.push(root.join("tests/verify").join(case));
+    }
+    let local = [
+        workers("por-pass", 3, "+step3", ""),
+        // Visible: the collector's belief is in an invariant.
+        workers(
+            "por-invariant",
+            3,
+            "+step3",
+            "\n[invariants]\nnot_all_done = \"not collector::done\"\n",
+        ),
+        // A goal failure in a step of each worker's own.
+        workers("por-goal", 2, "?step4", ""),
+    ];
+    dirs.extend(local.iter().cloned());
+    for (i, d) in dirs.iter().enumerate() {
+        let tag = format!("por-{i}");
+        let (code, reduced, file) = verify_json(d.to_str().unwrap(), &tag);
+        let (full_code, full, _) = common::report_json(
+            &["verify", d.to_str().unwrap(), "--no-partial-order"],
+            &format!("{tag}-full"),
+        );
+        let at = d.display();
+        assert_eq!(code, full_code, "{at}");
+        assert_eq!(verdicts(&reduced), verdicts(&full), "{at}");
+        let states = |r: &serde_json::Value| r["stats"]["states"].as_u64().unwrap();
+        assert!(states(&reduced) <= states(&full), "{at}");
+        if code == 0 && local.contains(d) {
+            assert!(states(&reduced) < states(&full), "{at}: nothing reduced");
+        }
+        // A violation found is searched again over every interleaving, for the shortest
+        // runs.
+        if code == 1 {
+            assert_eq!(reduced["findings"], full["findings"], "{at}");
+        }
+        if code == 1 {
+            let failed = reduced["findings"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|f| f["status"] == "fail" && f["severity"] == "error")
+                .count();
+            let o = bdi_check(&["replay", file.to_str().unwrap()]);
+            let out = String::from_utf8_lossy(&o.stdout).into_owned();
+            assert_eq!(o.status.code(), Some(1), "{at}: {out}");
+            assert_eq!(
+                out.matches("still reaches its violation").count(),
+                failed,
+                "{at}: {out}"
+            );
+        }
+    }
+}
+
+#[test]
+fn partial_order_reduction_finds_what_the_full_search_finds() {
+    use bdi_check::check::{explore::Limits, system::verify_system, VerifyOptions};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dirs = [
+        root.join("tests/verify/mas-lost-wakeup"),
+        root.join("tests/verify/mas-race"),
+        workers(
+            "por-lib-invariant",
+            3,
+            "+step3",
+            "\n[invariants]\nnot_all_done = \"not collector::done\"\n",
+        ),
+        workers("por-lib-goal", 3, "?step4", ""),
+    ];
+    let limits = Limits {
+        max_states: 1_000_000,
+        max_depth: 10_000,
+        timeout: None,
+    };
+    for d in &dirs {
+        let projects = bdi_check::model::project::load_system(d).expect("the project loads");
+        let run = |partial_order| {
+            let opts = VerifyOptions {
+                threads: 2,
+                partial_order,
+                ..VerifyOptions::default()
+            };
+            verify_system(&projects, limits, &opts, |_, _, _| {}, Vec::new()).expect("verifies")
+        };
+        let (reduced, full) = (run(true), run(false));
+        let key = |v: &bdi_check::check::Verification| {
+            let mut k: Vec<String> = v
+                .findings
+                .iter()
+                .map(|f| format!("{} {} {:?} {:?}", f.check, f.id, f.status, f.severity))
+                .collect();
+            k.sort();
+            k
+        };
+        assert_eq!(key(&reduced), key(&full), "{}", d.display());
+        assert!(reduced.stats.complete && full.stats.complete);
+        assert_eq!(full.reduced_states, 0);
+        if d.starts_with(std::env::temp_dir()) {
+            assert!(reduced.stats.states < full.stats.states, "{}", d.display());
+        }
+        // Every violation comes with a run: the reduced search's runs are real ones, if
+        // not always the shortest.
+        for f in &reduced.findings {
+            if f.status == bdi_check::findings::Status::Fail && f.counterexample.is_some() {
+                let g = full
+                    .findings
+                    .iter()
+                    .find(|g| g.check == f.check && g.id == f.id)
+                    .expect("the full search has it");
+                let len = |x: &bdi_check::findings::Finding| {
+                    x.counterexample.as_ref().map_or(0, |c| c.steps.len())
+                };
+                assert!(len(f) >= len(g), "{}: {}", d.display(), f.id);
+            }
+        }
+    }
+}

@@ -26,6 +26,7 @@ pub const CHECKS: &[&str] = &[
 pub mod explanation;
 pub mod explore;
 pub mod model;
+pub mod por;
 pub mod run;
 pub mod sample;
 pub mod store;
@@ -70,6 +71,9 @@ pub struct Verification {
     pub peak_memory: u64,
     /// The symmetric types (and how many objects each has) when symmetry reduction was on.
     pub symmetric_types: Vec<(String, usize)>,
+    /// States the search followed through an ample set only (partial-order reduction):
+    /// their counterexamples may be longer than the shortest.
+    pub reduced_states: usize,
     /// When symmetry reduction was on and the agent does not treat the objects alike (a
     /// reachable state whose renaming has other successors than its successors renamed):
     /// the renaming, and which plans the stored state was about to use.
@@ -92,6 +96,8 @@ pub struct VerifyOptions {
     pub compiled: bool,
     /// Follow random runs only (`simulate`), not every state.
     pub sample: Option<sample::Sample>,
+    /// Partial-order reduction among several agents ([`por`]).
+    pub partial_order: bool,
 }
 
 impl Default for VerifyOptions {
@@ -104,6 +110,7 @@ impl Default for VerifyOptions {
             max_memory: None,
             compiled: true,
             sample: None,
+            partial_order: true,
         }
     }
 }
@@ -324,6 +331,7 @@ impl Verification {
             memory: (graph.store_bytes(), graph.edge_bytes()),
             peak_memory: graph.peak_memory,
             symmetric_types: Vec::new(),
+            reduced_states: graph.reduced,
             symmetry_caveat: None,
         }
     }

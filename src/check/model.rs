@@ -37,6 +37,20 @@ pub trait Model {
     fn beyond(&self, _label: &Self::Label) -> Option<(crate::syntax::Span, String)> {
         None
     }
+
+    /// Partial-order reduction: the successors (a range of `successors`, the list
+    /// [`Model::next_states`] gave for `s`) that are enough to follow from `s`, an ample
+    /// set meeting conditions C0 to C2 of Clarke, Grumberg and Peled (nonempty; no
+    /// transition outside it that depends on it can run before it; invisible to every
+    /// checked condition). The search adds the cycle proviso (C3): it follows the range
+    /// only when every target is new, deeper than `s`. `None`: follow every successor.
+    fn ample(
+        &self,
+        _s: &Self::State,
+        _successors: &[(Self::Label, Self::State)],
+    ) -> Option<std::ops::Range<usize>> {
+        None
+    }
 }
 
 /// Whether notes leave the model.

@@ -9,8 +9,10 @@
 
 use super::explore::{explore_with, Graph, Limits, Options, Walk};
 use super::model::{beyond_of, Model};
+use super::por::PartialOrder;
 use super::trace::Builder;
 use super::Verification;
+use super::VerifyOptions;
 use crate::findings::{Counterexample, Finding, Status};
 use crate::model::cond::Cond;
 use crate::model::formula;
@@ -34,6 +36,40 @@ impl Model for System<'_> {
 
     fn beyond(&self, label: &Step) -> Option<(Span, String)> {
         beyond_of(label.notes.iter())
+    }
+}
+
+/// The interleavings the search follows: the system's, with partial-order reduction
+/// when it is on ([`PartialOrder`]).
+struct Interleavings<'a, 's> {
+    system: &'a System<'s>,
+    partial_order: Option<PartialOrder>,
+}
+
+impl Model for Interleavings<'_, '_> {
+    type State = SystemState;
+    type Label = Step;
+
+    fn init_states(&self) -> Vec<SystemState> {
+        self.system.initial_states()
+    }
+
+    fn next_states(&self, s: &SystemState) -> Vec<(Step, SystemState)> {
+        self.system.successors(s)
+    }
+
+    fn beyond(&self, label: &Step) -> Option<(Span, String)> {
+        beyond_of(label.notes.iter())
+    }
+
+    fn ample(
+        &self,
+        s: &SystemState,
+        successors: &[(Step, SystemState)],
+    ) -> Option<std::ops::Range<usize>> {
+        self.partial_order
+            .as_ref()
+            .and_then(|p| p.ample(self.system, s, successors))
     }
 }
 
@@ -61,10 +97,11 @@ struct Summary {
 pub fn verify_system(
     projects: &[Project],
     limits: Limits,
-    threads: usize,
+    options: &VerifyOptions,
     progress: impl FnMut(usize, u32, f64),
     lint: Vec<Finding>,
 ) -> Result<Verification, Vec<Diagnostic>> {
+    let threads = options.threads;
     let project = &projects[0];
     let system = System::new(projects)?;
     let env = &system.agents[0];
@@ -158,8 +195,14 @@ pub fn verify_system(
         keep_edges: true,
         ..Options::default()
     };
+    let model = Interleavings {
+        system: &system,
+        partial_order: options
+            .partial_order
+            .then(|| PartialOrder::new(&system, conds.iter().map(|c| &c.3))),
+    };
     let graph: Graph<SystemState> = explore_with(
-        &system,
+        &model,
         limits,
         &opts,
         |s| Summary {

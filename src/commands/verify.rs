@@ -173,7 +173,32 @@ fn run_system(
     let (lint, lim) = lint_within(limits(&projects[0], bounds), |o| {
         super::lint::lint_agents(&projects, o)
     });
-    match crate::check::system::verify_system(&projects, lim, opts.threads, progress, lint) {
+    let mut progress = progress;
+    let mut result =
+        crate::check::system::verify_system(&projects, lim, opts, &mut progress, lint.clone());
+    // Partial-order reduction keeps every violation, not its shortest run: a violation
+    // found is searched again over every interleaving, and that search's report stands
+    // when it is complete.
+    if let Ok(v) = &result {
+        let violated = v
+            .findings
+            .iter()
+            .any(|f| f.status == crate::findings::Status::Fail && f.counterexample.is_some());
+        if violated && v.reduced_states > 0 {
+            let every = VerifyOptions {
+                partial_order: false,
+                ..*opts
+            };
+            if let Ok(full) =
+                crate::check::system::verify_system(&projects, lim, &every, &mut progress, lint)
+            {
+                if full.stats.complete {
+                    result = Ok(full);
+                }
+            }
+        }
+    }
+    match result {
         Err(diagnostics) => {
             let map = projects.into_iter().next().expect("an agent").map;
             input_failure(name, map, diagnostics)
@@ -213,6 +238,13 @@ fn report_of(
             .as_ref()
             .map(|b| format!("a run leaves the model, and the search does not follow it: {b}")),
     );
+    let violated = report
+        .findings
+        .iter()
+        .any(|f| f.status == crate::findings::Status::Fail && f.counterexample.is_some());
+    if violated && v.reduced_states > 0 {
+        report.warnings.push("partial-order reduction left out interleavings, and the search over all of them stopped at a bound: a run shown may be longer than the shortest one (`--no-partial-order` searches every interleaving)".into());
+    }
     report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
     VerifyRun {
         report,

@@ -412,6 +412,16 @@ impl<'p> Semantics<'p> {
     }
 
     /// Whether a request may arrive in a state with these requests made and this idleness.
+    /// Whether a request may still come in a run that has made `requested`.
+    pub fn requests_remain(&self, requested: u64) -> bool {
+        requested.count_ones() < self.max_requests
+    }
+
+    /// The environment's atoms, which the agent perceives.
+    pub fn env_atoms(&self) -> &AtomSet {
+        &self.env_atoms
+    }
+
     pub(super) fn may_request(&self, requested: u64, idle: bool) -> bool {
         requested.count_ones() < self.max_requests && (self.arrival_any || idle)
     }

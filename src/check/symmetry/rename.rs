@@ -6,9 +6,11 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::term::Term;
 use crate::model::Substitution;
 use crate::semantics::state::{
-    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending, Waiting,
+    ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending, Told,
+    Waiting,
 };
 use crate::semantics::{Origin, State};
+use std::sync::Arc;
 
 /// One renaming of the symmetric objects, for the terms of data kept beside an agent state
 /// (see [`Symmetry::fingerprint_with`]).
@@ -55,70 +57,15 @@ impl Symmetry {
 
     /// `t` renamed, or `None` when renaming leaves it as it is.
     pub(super) fn rename(&self, t: &Term, perm: &[u16]) -> Option<Term> {
-        match t {
-            Term::Atom(n) => {
-                let &s = self.by_name.get(n)?;
-                let image = perm[s as usize];
-                (image != s).then(|| Term::Atom(self.names[image as usize].clone()))
-            }
-            Term::Struct(st) => {
-                let args = self.rename_all(st.args(), perm);
-                let annots = self.rename_all(st.annots(), perm);
-                if args.is_none() && annots.is_none() {
-                    return None;
-                }
-                Some(Term::literal(
-                    st.functor(),
-                    st.negated(),
-                    args.unwrap_or_else(|| st.args().to_vec()),
-                    annots.unwrap_or_else(|| st.annots().to_vec()),
-                ))
-            }
-            Term::Cons(c) => {
-                let h = self.rename(c.head(), perm);
-                let tl = self.rename(c.tail(), perm);
-                if h.is_none() && tl.is_none() {
-                    return None;
-                }
-                Some(Term::cons(
-                    h.unwrap_or_else(|| c.head().clone()),
-                    tl.unwrap_or_else(|| c.tail().clone()),
-                ))
-            }
-            _ => None,
-        }
-    }
-
-    fn rename_all(&self, ts: &[Term], perm: &[u16]) -> Option<Vec<Term>> {
-        let mut out: Option<Vec<Term>> = None;
-        for (i, t) in ts.iter().enumerate() {
-            if let Some(r) = self.rename(t, perm) {
-                out.get_or_insert_with(|| ts[..i].to_vec()).push(r);
-            } else if let Some(o) = &mut out {
-                o.push(t.clone());
-            }
-        }
-        out
+        rename_names(t, &|n| {
+            let &s = self.by_name.get(n)?;
+            let image = perm[s as usize];
+            (image != s).then(|| self.names[image as usize].clone())
+        })
     }
 
     fn term(&self, t: &Term, perm: &[u16]) -> Term {
         self.rename(t, perm).unwrap_or_else(|| t.clone())
-    }
-
-    fn subst(&self, s: &Substitution, perm: &[u16]) -> Substitution {
-        let mut out = Substitution::new();
-        for (v, t) in s.iter() {
-            out.bind(v.clone(), self.term(t, perm));
-        }
-        out
-    }
-
-    fn trigger(&self, t: &EventTrigger, perm: &[u16]) -> EventTrigger {
-        EventTrigger {
-            op: t.op,
-            kind: t.kind,
-            literal: self.term(&t.literal, perm),
-        }
     }
 
     fn request_image(&self, r: u8, perm: &[u16]) -> u8 {
@@ -135,95 +82,218 @@ impl Symmetry {
         }
     }
 
-    fn intention(&self, i: &Intention, perm: &[u16]) -> Intention {
-        Intention {
-            frames: i
-                .frames
-                .iter()
-                .map(|f| Frame {
-                    plan: f.plan,
-                    subst: self.subst(&f.subst, perm),
-                    cursors: f
-                        .cursors
-                        .iter()
-                        .map(|c| Cursor {
-                            block: c.block,
-                            pos: c.pos,
-                            kind: match &c.kind {
-                                CursorKind::For { rest, base } => CursorKind::For {
-                                    rest: rest.iter().map(|s| self.subst(s, perm)).collect(),
-                                    base: self.subst(base, perm),
-                                },
-                                CursorKind::While { outer, at, base } => CursorKind::While {
-                                    outer: *outer,
-                                    at: *at,
-                                    base: self.subst(base, perm),
-                                },
-                                CursorKind::Seq => CursorKind::Seq,
-                            },
-                        })
-                        .collect(),
-                    trigger: self.trigger(&f.trigger, perm),
-                    calling: f.calling.as_ref().map(|t| self.term(t, perm)),
-                })
-                .collect(),
-            origin: self.origin(i.origin, perm),
-        }
-    }
-
     /// The state renamed by `perm`.
     pub(super) fn apply(&self, s: &State, perm: &[u16]) -> State {
-        let mut beliefs = AtomSet::empty(self.atom_count);
-        for a in s.beliefs.iter() {
-            beliefs.insert(self.atom_image(a, perm));
-        }
-        let mut requested = 0u64;
-        for r in 0..64u8 {
-            if s.requested >> r & 1 == 1 {
-                requested |= 1 << self.request_image(r, perm);
+        rename_state(&Renaming { sym: self, perm }, s)
+    }
+}
+
+/// How a renaming acts on the parts of an agent state; [`rename_state`] does the rest.
+pub trait Rename {
+    /// A term renamed, or `None` when renaming leaves it as it is.
+    fn rename(&self, t: &Term) -> Option<Term>;
+    /// An atom's image.
+    fn atom(&self, a: AtomId) -> AtomId;
+    /// How many atoms there are.
+    fn atom_count(&self) -> usize;
+    /// A request index's image (a request renamed is another request).
+    fn request(&self, r: u8) -> u8 {
+        r
+    }
+    /// The image of a set of agents, one bit each (who told a belief).
+    fn agents(&self, bits: u64) -> u64 {
+        bits
+    }
+}
+
+impl Rename for Renaming<'_> {
+    fn rename(&self, t: &Term) -> Option<Term> {
+        self.sym.rename(t, self.perm)
+    }
+
+    fn atom(&self, a: AtomId) -> AtomId {
+        self.sym.atom_image(a, self.perm)
+    }
+
+    fn atom_count(&self) -> usize {
+        self.sym.atom_count
+    }
+
+    fn request(&self, r: u8) -> u8 {
+        self.sym.request_image(r, self.perm)
+    }
+}
+
+/// `t` with every atom `image` renames (it gives `None` for a name left as it is)
+/// renamed, or `None` when nothing in it is.
+pub fn rename_names(t: &Term, image: &impl Fn(&str) -> Option<Arc<str>>) -> Option<Term> {
+    match t {
+        Term::Atom(n) => image(n).map(Term::Atom),
+        Term::Struct(st) => {
+            let args = rename_all(st.args(), image);
+            let annots = rename_all(st.annots(), image);
+            if args.is_none() && annots.is_none() {
+                return None;
             }
+            Some(Term::literal(
+                st.functor(),
+                st.negated(),
+                args.unwrap_or_else(|| st.args().to_vec()),
+                annots.unwrap_or_else(|| st.annots().to_vec()),
+            ))
         }
-        // Renamed atoms keep their age, and their predicate (so the groups stay as they
-        // are).
-        let order: Vec<AtomId> = s.order.iter().map(|a| self.atom_image(*a, perm)).collect();
-        State {
-            beliefs,
-            order,
-            events: s
-                .events
-                .iter()
-                .map(|e| Event {
-                    trigger: self.trigger(&e.trigger, perm),
-                    intention: e.intention.as_ref().map(|i| self.intention(i, perm)),
-                    origin: self.origin(e.origin, perm),
-                    posted_at: e.posted_at,
-                })
-                .collect(),
-            intentions: s
-                .intentions
-                .iter()
-                .map(|i| self.intention(i, perm))
-                .collect(),
-            pending: s.pending.as_ref().map(|p| Pending {
-                intention: self.intention(&p.intention, perm),
-                failure: p.failure.as_ref().map(|f| ActionFailure {
-                    action: self.term(&f.action, perm),
-                    ..f.clone()
-                }),
+        Term::Cons(c) => {
+            let h = rename_names(c.head(), image);
+            let tl = rename_names(c.tail(), image);
+            if h.is_none() && tl.is_none() {
+                return None;
+            }
+            Some(Term::cons(
+                h.unwrap_or_else(|| c.head().clone()),
+                tl.unwrap_or_else(|| c.tail().clone()),
+            ))
+        }
+        _ => None,
+    }
+}
+
+fn rename_all(ts: &[Term], image: &impl Fn(&str) -> Option<Arc<str>>) -> Option<Vec<Term>> {
+    let mut out: Option<Vec<Term>> = None;
+    for (i, t) in ts.iter().enumerate() {
+        if let Some(r) = rename_names(t, image) {
+            out.get_or_insert_with(|| ts[..i].to_vec()).push(r);
+        } else if let Some(o) = &mut out {
+            o.push(t.clone());
+        }
+    }
+    out
+}
+
+fn term<R: Rename>(r: &R, t: &Term) -> Term {
+    r.rename(t).unwrap_or_else(|| t.clone())
+}
+
+fn subst<R: Rename>(r: &R, s: &Substitution) -> Substitution {
+    let mut out = Substitution::new();
+    for (v, t) in s.iter() {
+        out.bind(v.clone(), term(r, t));
+    }
+    out
+}
+
+fn trigger<R: Rename>(r: &R, t: &EventTrigger) -> EventTrigger {
+    EventTrigger {
+        op: t.op,
+        kind: t.kind,
+        literal: term(r, &t.literal),
+    }
+}
+
+fn origin<R: Rename>(r: &R, o: Origin) -> Origin {
+    match o {
+        Origin::Request(i) => Origin::Request(r.request(i)),
+        other => other,
+    }
+}
+
+/// An intention renamed.
+pub fn rename_intention<R: Rename>(r: &R, i: &Intention) -> Intention {
+    Intention {
+        frames: i
+            .frames
+            .iter()
+            .map(|f| Frame {
+                plan: f.plan,
+                subst: subst(r, &f.subst),
+                cursors: f
+                    .cursors
+                    .iter()
+                    .map(|c| Cursor {
+                        block: c.block,
+                        pos: c.pos,
+                        kind: match &c.kind {
+                            CursorKind::For { rest, base } => CursorKind::For {
+                                rest: rest.iter().map(|s| subst(r, s)).collect(),
+                                base: subst(r, base),
+                            },
+                            CursorKind::While { outer, at, base } => CursorKind::While {
+                                outer: *outer,
+                                at: *at,
+                                base: subst(r, base),
+                            },
+                            CursorKind::Seq => CursorKind::Seq,
+                        },
+                    })
+                    .collect(),
+                trigger: trigger(r, &f.trigger),
+                calling: f.calling.as_ref().map(|t| term(r, t)),
+            })
+            .collect(),
+        origin: origin(r, i.origin),
+    }
+}
+
+/// An agent state renamed: its beliefs, the terms of its events, intentions and
+/// substitutions, its requests, and who told it what.
+pub fn rename_state<R: Rename>(r: &R, s: &State) -> State {
+    let mut beliefs = AtomSet::empty(r.atom_count());
+    for a in s.beliefs.iter() {
+        beliefs.insert(r.atom(a));
+    }
+    let mut requested = 0u64;
+    for i in 0..64u8 {
+        if s.requested >> i & 1 == 1 {
+            requested |= 1 << r.request(i);
+        }
+    }
+    // Renamed atoms keep their age, and their predicate (so the groups stay as they are).
+    let order: Vec<AtomId> = s.order.iter().map(|a| r.atom(*a)).collect();
+    let mut told: Vec<Told> = s
+        .told
+        .iter()
+        .map(|t| Told {
+            atom: r.atom(t.atom),
+            from: r.agents(t.from),
+            own: t.own,
+        })
+        .collect();
+    told.sort_by_key(|t| t.atom);
+    State {
+        beliefs,
+        order,
+        events: s
+            .events
+            .iter()
+            .map(|e| Event {
+                trigger: trigger(r, &e.trigger),
+                intention: e.intention.as_ref().map(|i| rename_intention(r, i)),
+                origin: origin(r, e.origin),
+                posted_at: e.posted_at,
+            })
+            .collect(),
+        intentions: s
+            .intentions
+            .iter()
+            .map(|i| rename_intention(r, i))
+            .collect(),
+        pending: s.pending.as_ref().map(|p| Pending {
+            intention: rename_intention(r, &p.intention),
+            failure: p.failure.as_ref().map(|f| ActionFailure {
+                action: term(r, &f.action),
+                ..f.clone()
             }),
-            waiting: s
-                .waiting
-                .iter()
-                .map(|w| Waiting {
-                    intention: self.intention(&w.intention, perm),
-                    ..w.clone()
-                })
-                .collect(),
-            requested,
-            // Plans name no interchangeable object (`Symmetry::new` refuses them).
-            library: s.library.clone(),
-            // Symmetry reduction runs on one agent, never told anything.
-            told: Vec::new(),
-        }
+        }),
+        waiting: s
+            .waiting
+            .iter()
+            .map(|w| Waiting {
+                intention: rename_intention(r, &w.intention),
+                ..w.clone()
+            })
+            .collect(),
+        requested,
+        // Plans name no interchangeable object or agent (the reductions refuse them).
+        library: s.library.clone(),
+        told,
     }
 }

@@ -253,7 +253,7 @@ enum Normal {
 /// offsets; comments and strings skipped. `pddl` selects `;` comments, otherwise `//` and
 /// `/* */`. An identifier right after `.` (an internal action) or `?` (a PDDL variable) is
 /// not a name.
-fn words(text: &str, pddl: bool) -> Vec<(usize, &str)> {
+pub(super) fn words(text: &str, pddl: bool) -> Vec<(usize, &str)> {
     let b = text.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
