@@ -633,3 +633,31 @@ fn partial_order_reduction_finds_what_the_full_search_finds() {
         }
     }
 }
+
+#[test]
+fn a_reduced_run_stands_with_a_warning_when_the_full_search_is_cut_short() {
+    let d = workers(
+        "por-bounded",
+        3,
+        "+step3",
+        "\n[invariants]\nnot_all_done = \"not collector::done\"\n",
+    );
+    // The reduced search needs 47 states, every interleaving 236.
+    let (code, r, _) = common::report_json(
+        &["verify", d.to_str().unwrap(), "--max-states", "100"],
+        "por-bounded-report",
+    );
+    assert_eq!(code, 1, "{r:#}");
+    assert_eq!(failing(&r, "invariant").len(), 1, "{r:#}");
+    assert_eq!(r["stats"]["states"], 47, "{r:#}");
+    let warned = r["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w.as_str().unwrap().contains("longer than the shortest"));
+    assert!(warned, "{r:#}");
+    // Unbounded, the full search's shortest run stands, without the warning.
+    let (_, full, _) = common::report_json(&["verify", d.to_str().unwrap()], "por-unbounded");
+    assert_eq!(full["stats"]["states"], 236, "{full:#}");
+    assert!(full.get("warnings").is_none(), "{full:#}");
+}

@@ -180,11 +180,7 @@ fn run_system(
     // found is searched again over every interleaving, and that search's report stands
     // when it is complete.
     if let Ok(v) = &result {
-        let violated = v
-            .findings
-            .iter()
-            .any(|f| f.status == crate::findings::Status::Fail && f.counterexample.is_some());
-        if violated && v.reduced_states > 0 {
+        if reduced_violation(&v.findings, v.reduced_states) {
             let every = VerifyOptions {
                 partial_order: false,
                 ..*opts
@@ -208,6 +204,15 @@ fn run_system(
             report_of(name, project, v, opts)
         }
     }
+}
+
+/// Whether a search that partial-order reduction cut (`reduced` states) found a
+/// violation with a run: a run that may be longer than the shortest.
+fn reduced_violation(findings: &[Finding], reduced: usize) -> bool {
+    reduced > 0
+        && findings
+            .iter()
+            .any(|f| f.status == crate::findings::Status::Fail && f.counterexample.is_some())
 }
 
 /// The report of a verification.
@@ -238,11 +243,7 @@ fn report_of(
             .as_ref()
             .map(|b| format!("a run leaves the model, and the search does not follow it: {b}")),
     );
-    let violated = report
-        .findings
-        .iter()
-        .any(|f| f.status == crate::findings::Status::Fail && f.counterexample.is_some());
-    if violated && v.reduced_states > 0 {
+    if reduced_violation(&report.findings, v.reduced_states) {
         report.warnings.push("partial-order reduction left out interleavings, and the search over all of them stopped at a bound: a run shown may be longer than the shortest one (`--no-partial-order` searches every interleaving)".into());
     }
     report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
