@@ -232,12 +232,17 @@ impl Fixture {
                 .iter()
                 .map(|w| Waiting {
                     intention: self.rename_intention(&w.intention, perm),
+                    ask: w
+                        .ask
+                        .as_ref()
+                        .map(|(id, t)| (*id, self.rename_term(t, perm))),
                     ..w.clone()
                 })
                 .collect(),
             requested,
             library: s.library.clone(),
             told: s.told.clone(),
+            asked: s.asked,
         }
     }
 }

@@ -474,6 +474,22 @@ fn lint_findings_are_settled_against_the_runs() {
 /// A collector and `n` workers: each worker takes four cycles of its own (adopt the plan,
 /// three mental notes), then tells the collector it is done. `extra` goes into the
 /// manifest, `step` is the worker's third step.
+/// Every project of several agents among the verify cases (`tests/verify/mas-*`).
+fn seeded_projects() -> Vec<std::path::PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verify");
+    let mut out: Vec<std::path::PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with("mas-"))
+        })
+        .collect();
+    out.sort();
+    out
+}
+
 fn workers(tag: &str, n: usize, step: &str, extra: &str) -> std::path::PathBuf {
     project(
         tag,
@@ -515,9 +531,7 @@ fn verdicts(r: &serde_json::Value) -> Vec<String> {
 fn partial_order_reduction_keeps_every_finding_and_its_runs_replay() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut dirs: Vec<std::path::PathBuf> = vec![root.join("specs/two-robots")];
-    for case in ["mas-lost-wakeup", "mas-race", "mas-list"] {
-        dirs.push(root.join("tests/verify").join(case));
-    }
+    dirs.extend(seeded_projects());
     let local = [
         workers("por-pass", 3, "+step3", ""),
         // Visible: the collector's belief is in an invariant.
@@ -574,9 +588,8 @@ fn partial_order_reduction_keeps_every_finding_and_its_runs_replay() {
 fn partial_order_reduction_finds_what_the_full_search_finds() {
     use bdi_check::check::{explore::Limits, system::verify_system, VerifyOptions};
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dirs = [
-        root.join("tests/verify/mas-lost-wakeup"),
-        root.join("tests/verify/mas-race"),
+    let mut dirs = seeded_projects();
+    dirs.extend([
         workers(
             "por-lib-invariant",
             3,
@@ -584,7 +597,7 @@ fn partial_order_reduction_finds_what_the_full_search_finds() {
             "\n[invariants]\nnot_all_done = \"not collector::done\"\n",
         ),
         workers("por-lib-goal", 3, "?step4", ""),
-    ];
+    ]);
     let limits = Limits {
         max_states: 1_000_000,
         max_depth: 10_000,
@@ -660,4 +673,272 @@ fn a_reduced_run_stands_with_a_warning_when_the_full_search_is_cut_short() {
     let (_, full, _) = common::report_json(&["verify", d.to_str().unwrap()], "por-unbounded");
     assert_eq!(full["stats"]["states"], 236, "{full:#}");
     assert!(full.get("warnings").is_none(), "{full:#}");
+}
+
+/// Runs a project of several agents round-robin (one cycle of each agent in turn, as the
+/// Jason lab's driver does) for `rounds` rounds; returns what the agents printed
+/// (`agent: text`), the final state, and the system's agent names.
+fn round_robin(
+    d: &std::path::Path,
+    rounds: usize,
+) -> (Vec<String>, bdi_check::semantics::SystemState) {
+    use bdi_check::semantics::{Note, System};
+    let agents = bdi_check::model::project::load_system(d)
+        .unwrap_or_else(|e| panic!("{}: {:?}", d.display(), e.diagnostics));
+    let system = System::new(&agents).expect("the system");
+    let names = system.names().to_vec();
+    let start = system.initial_states().remove(0);
+    let schedule: Vec<usize> = (0..rounds).flat_map(|_| 0..names.len()).collect();
+    let steps = bdi_check::check::system::run_schedule(&system, start.clone(), &[], &schedule, &[]);
+    let mut state = start;
+    let mut printed = Vec::new();
+    for st in &steps {
+        // Follow the run to its end state (a cycle that shows nothing may still post a
+        // subgoal; one in which the agent had nothing to do changes nothing).
+        let k = st.agent as usize;
+        let outcomes = if system.enabled(&state, k) {
+            system.cycle_of(&state, k)
+        } else {
+            Vec::new()
+        };
+        if let Some((_, next)) = outcomes.into_iter().find(|(s, _)| s.notes == st.notes) {
+            state = next;
+        } else {
+            assert!(st.notes.is_empty(), "no step {:?} of {k}", st.notes);
+        }
+        for n in &st.notes {
+            if let Note::Printed(t) = n {
+                printed.push(format!("{}: {t}", names[st.agent as usize]));
+            }
+        }
+    }
+    (printed, state)
+}
+
+/// A project of two agents, `a` (first, with the domain's action `a`) and `b`.
+fn two_agents(name: &str, a: &str, b: &str) -> std::path::PathBuf {
+    project(
+        name,
+        &[
+            (
+                "bdi-check.toml",
+                "[[agent]]\nname = \"a\"\nplans = \"a.asl\"\nactions = \"d.pddl\"\n[[agent]]\nname = \"b\"\nplans = \"b.asl\"\n[objects]\nobject = [\"k1\", \"k2\", \"yes\", \"no\"]\n",
+            ),
+            ("d.pddl", DOMAIN),
+            ("a.asl", a),
+            ("b.asl", b),
+        ],
+    )
+}
+
+#[test]
+fn asks_are_answered_as_jasons_plans_for_messages_answer_them() {
+    // From a belief: the answer carries the receiver's source.
+    let d = two_agents(
+        "ask-belief",
+        "!g.\n+!g <- .send(b, askOne, price(X), A); .print(A); .send(b, askOne, price(Y), price(Y)); .print(Y).\n",
+        "price(k1).\n",
+    );
+    let (printed, _) = round_robin(&d, 12);
+    assert_eq!(printed, ["a: price(k1)[source(b)]", "a: k1"]);
+    // From a `+?` plan, and `false` when nothing answers (`untell`).
+    let d = two_agents(
+        "ask-test-goal",
+        "!g.\n+!g <- .send(b, askOne, q(X), A); .print(A); .send(b, askOne, r(Y), B); .print(B).\n",
+        "+?q(k2).\n",
+    );
+    let (printed, _) = round_robin(&d, 20);
+    assert_eq!(printed, ["a: q(k2)[source(b)]", "a: false"]);
+    // An answer that does not unify with the fourth argument fails the goal (`ask_failed`).
+    let d = two_agents(
+        "ask-failed",
+        "!g.\n+!g <- .send(b, askOne, q(X), q(X)); .print(X).\n-!g[error(E)] <- .print(E).\n",
+        "\n",
+    );
+    let (printed, _) = round_robin(&d, 20);
+    assert_eq!(printed, ["a: ask_failed"]);
+    // askAll: every belief, in the receiver's belief-base order.
+    let d = two_agents(
+        "ask-all",
+        "!g.\n+!g <- .send(b, askAll, item(X), L); .print(L); .send(b, askAll, none(X), N); .print(N).\n",
+        "item(k1).\nitem(k2).\n",
+    );
+    let (printed, _) = round_robin(&d, 20);
+    assert_eq!(
+        printed,
+        ["a: [item(k1)[source(b)],item(k2)[source(b)]]", "a: []"]
+    );
+    // Without an answer variable, the answer is told: a belief of the asker.
+    let d = two_agents(
+        "ask-async",
+        "!g.\n+!g <- .send(b, askOne, price(X)).\n+price(P)[source(b)] <- .print(P).\n",
+        "price(k2).\n",
+    );
+    let (printed, _) = round_robin(&d, 12);
+    assert_eq!(printed, ["a: k2"]);
+}
+
+#[test]
+fn an_ask_nobody_answers_times_out_or_waits_for_ever() {
+    // No applicable `+?` plan: Jason's plans for messages print a communication error and
+    // send nothing.
+    let d = two_agents(
+        "ask-timeout",
+        "!g.\n+!g <- .send(b, askOne, q(X), A, 100); .print(A).\n",
+        "+?q(k1) : p.\n",
+    );
+    let (printed, state) = round_robin(&d, 20);
+    // The timer fires once no agent has anything else to do (the lab's clock).
+    assert_eq!(
+        printed,
+        [
+            "b: Communication error -- no_applicable: Found a goal for which there is no applicable plan: +?q(X)[source(a)]",
+            "a: timeout"
+        ]
+    );
+    assert!(state.agents[0].waiting.is_empty());
+    let (code, r, _) = verify_json(d.to_str().unwrap(), "ask-timeout-report");
+    assert_eq!(code, 0, "{r:#}");
+    // Without a timeout, the asker waits for ever: a deadlock of that agent, at its `.send`.
+    let d = two_agents(
+        "ask-forever",
+        "!g.\n+!g <- .send(b, askOne, q(X), A); .print(A).\n",
+        "+?q(k1) : p.\n",
+    );
+    let (code, r, _) = verify_json(d.to_str().unwrap(), "ask-forever-report");
+    assert_eq!(code, 1, "{r:#}");
+    let d = failing(&r, "deadlock");
+    assert_eq!(d.len(), 1, "{r:#}");
+    assert_eq!(d[0]["id"], "deadlock:a");
+    assert_eq!(d[0]["location"]["line"], 2);
+    assert!(
+        d[0]["message"]
+            .as_str()
+            .unwrap()
+            .contains("waits for the answer to `.send(b, askOne, q(X), A)`"),
+        "{r:#}"
+    );
+}
+
+#[test]
+fn untell_and_unachieve_go_through_jasons_plans_for_messages() {
+    // untell: the sender's source goes, and the belief with it when it had no other.
+    let d = two_agents(
+        "untell",
+        "!g.\n+!g <- .send(b, tell, t(k1)); .send(b, tell, t(k2)); .send(b, untell, t(k1)); .send(b, untell, t(k2)).\n",
+        "t(k2).\n+t(X)[source(a)] <- .print(\"+\", X).\n-t(X)[source(a)] <- .print(\"-\", X).\n",
+    );
+    let (printed, state) = round_robin(&d, 20);
+    assert_eq!(printed, ["b: +k1", "b: +k2", "b: -k1", "b: -k2"]);
+    // t(k2) stays, of b's own; t(k1) is gone.
+    let p = &bdi_check::model::project::load_system(&d).unwrap()[1];
+    let believed: Vec<String> = state.agents[1]
+        .beliefs
+        .iter()
+        .map(|a| p.atoms.display(a, &p.universe))
+        .collect();
+    assert_eq!(believed, ["t(k2)"]);
+    assert!(state.agents[1].told.is_empty());
+    // unachieve: the goal is dropped before its plan ends.
+    let d = two_agents(
+        "unachieve",
+        "!g.\n+!g <- .send(b, achieve, long); .send(b, unachieve, long).\n",
+        "+!long <- .print(1); .print(2); .print(3); .print(4); .print(5).\n",
+    );
+    let (printed, state) = round_robin(&d, 20);
+    assert!(!printed.is_empty() && printed.len() < 5, "{printed:?}");
+    assert!(state.agents[1].intentions.is_empty());
+}
+
+#[test]
+fn an_ask_that_can_go_unanswered_is_found_and_replays_until_answered() {
+    let d = temp_dir("mas-unanswered-fix");
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verify/mas-unanswered");
+    for e in std::fs::read_dir(&src).unwrap().flatten() {
+        std::fs::copy(e.path(), d.join(e.file_name())).unwrap();
+    }
+    let (code, r, file) = verify_json(d.to_str().unwrap(), "mas-unanswered-report");
+    assert_eq!(code, 1, "{r:#}");
+    let dl = failing(&r, "deadlock");
+    assert_eq!(dl.len(), 1, "{r:#}");
+    assert_eq!(dl[0]["id"], "deadlock:fetcher");
+    assert!(dl[0]["location"]["file"]
+        .as_str()
+        .unwrap()
+        .ends_with("/fetcher.asl"));
+    assert_eq!(dl[0]["location"]["line"], 10);
+    let steps = agent_steps(dl[0]);
+    // The question comes while the loader loads the first cup: no `+?free` plan applies,
+    // Jason's plans for messages report it, and the loader goes on without answering.
+    let at = |s: &str| {
+        steps
+            .iter()
+            .position(|x| x.starts_with(s))
+            .unwrap_or_else(|| panic!("{s}: {steps:#?}"))
+    };
+    let opened = at("loader action openDoor(loader)");
+    let failed = at("loader event -!kqml_received(fetcher,askOne,free(A),samid0)");
+    assert!(opened < failed, "{steps:#?}");
+    assert!(steps[failed + 1].ends_with("@kqmlError"), "{steps:#?}");
+    // The run ends in the loop the loader is left in.
+    assert!(dl[0]["counterexample"]["loop_start"].is_u64(), "{r:#}");
+    let o = bdi_check(&["replay", file.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    assert!(
+        out.contains("deadlock:fetcher: still reaches its violation"),
+        "{out}"
+    );
+    // Answered in both cases, the question no longer waits.
+    let loader = std::fs::read_to_string(d.join("loader.asl")).unwrap();
+    std::fs::write(
+        d.join("loader.asl"),
+        loader.replace(
+            "+?free(yes) : door(closed).",
+            "+?free(yes) : door(closed).\n+?free(no) : door(open).",
+        ),
+    )
+    .unwrap();
+    let o = bdi_check(&["replay", file.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(
+        out.contains("deadlock:fetcher: no longer reaches its violation"),
+        "{out}"
+    );
+    let (code, r, _) = verify_json(d.to_str().unwrap(), "mas-unanswered-fixed");
+    assert_eq!(code, 0, "{r:#}");
+}
+
+#[test]
+fn a_tell_that_arrives_after_the_receiver_acted_is_found() {
+    let (code, r, file) = verify_json("tests/verify/mas-late-tell", "mas-late-tell");
+    assert_eq!(code, 1, "{r:#}");
+    let inv = failing(&r, "invariant");
+    assert_eq!(inv.len(), 1, "{r:#}");
+    assert_eq!(inv[0]["id"], "invariant:counter_not_shared");
+    let steps = agent_steps(inv[0]);
+    let last = |s: &str| {
+        steps
+            .iter()
+            .rposition(|x| x.starts_with(s))
+            .unwrap_or_else(|| panic!("{s}: {steps:#?}"))
+    };
+    // The fetcher looked (no `atCounter`) and moved before the loader's tell was sent, and
+    // the loader moved without waiting for it to be read.
+    let fetcher_moved = last("fetcher action move(fetcher,counter)");
+    let told = last("loader internal .send(fetcher,tell,atCounter)");
+    let loader_moved = last("loader action move(loader,counter)");
+    assert!(fetcher_moved < told && told < loader_moved, "{steps:#?}");
+    assert_eq!(loader_moved, steps.len() - 1, "{steps:#?}");
+    assert!(!steps
+        .iter()
+        .any(|s| s.starts_with("fetcher event message from loader")));
+    let o = bdi_check(&["replay", file.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    assert!(
+        out.contains("invariant:counter_not_shared: still reaches its violation"),
+        "{out}"
+    );
 }

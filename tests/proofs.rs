@@ -573,6 +573,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 requested: 0,
                 library: None,
                 told: Vec::new(),
+                asked: 0,
             };
             (fp(&c), Some(c))
         })

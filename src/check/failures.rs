@@ -83,7 +83,7 @@ impl Checker<'_> {
             ..cause.clone()
         };
         if let Some(&p) = sem.relevant_plans(&goal_event).first() {
-            return self.project.plans.plans[p as usize].span;
+            return sem.plan(p).span;
         }
         match *origin {
             Origin::Request(r) => {

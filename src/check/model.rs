@@ -232,6 +232,7 @@ impl AgentState for Packed<'_> {
             requested: 0,
             library: None,
             told: Vec::new(),
+            asked: 0,
         };
         sem.applicable(&beliefs, trigger, false)
     }

@@ -55,17 +55,28 @@ impl PartialOrder {
         let all = if n >= 64 { u64::MAX } else { (1u64 << n) - 1 };
         let mut writes_world = vec![false; n];
         let mut sends_to = vec![0u64; n];
+        let mut asks = vec![0u64; n];
         for (k, sem) in system.agents.iter().enumerate() {
             let p = sem.project;
             let mut out = Capabilities {
                 writes_world: false,
                 sends_to: 0,
+                asks: 0,
             };
             for plan in &p.plans.plans {
                 out.scan(&plan.body, system, k, all);
             }
             writes_world[k] = out.writes_world;
             sends_to[k] = out.sends_to;
+            asks[k] = out.asks;
+        }
+        // Whom an agent asks answers it (Jason's plans for messages send the answer).
+        for (k, asked) in asks.iter().enumerate() {
+            for (j, to) in sends_to.iter_mut().enumerate() {
+                if asked >> j & 1 == 1 {
+                    *to |= 1 << k;
+                }
+            }
         }
         let atoms = &system.agents[0].project.atoms;
         let stride = agent_stride(atoms);
@@ -196,6 +207,8 @@ impl PartialOrder {
 struct Capabilities {
     writes_world: bool,
     sends_to: u64,
+    /// The agents it can ask something (who then answer it).
+    asks: u64,
 }
 
 impl Capabilities {
@@ -211,21 +224,27 @@ impl Capabilities {
                         .is_some_and(|p| atoms.atoms_of(p).any(|a| sem.is_environment_atom(a)));
                     self.writes_world |= percept;
                 }
-                BodyStep::Internal(t) => match t.functor() {
-                    Some(".broadcast") => self.sends_to |= all,
-                    Some(".send") => {
-                        let to = match t.args().first() {
-                            Some(Term::Atom(name)) => system
-                                .names()
-                                .iter()
-                                .position(|m| m.as_str() == &**name)
-                                .map_or(0, |i| 1u64 << i),
-                            _ => all,
-                        };
-                        self.sends_to |= to;
+                BodyStep::Internal(t) => {
+                    let (to, performative) = match (t.functor(), t.args()) {
+                        (Some(".broadcast"), [p, ..]) => (all, p),
+                        (Some(".send"), [r, p, ..]) => {
+                            let to = match r {
+                                Term::Atom(name) => system
+                                    .names()
+                                    .iter()
+                                    .position(|m| m.as_str() == &**name)
+                                    .map_or(0, |i| 1u64 << i),
+                                _ => all,
+                            };
+                            (to, p)
+                        }
+                        _ => continue,
+                    };
+                    self.sends_to |= to;
+                    if matches!(performative.functor(), Some("askOne" | "askAll")) {
+                        self.asks |= to;
                     }
-                    _ => {}
-                },
+                }
                 BodyStep::If {
                     branches,
                     else_body,

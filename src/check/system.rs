@@ -83,11 +83,11 @@ struct Failure {
     note: Note,
 }
 
-/// What one stored state decides: which conditions fail or hold, and whether it is stuck
-/// (no successor, some agent not done).
+/// What one stored state decides: which conditions fail or hold, and which agents are not
+/// done (one bit each).
 struct Summary {
     fails: Vec<bool>,
-    stuck: Option<Vec<u8>>,
+    busy: u64,
 }
 
 /// Explores every interleaving of the agents of `projects` and runs the checks. The
@@ -182,7 +182,9 @@ pub fn verify_system(
     // fails, and where it holds.
     let mut first_fails: Vec<Option<u32>> = vec![None; conds.len()];
     let mut first_holds: Vec<Option<u32>> = vec![None; conds.len()];
-    let mut first_stuck: Option<(u32, Vec<u8>)> = None;
+    // Per state: the agents not done, and the agents that take a step from it.
+    let mut busy: Vec<u64> = Vec::new();
+    let mut moves: Vec<u64> = Vec::new();
     let mut actions: BTreeMap<(u8, u32, u32, u32), Failure> = BTreeMap::new();
     let mut goals: BTreeMap<(u8, String), Failure> = BTreeMap::new();
     // Per agent: the plans some run adopts, and the goals some event found no plan for.
@@ -212,13 +214,9 @@ pub fn verify_system(
                 let all = system.everything(s);
                 conds.iter().map(|(_, _, _, c, _)| !c.eval(&all)).collect()
             },
-            stuck: {
-                let busy: Vec<u8> = (0..s.agents.len())
-                    .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
-                    .map(|k| k as u8)
-                    .collect();
-                (!busy.is_empty() && system.successors(s).is_empty()).then_some(busy)
-            },
+            busy: (0..s.agents.len())
+                .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
+                .fold(0, |b, k| b | 1 << k),
         },
         |i, sum| {
             for (j, &fails) in sum.fails.iter().enumerate() {
@@ -229,11 +227,18 @@ pub fn verify_system(
                 };
                 first.get_or_insert(i);
             }
-            if let (Some(b), None) = (sum.stuck, &first_stuck) {
-                first_stuck = Some((i, b));
+            let i = i as usize;
+            if busy.len() <= i {
+                busy.resize(i + 1, 0);
             }
+            busy[i] = sum.busy;
         },
         |src, k, label, fp| {
+            let at = src as usize;
+            if moves.len() <= at {
+                moves.resize(at + 1, 0);
+            }
+            moves[at] |= 1 << label.agent;
             for n in &label.notes {
                 let x = || Failure {
                     src,
@@ -340,33 +345,73 @@ pub fn verify_system(
         .mas
         .as_ref()
         .map_or(whole, |m| m.written.span);
-    match first_stuck {
-        Some((i, busy)) => {
-            let names: Vec<String> = busy
-                .iter()
-                .map(|&k| format!("`{}`", system.names()[k as usize]))
-                .collect();
-            findings.push(cx.reached(
+    busy.resize(n, 0);
+    moves.resize(n, 0);
+    let stuck = stuck_forever(&graph, &busy, &moves, projects.len());
+    for (k, first) in stuck.into_iter().enumerate() {
+        let name = &system.names()[k];
+        let Some(i) = first else {
+            findings.push(cx.finding(
                 "deadlock",
-                "system",
+                name,
                 place,
-                Status::Fail,
-                format!(
-                    "no agent can take a step, but {} {} not done",
-                    names.join(", "),
-                    if names.len() == 1 { "is" } else { "are" }
-                ),
-                i,
-                Severity::Error,
+                held,
+                format!("`{name}` can always take a step until it is done"),
             ));
+            continue;
+        };
+        let mut message = if moves[i as usize] == 0 {
+            let waiting: Vec<String> = (0..projects.len())
+                .filter(|&j| busy[i as usize] >> j & 1 == 1)
+                .map(|j| format!("`{}`", system.names()[j]))
+                .collect();
+            format!(
+                "no agent can take a step, but {} {} not done",
+                waiting.join(", "),
+                if waiting.len() == 1 { "is" } else { "are" }
+            )
+        } else {
+            format!("`{name}` is not done, and can never take a step again")
+        };
+        // An intention that waits for an answer no agent will send is the likely cause:
+        // the finding points at its `.send`.
+        let ask = graph.state(&model, i).and_then(|st| {
+            st.agents[k]
+                .waiting
+                .iter()
+                .find(|w| w.ask.is_some())
+                .map(|w| w.step.3)
+        });
+        let at = match ask {
+            Some(span) => {
+                message.push_str(&format!(
+                    ": `{name}` waits for the answer to `{}`, which no agent will send",
+                    projects[k].map.slice(span).trim()
+                ));
+                span
+            }
+            None => place,
+        };
+        // The run goes on to show what becomes of the agent: the others' steps, taking
+        // the first successor each time, until a state comes again or none follows.
+        let mut path = graph.path_to(i);
+        let mut seen: std::collections::HashMap<u32, usize> =
+            std::collections::HashMap::from([(i, path.len() - 1)]);
+        let mut loop_from = None;
+        while let Some(&j) = graph
+            .successors(*path.last().expect("a state"))
+            .and_then(|s| s.first())
+        {
+            path.push(j);
+            if let Some(&at) = seen.get(&j) {
+                loop_from = Some(at);
+                break;
+            }
+            seen.insert(j, path.len() - 1);
         }
-        None => findings.push(cx.finding(
-            "deadlock",
-            "system",
-            place,
-            held,
-            "no reachable state is stuck".into(),
-        )),
+        let mut f = cx.finding("deadlock", name, at, Status::Fail, message);
+        f.counterexample = Some(cx.lasso(&path, None, loop_from));
+        findings.push(f);
     }
     let who = |x: &Failure| &system.names()[x.agent as usize];
     cx.failures(
@@ -385,7 +430,7 @@ pub fn verify_system(
                 format!(
                     "`{text}` of agent `{}` in plan {} fails: {reason}",
                     who(x),
-                    projects[x.agent as usize].plans.plans[*plan as usize].name()
+                    system.agents[x.agent as usize].plan(*plan).name()
                 ),
             )),
             _ => None,
@@ -487,6 +532,57 @@ pub fn verify_system(
     Ok(Verification::of(&graph, project, all))
 }
 
+/// For each agent, the first state (in search order, so at least depth) where it is not
+/// done and can never take a step again: no run from there reaches a state where it takes
+/// one. A state the search did not expand completely may lead anywhere.
+fn stuck_forever(
+    graph: &Graph<SystemState>,
+    busy: &[u64],
+    moves: &[u64],
+    agents: usize,
+) -> Vec<Option<u32>> {
+    let n = graph.len();
+    // Predecessors, as one array sliced by state.
+    let mut start = vec![0usize; n + 1];
+    for i in 0..n as u32 {
+        for &j in graph.successors(i).unwrap_or(&[]) {
+            start[j as usize + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut preds = vec![0u32; start[n]];
+    for i in 0..n as u32 {
+        for &j in graph.successors(i).unwrap_or(&[]) {
+            preds[fill[j as usize]] = i;
+            fill[j as usize] += 1;
+        }
+    }
+    (0..agents)
+        .map(|k| {
+            let bit = 1u64 << k;
+            if busy.iter().all(|b| b & bit == 0) {
+                return None;
+            }
+            let mut may_move: Vec<bool> = (0..n as u32)
+                .map(|i| moves[i as usize] & bit != 0 || graph.successors(i).is_none())
+                .collect();
+            let mut queue: Vec<u32> = (0..n as u32).filter(|&i| may_move[i as usize]).collect();
+            while let Some(j) = queue.pop() {
+                for &i in &preds[start[j as usize]..start[j as usize + 1]] {
+                    if !may_move[i as usize] {
+                        may_move[i as usize] = true;
+                        queue.push(i);
+                    }
+                }
+            }
+            (0..n as u32).find(|&i| busy[i as usize] & bit != 0 && !may_move[i as usize])
+        })
+        .collect()
+}
+
 struct Cx<'a> {
     projects: &'a [Project],
     system: &'a System<'a>,
@@ -551,6 +647,17 @@ impl Cx<'_> {
     /// The run along `path`, then the failing transition `extra`: every step names its
     /// agent.
     fn counterexample(&self, path: &[u32], extra: Option<&Failure>) -> Counterexample {
+        self.lasso(path, extra, None)
+    }
+
+    /// [`Cx::counterexample`] of a run that ends in a loop: `path[loop_from..]` is a cycle
+    /// (its last state is `path[loop_from]`).
+    fn lasso(
+        &self,
+        path: &[u32],
+        extra: Option<&Failure>,
+        loop_from: Option<usize>,
+    ) -> Counterexample {
         let p = &self.projects[0];
         let Some(mut walk) = path
             .first()
@@ -581,7 +688,11 @@ impl Cx<'_> {
                 steps.push(st);
             }
         };
-        for &j in &path[1..] {
+        let mut loop_start = None;
+        for (at, &j) in path.iter().enumerate().skip(1) {
+            if Some(at - 1) == loop_from {
+                loop_start = Some(steps.len());
+            }
             let l = walk.step_to(j);
             push(l, &mut steps);
         }
@@ -593,15 +704,46 @@ impl Cx<'_> {
             initial,
             requests: builders[0].requests().to_vec(),
             steps,
-            loop_start: None,
+            loop_start,
         }
     }
+}
+
+/// Most states [`stuck_from`] looks at.
+const MAX_STUCK_STATES: usize = 1 << 20;
+
+/// Whether agent `k`, not done in `s`, can never take a step again: no run from `s`
+/// reaches a state where it takes one. `None` when more than [`MAX_STUCK_STATES`] states
+/// would have to be looked at to tell.
+pub fn stuck_from(system: &System, s: &SystemState, k: usize) -> Option<bool> {
+    use std::collections::HashSet;
+    let busy = !s.agents[k].is_idle() || !s.mail[k].is_empty();
+    if !busy {
+        return Some(false);
+    }
+    let mut seen: HashSet<u64> = HashSet::from([super::explore::fingerprint(s)]);
+    let mut frontier = vec![s.clone()];
+    while let Some(st) = frontier.pop() {
+        for (label, t) in system.successors(&st) {
+            if label.agent as usize == k {
+                return Some(false);
+            }
+            if seen.insert(super::explore::fingerprint(&t)) {
+                if seen.len() > MAX_STUCK_STATES {
+                    return None;
+                }
+                frontier.push(t);
+            }
+        }
+    }
+    Some(true)
 }
 
 /// One run on a fixed schedule, as the Jason lab's driver runs a recorded scenario: before
 /// each cycle, the next request goes to the first agent when it is idle, has perceived the
 /// environment and has no mail; then the scheduled agent runs one reasoning cycle (none
-/// when it has nothing to do). Where a cycle has several outcomes (a timer that may fire,
+/// when it has nothing to do, or only timers while another agent has something to do:
+/// the lab's clock moves only when none has). Where a cycle has several outcomes (a timer that may fire,
 /// `.random`), the one whose actions continue `want` (`agent: action`, in order) is taken,
 /// depth first. Returns the steps of the run that gives `want`, or of the first run when
 /// none does.
@@ -644,17 +786,22 @@ pub fn run_schedule(
                 return self.actions == self.want;
             }
             let k = self.schedule[at];
-            let outcomes = if system.enabled(&s, k) {
+            // The lab's clock moves only when no agent has anything else to do: an agent
+            // with nothing to do but wait for its timers lets one fire only then, and its
+            // cycle changes nothing otherwise (as one with nothing to do at all).
+            let quiet = (0..s.agents.len()).all(|j| !system.enabled(&s, j) || system.asleep(&s, j));
+            let mut outcomes = if system.enabled(&s, k) && (quiet || !system.asleep(&s, k)) {
                 system.cycle_of(&s, k)
             } else {
-                vec![(
-                    Step {
-                        agent: k as u8,
-                        notes: Vec::new(),
-                    },
-                    s.clone(),
-                )]
+                Vec::new()
             };
+            if outcomes.is_empty() {
+                let idle = Step {
+                    agent: k as u8,
+                    notes: Vec::new(),
+                };
+                outcomes.push((idle, s.clone()));
+            }
             let name = &system.names()[k];
             let (acted, stepped) = (self.actions.len(), self.steps.len());
             for (step, t) in outcomes {

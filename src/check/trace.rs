@@ -123,8 +123,12 @@ impl<'a> Builder<'a> {
     }
 
     fn plan_place(&self, plan: u32) -> String {
-        let p = &self.project.plans.plans[plan as usize];
+        let p = self.sem.plan(plan);
         let loc = self.project.map.location(p.span);
+        if self.sem.is_kqml_plan(plan) {
+            // Not a file of the project: Jason's own plans for messages.
+            return format!("Jason's {}", loc.file);
+        }
         format!("{}:{}", loc.file, loc.line)
     }
 
@@ -198,7 +202,12 @@ impl<'a> Builder<'a> {
             intentions.push(self.intention_view(&p.intention, "awaiting feedback", None));
         }
         for w in &s.waiting {
-            intentions.push(self.intention_view(&w.intention, "waiting", Some(w.step.3)));
+            let how = if w.ask.is_some() {
+                "waiting for an answer"
+            } else {
+                "waiting"
+            };
+            intentions.push(self.intention_view(&w.intention, how, Some(w.step.3)));
         }
         StateView {
             beliefs: s
@@ -264,7 +273,7 @@ impl<'a> Builder<'a> {
                 Note::Event(t) => self.step(StepKindTag::Event, t.to_string(), None, None),
                 Note::Plan { plan, origin, .. } => {
                     let i = self.intention(origin);
-                    let p = &self.project.plans.plans[plan as usize];
+                    let p = self.sem.plan(plan);
                     let place = self.plan_place(plan);
                     self.step(StepKindTag::Plan, p.name(), Some(i), Some(place))
                 }
@@ -327,12 +336,25 @@ impl<'a> Builder<'a> {
                         Some(place),
                     )
                 }
+                // Among several agents: the message the agent reads in its sense.
+                Note::Received {
+                    from,
+                    performative,
+                    content,
+                } => {
+                    let sender = &self.sem.agent_names()[from as usize];
+                    self.step(
+                        StepKindTag::Event,
+                        format!("message from {sender}: {} {content}", performative.name()),
+                        None,
+                        None,
+                    )
+                }
                 Note::Finished(_)
                 | Note::NoApplicablePlan(_)
                 | Note::Printed(_)
                 | Note::Sent { .. }
-                | Note::Perceived { .. }
-                | Note::Received { .. } => continue,
+                | Note::Perceived { .. } => continue,
             };
             self.steps.push(step);
         }

@@ -732,13 +732,21 @@ impl Check {
                 ))
             })),
             "deadlock" => Check::Deadlock,
-            // The invariant the action breaks is named in the message.
-            "action-breaks-invariant" => f
-                .message
-                .split_once("invariant `")
-                .and_then(|(_, rest)| rest.split_once('`'))
-                .and_then(|(name, _)| project.invariants.iter().find(|(n, _)| n == name))
-                .map_or(Check::Unknown, |(_, c)| Check::State(c.clone(), true)),
+            // The invariants the action breaks are named in the message (`name`): the run
+            // reaches the violation when one of them is false.
+            "action-breaks-invariant" => {
+                let named: Vec<crate::model::cond::Cond> = project
+                    .invariants
+                    .iter()
+                    .filter(|(n, _)| f.message.contains(&format!("`{n}`")))
+                    .map(|(_, c)| c.clone())
+                    .collect();
+                if named.is_empty() {
+                    Check::Unknown
+                } else {
+                    Check::State(crate::model::cond::Cond::and(named), true)
+                }
+            }
             "livelock" | "request-not-completed" => Check::Liveness,
             "invariant" => project
                 .invariants
@@ -897,12 +905,23 @@ fn replay_system_one(
         }
         state = t;
     }
+    // A deadlock of one agent: it can never take a step again (a run that cannot be told
+    // is counted as reaching it: replay never calls a finding fixed that it cannot decide).
+    let stuck =
+        f.id.split_once(':')
+            .and_then(|(_, name)| system.names().iter().position(|n| n == name));
     // The recorded run may end in cycles that show no step (an agent perceiving): the
     // violation is looked for after up to MAX_SILENT of them.
     let violated = |s: &SystemState| {
         let busy = (0..s.agents.len()).any(|k| !s.agents[k].is_idle() || !s.mail[k].is_empty());
-        check.atoms_violate(&system.everything(s))
-            || (matches!(check, Check::Deadlock) && busy && system.successors(s).is_empty())
+        let deadlock = match (&check, stuck) {
+            (Check::Deadlock, Some(k)) => {
+                crate::check::system::stuck_from(system, s, k) != Some(false)
+            }
+            (Check::Deadlock, None) => busy && system.successors(s).is_empty(),
+            _ => false,
+        };
+        check.atoms_violate(&system.everything(s)) || deadlock
     };
     let mut frontier = vec![state];
     for _ in 0..=MAX_SILENT {

@@ -149,7 +149,7 @@ impl<'p> Explainer<'p> {
             .iter()
             .enumerate()
             .map(|(i, f)| {
-                let plan = &self.project.plans.plans[f.plan as usize];
+                let plan = self.sem.plan(f.plan);
                 let mut body = Vec::new();
                 if i == top {
                     let (block, pos) = f.at;

@@ -161,6 +161,10 @@ pub struct Plan {
     pub span: Span,
     /// The context's span, if written.
     pub context_span: Option<Span>,
+    /// Its label says `[atomic]`: once chosen, its intention runs alone until it ends
+    /// (Jason's `Circumstance.AI`). Only Jason's own plans for messages are atomic here
+    /// (see [`super::kqml`]); an agent's own atomic plan is refused.
+    pub atomic: bool,
 }
 
 impl Plan {
@@ -290,7 +294,7 @@ impl PlanLibrary {
     }
 }
 
-fn convert_error(e: ConvertError) -> Diagnostic {
+pub(super) fn convert_error(e: ConvertError) -> Diagnostic {
     Diagnostic::error("input", e.message).with_label(e.span, "here")
 }
 
@@ -319,6 +323,20 @@ pub(super) fn compile_plan(
     }
     if !p.sub_plans.is_empty() {
         return Err(unsupported(p.span, "sub-plans"));
+    }
+    // Label annotations that change how Jason runs the plan (`Plan.setLabel`): refused
+    // rather than run as if they were not written.
+    if let Some(annots) = p.label.as_ref().and_then(|l| l.annots.as_ref()) {
+        for a in &annots.elems {
+            if let ExprKind::Literal(l) = &a.kind {
+                if l.args.is_empty() && matches!(l.functor.as_str(), "atomic" | "all_unifs") {
+                    return Err(unsupported(
+                        a.span,
+                        &format!("plans labelled `[{}]`", l.functor),
+                    ));
+                }
+            }
+        }
     }
     let mut c = Converter::for_plans();
     let literal = match &p.trigger.literal.kind {
@@ -366,6 +384,7 @@ pub(super) fn compile_plan(
         body,
         span: p.span,
         context_span: p.context.as_ref().map(|e| e.span),
+        atomic: false,
     };
     added.check_shared(&plan, first_added)?;
     Ok(plan)

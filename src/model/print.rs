@@ -8,7 +8,8 @@
 //!   Java's `Double.toString` (`1.5`, `0.1`, `1.0E20`, `1.5E-5`, `Infinity`)
 //!   (`NumberTermImpl.toString`);
 //! * variables by name; a renamed variable (generation `g > 0`) as `_gName`, the form of
-//!   Jason's renamed variables (`UnnamedVar`: `"_" + id + name`);
+//!   Jason's renamed variables (`UnnamedVar`: `"_" + id + name`), but for those of a
+//!   message's content, which print by name as Jason prints its copy of the content;
 //! * strings in double quotes. Jason's `StringTermImpl.toString` prints the text between
 //!   quotes without escaping anything; we escape `\`, `"`, newline (`\n`) and carriage
 //!   return (`\r`) so that a printed string reads back as the same string (Jason's lexer
@@ -20,7 +21,8 @@ use std::fmt::{self, Display, Formatter, Write};
 
 impl Display for Var {
     fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
-        if self.generation() == 0 {
+        // A message's variables keep their names, as Jason's copy of the content does.
+        if self.generation() == 0 || self.generation() >= super::term::MESSAGE_GENERATION {
             f.write_str(self.name())
         } else {
             write!(f, "_{}{}", self.generation(), self.name())

@@ -27,6 +27,10 @@ use std::cmp::Ordering;
 use std::collections::HashSet;
 use std::sync::Arc;
 
+/// The generations of the variables of a message's content start here, apart from every
+/// plan's, subgoal's and rule's (see `semantics::messages`).
+pub const MESSAGE_GENERATION: u32 = 3_000_000;
+
 /// A variable.
 ///
 /// Its identity is its name, whether it is anonymous, and its generation: variables as

@@ -195,7 +195,10 @@ pub fn render_step(n: usize, s: &TraceStep) -> String {
         StepKindTag::Explanation => "explain",
         k => k.name(),
     };
-    let mut line = format!("    {:>3}. {kind:<8} {}", n, s.text);
+    let mut line = match &s.agent {
+        Some(agent) => format!("    {:>3}. {agent}: {kind:<8} {}", n, s.text),
+        None => format!("    {:>3}. {kind:<8} {}", n, s.text),
+    };
     if let Some(p) = &s.plan {
         line.push_str(&format!("  ({p})"));
     }

@@ -480,6 +480,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             requested: p.requested,
             library: None,
             told: Vec::new(),
+            asked: 0,
         }
     }
 
@@ -658,6 +659,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             requested: 0,
             library: None,
             told: Vec::new(),
+            asked: 0,
         }
     }
 

@@ -139,10 +139,14 @@ pub enum Note {
     Sent {
         /// The receivers.
         to: Vec<u8>,
-        /// `achieve` or `tell`.
+        /// The performative.
         performative: Performative,
-        /// The goal or belief, as written in the message.
+        /// The goal, belief or query, as written in the message.
         content: Term,
+        /// For an ask whose answer the intention waits for: its id (`samidN`).
+        ask: Option<u8>,
+        /// For an answer to such an ask: the ask's id (the `.send`'s fourth argument).
+        reply_to: Option<u8>,
     },
     /// Among several agents: what the agent perceived at the start of its cycle (the
     /// environment changed since its last sense).
@@ -156,7 +160,7 @@ pub enum Note {
     Received {
         /// The sender's index.
         from: u8,
-        /// `achieve` or `tell`.
+        /// The performative.
         performative: Performative,
         /// The goal or belief.
         content: Term,
@@ -190,6 +194,49 @@ pub enum Performative {
     Achieve,
     /// `tell b`: the receiver believes `b[source(sender)]`.
     Tell,
+    /// `untell b`: the sender is no longer a source of the receiver's `b`.
+    Untell,
+    /// `unachieve g`: the receiver drops the desire `g`.
+    Unachieve,
+    /// `askOne q`: the receiver answers with the first belief that unifies (`tell`), or
+    /// `untell` when it has none and no `+?q` plan finds one.
+    AskOne,
+    /// `askAll q`: the receiver answers with the list of every belief that unifies.
+    AskAll,
+}
+
+impl Performative {
+    /// Every performative bdi-check delivers.
+    pub const ALL: [Performative; 6] = [
+        Performative::Achieve,
+        Performative::Tell,
+        Performative::Untell,
+        Performative::Unachieve,
+        Performative::AskOne,
+        Performative::AskAll,
+    ];
+
+    /// Its name, as a `.send` writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Performative::Achieve => "achieve",
+            Performative::Tell => "tell",
+            Performative::Untell => "untell",
+            Performative::Unachieve => "unachieve",
+            Performative::AskOne => "askOne",
+            Performative::AskAll => "askAll",
+        }
+    }
+
+    /// The performative a `.send` names, if bdi-check delivers it.
+    pub fn named(name: &str) -> Option<Performative> {
+        Performative::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// Whether it asks for an answer.
+    pub fn is_ask(self) -> bool {
+        matches!(self, Performative::AskOne | Performative::AskAll)
+    }
 }
 
 /// A frame of the running intention as an action saw it: the plan, its bindings, and (for
@@ -331,7 +378,10 @@ impl<'p> Semantics<'p> {
             .collect();
         let mut blocks = Vec::new();
         let mut relevant: HashMap<(u8, u8, String, usize), Vec<u32>> = HashMap::new();
-        for plan in &project.plans.plans {
+        // The agent's plans, then Jason's for messages (`Agent.loadKqmlPlans` puts them at
+        // the end of the library).
+        let kqml = crate::model::kqml::plans();
+        for (i, plan) in project.plans.plans.iter().chain(kqml).enumerate() {
             let mut b = Blocks::default();
             index_blocks(&plan.body, &mut b);
             blocks.push(b);
@@ -344,7 +394,7 @@ impl<'p> Semantics<'p> {
                     t.literal.arity(),
                 ))
                 .or_default()
-                .push(plan.index as u32);
+                .push(i as u32);
         }
         let requests = ground_requests(project)?;
         let m = &project.manifest;
@@ -500,6 +550,7 @@ impl<'p> Semantics<'p> {
             requested: 0,
             library: None,
             told: Vec::new(),
+            asked: 0,
         };
         let notes = &self.project.initial.agent_beliefs;
         let noted: Vec<AtomId> = notes.iter().rev().copied().collect();
@@ -524,6 +575,26 @@ impl<'p> Semantics<'p> {
         s.beliefs = beliefs.clone();
         self.perceive(&mut s, &perceived, &[]);
         s
+    }
+
+    /// Plan `plan`: one of the project's, or after them one of Jason's plans for messages
+    /// ([`crate::model::kqml`]).
+    pub fn plan(&self, plan: u32) -> &'p crate::model::plans::Plan {
+        let own = &self.project.plans.plans;
+        match own.get(plan as usize) {
+            Some(p) => p,
+            None => &crate::model::kqml::plans()[plan as usize - own.len()],
+        }
+    }
+
+    /// The names of the agents of its system, by index (this one alone, outside one).
+    pub fn agent_names(&self) -> &[String] {
+        &self.agents
+    }
+
+    /// Whether plan `plan` is one of Jason's plans for messages, not the agent's own.
+    pub fn is_kqml_plan(&self, plan: u32) -> bool {
+        plan as usize >= self.project.plans.plans.len()
     }
 
     /// The block of steps `block` of plan `plan` (0 is the body).

@@ -60,7 +60,7 @@ impl Semantics<'_> {
                 .iter()
                 .copied()
                 .find(|&pi| {
-                    let plan = &self.project.plans.plans[pi as usize];
+                    let plan = self.plan(pi);
                     let mut u = Substitution::new();
                     if unify(&plan.trigger.literal, &ev.trigger.literal, &mut u) {
                         let mut b = self.beliefs(&s);
@@ -71,7 +71,7 @@ impl Semantics<'_> {
                 })
                 .or(relevant.first().copied())
                 .unwrap_or(0);
-            let span = self.project.plans.plans[plan as usize].span;
+            let span = self.plan(plan).span;
             notes.push(Note::Beyond {
                 text: format!("the contexts of the plans for {}", ev.trigger),
                 plan,
@@ -127,7 +127,7 @@ impl Semantics<'_> {
             .map(|(pi, answer)| {
                 let mut s = s.clone();
                 let mut notes = notes.clone();
-                let plan = &self.project.plans.plans[pi as usize];
+                let plan = self.plan(pi);
                 let mut frame = Frame {
                     plan: pi,
                     subst: answer,
@@ -150,6 +150,18 @@ impl Semantics<'_> {
                 };
                 let subst = frame.subst.clone();
                 let depth = match ev.intention.clone() {
+                    // An atomic plan's intention is Jason's `C.AI`: `applySelInt` takes it
+                    // before the queue. (Only Jason's one-step plans for messages are
+                    // atomic here, so it ends in this cycle's act, and no later event
+                    // selection waits for it.)
+                    None if plan.atomic => {
+                        let int = Intention {
+                            frames: vec![frame],
+                            origin,
+                        };
+                        s.intentions.insert(0, int);
+                        0
+                    }
                     None => {
                         s.intentions.push(Intention {
                             frames: vec![frame],
@@ -235,7 +247,7 @@ impl Semantics<'_> {
     ) -> Vec<(u32, Substitution)> {
         let mut out = Vec::new();
         for &pi in self.relevant_in(b.state.library.as_deref(), trigger).iter() {
-            let plan = &self.project.plans.plans[pi as usize];
+            let plan = self.plan(pi);
             let mut u = Substitution::new();
             if !unify(&plan.trigger.literal, &trigger.literal, &mut u) {
                 continue;

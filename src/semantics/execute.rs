@@ -263,6 +263,14 @@ impl Semantics<'_> {
         } else {
             Vec::new()
         };
+        // For Jason's `kqmlError` plan: the query of the `askOne` plan that failed below it.
+        let failed_query = int
+            .frames
+            .last()
+            .filter(|f| self.is_kqml_plan(f.plan))
+            .and_then(|_| int.frames.iter().rev().nth(1))
+            .map(|f| f.subst.apply(&Term::var("Query")))
+            .filter(|q| !q.is_var());
         let frame = int.frames.last_mut().expect("an intention has a frame");
         let plan = frame.plan;
         let blocks = &self.blocks[plan as usize];
@@ -510,17 +518,6 @@ impl Semantics<'_> {
                         }
                     }
                     f @ (".send" | ".broadcast") => {
-                        let args = term.args();
-                        let (ilf, content) = if f == ".send" {
-                            (&args[1], &args[2])
-                        } else {
-                            (&args[0], &args[1])
-                        };
-                        let performative = if ilf == &Term::atom("tell") {
-                            super::cycle::Performative::Tell
-                        } else {
-                            super::cycle::Performative::Achieve
-                        };
                         let beyond = |reason: String, notes: &mut Vec<Note>| {
                             notes.push(Note::Beyond {
                                 text: text.clone(),
@@ -530,52 +527,16 @@ impl Semantics<'_> {
                             });
                             Flow::Gone
                         };
-                        if !content.is_ground() {
-                            return beyond(
-                                "the message's content is not ground, and bdi-check sends ground goals only".into(),
-                                notes,
-                            );
-                        }
-                        if performative == super::cycle::Performative::Tell
-                            && (!content.annots().is_empty() || self.ground_atom(content).is_none())
-                        {
-                            return beyond(
-                                "the told belief is not an atom of the model without annotations, and bdi-check keeps only the sources of a belief".into(),
-                                notes,
-                            );
-                        }
-                        if content
-                            .annots()
-                            .iter()
-                            .any(|a| a.functor() == Some("source"))
-                        {
-                            return beyond(
-                                "the content names a source already (Jason nests the sender's `source` around it), which bdi-check does not model".into(),
-                                notes,
-                            );
-                        }
-                        let to: Vec<u8> = if f == ".broadcast" {
+                        let send = match self.message(f, &term) {
+                            Ok(m) => m,
+                            Err(reason) => return beyond(reason, notes),
+                        };
+                        let to: Vec<u8> = match send.receiver {
                             // `LocalAgArch.broadcast`: every agent but the sender.
-                            (0..self.agents.len() as u8)
+                            None => (0..self.agents.len() as u8)
                                 .filter(|&k| k != self.me)
-                                .collect()
-                        } else {
-                            let name = match &args[0] {
-                                Term::Atom(n) => n.to_string(),
-                                Term::Str(n) => n.to_string(),
-                                r => {
-                                    return beyond(
-                                        format!("the receiver `{r}` is not an agent's name"),
-                                        notes,
-                                    )
-                                }
-                            };
-                            let name = if name == "self" {
-                                self.agent_name.clone()
-                            } else {
-                                name
-                            };
-                            match self.agents.iter().position(|a| *a == name) {
+                                .collect(),
+                            Some(name) => match self.agents.iter().position(|a| *a == name) {
                                 Some(k) => vec![k as u8],
                                 None => {
                                     // `LocalAgArch.sendMsg`: ReceiverNotFoundException,
@@ -599,7 +560,7 @@ impl Semantics<'_> {
                                     );
                                     return Flow::Gone;
                                 }
-                            }
+                            },
                         };
                         if !self.shared_world && !to.is_empty() {
                             return beyond(
@@ -607,6 +568,20 @@ impl Semantics<'_> {
                                 notes,
                             );
                         }
+                        // An ask whose answer the intention waits for: an id no answer
+                        // still on its way has (stdlib `send`: `setSyncAskMsgId`).
+                        let ask = match &send.answer {
+                            None => None,
+                            Some(_) => match (0..64u8).find(|k| s.asked >> k & 1 == 0) {
+                                Some(k) => Some(k),
+                                None => {
+                                    return beyond(
+                                        "64 asks already wait for their answers, the most bdi-check keeps".into(),
+                                        notes,
+                                    )
+                                }
+                            },
+                        };
                         notes.push(Note::Internal {
                             text: text.clone(),
                             plan,
@@ -614,11 +589,65 @@ impl Semantics<'_> {
                         });
                         notes.push(Note::Sent {
                             to,
-                            performative,
-                            content: content.clone(),
+                            performative: send.performative,
+                            content: send.content,
+                            ask,
+                            reply_to: send.reply_to,
                         });
                         self.normalize(frame);
+                        if let (Some(k), Some(answer)) = (ask, send.answer) {
+                            // The intention waits in `C.PI` until the answer comes.
+                            s.asked |= 1 << k;
+                            let waiting = std::mem::replace(int, empty_intention(origin));
+                            s.waiting.push(crate::semantics::state::Waiting {
+                                intention: waiting,
+                                step: (plan, block, pos, step.span),
+                                ask: Some((k, answer)),
+                                timed: send.timed,
+                                woken: false,
+                            });
+                            return Flow::Gone;
+                        }
                         return Flow::Continue;
+                    }
+                    ".kqml_untell" => {
+                        // `--Content[source(Sender)]`: that source goes; the belief with
+                        // it when it has no other (a new focus: the event is external).
+                        let (c, sender) = (&term.args()[0], &term.args()[1]);
+                        let removed = self.untell(s, c, sender);
+                        notes.push(Note::Belief {
+                            text: format!("--{}", crate::model::internal::nested_source(c, sender)),
+                            plan,
+                            added: Vec::new(),
+                            removed: removed
+                                .iter()
+                                .filter(|(_, gone)| *gone)
+                                .map(|(a, _)| *a)
+                                .collect(),
+                            origin,
+                        });
+                        if let Some((a, _)) = removed.first() {
+                            let literal = self.beliefs(s).atom_term(*a).without_annots();
+                            let literal = crate::model::internal::nested_source(&literal, sender);
+                            self.post_event(
+                                s,
+                                Event {
+                                    trigger: EventTrigger {
+                                        op: TriggerOp::Del,
+                                        kind: TriggerKind::Belief,
+                                        literal,
+                                    },
+                                    intention: None,
+                                    origin: Origin::Spawned,
+                                    posted_at: None,
+                                },
+                            );
+                        }
+                    }
+                    ".kqml_error" => {
+                        notes.push(Note::Printed(
+                            self.communication_error(&term, failed_query.as_ref()),
+                        ));
                     }
                     _ => {
                         let f = Formula::Call(t.clone());

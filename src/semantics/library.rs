@@ -32,19 +32,24 @@ impl Semantics<'_> {
         t: &EventTrigger,
     ) -> Cow<'_, [u32]> {
         let all = self.relevant_plans(t);
+        // The static list holds every plan that may be relevant: the agent's own, those its
+        // steps may add, then Jason's for messages, which are always in the library.
+        let own = all.partition_point(|&p| (p as usize) < self.own_plans);
+        let kqml = &all[all.partition_point(|&p| !self.is_kqml_plan(p))..];
         match lib {
-            // The static list holds every plan that may be relevant, the agent's own first.
-            None => Cow::Borrowed(&all[..all.partition_point(|&p| (p as usize) < self.own_plans)]),
+            None if own + kqml.len() == all.len() => Cow::Borrowed(all),
+            None => Cow::Owned(all[..own].iter().chain(kqml).copied().collect()),
             Some(lib) => Cow::Owned(
                 lib.iter()
                     .map(|e| e.plan)
                     .filter(|p| {
-                        let pt = &self.project.plans.plans[*p as usize].trigger;
+                        let pt = &self.plan(*p).trigger;
                         op_key(pt.op) == op_key(t.op)
                             && kind_key(pt.kind) == kind_key(t.kind)
                             && pt.literal.functor() == t.literal.functor()
                             && pt.literal.arity() == t.literal.arity()
                     })
+                    .chain(kqml.iter().copied())
                     .collect(),
             ),
         }

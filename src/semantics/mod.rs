@@ -15,6 +15,7 @@ mod failure;
 mod internal_actions;
 pub mod java_hash;
 mod library;
+mod messages;
 mod perceive;
 pub mod query;
 mod reads;

@@ -94,7 +94,7 @@ impl Semantics<'_> {
 
     /// Keeps [`State::order`] for a belief added (in front of its predicate's beliefs)
     /// or removed.
-    fn reorder(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
+    pub(super) fn reorder(&self, s: &mut State, added: &[AtomId], removed: &[AtomId]) {
         let pred = |a: AtomId| self.project.atoms.pred_of(a);
         for &a in removed.iter().chain(added) {
             if self.is_ordered(pred(a)) {

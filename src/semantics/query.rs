@@ -327,6 +327,22 @@ impl Beliefs<'_> {
                     .collect();
                 unify_with(l, Term::list(items)).into_iter().collect()
             }
+            // Jason's `kqml::bel_no_source_self` (kqmlPlans.asl): a belief that unifies,
+            // with its annotations but `source(self)`.
+            (".kqml_answer", [c, a]) => self
+                .kqml_answers(c, s)
+                .into_iter()
+                .filter_map(|(mut s2, ans)| unify(&s2.apply(a), &ans, &mut s2).then_some(s2))
+                .collect(),
+            // `.findall` of those answers.
+            (".kqml_answers", [c, l]) => {
+                let items = self
+                    .kqml_answers(c, s)
+                    .into_iter()
+                    .map(|(s2, ans)| s2.apply(&ans))
+                    .collect();
+                unify_with(l, Term::list(items)).into_iter().collect()
+            }
             (".desire", [g]) => self.goals(g, s, true),
             (".intend", [g]) => self.goals(g, s, false),
             (".fail", []) => Vec::new(),
@@ -349,6 +365,30 @@ impl Beliefs<'_> {
                 internal::call(name, &args, s).unwrap_or_default()
             }
         }
+    }
+
+    /// The answers of an `askOne` or `askAll` of `c`: each believed literal that unifies,
+    /// in belief-base order, with its annotations but `source(self)`, then what the rules
+    /// prove (`c` as it is then: a rule's conclusion has no annotation), each with the
+    /// bindings of `c`.
+    fn kqml_answers(&self, c: &Term, s: &Substitution) -> Vec<(Substitution, Term)> {
+        let own = Term::structure("source", vec![Term::atom("self")]);
+        let mut out: Vec<(Substitution, Term)> = self
+            .literal_answers(c, s)
+            .into_iter()
+            .map(|(a, s2)| {
+                let b = self.atom_term(a);
+                let annots: Vec<Term> = b.annots().iter().filter(|x| **x != own).cloned().collect();
+                (s2, b.without_annots().add_annots(annots).unwrap_or(b))
+            })
+            .collect();
+        if !self.rules.is_empty() {
+            for s2 in self.rule_answers(c, s) {
+                let ans = s2.apply(c);
+                out.push((s2, ans));
+            }
+        }
+        out
     }
 
     /// Answers of `.desire(g)` (goals in events or intentions) or `.intend(g)` (goals of

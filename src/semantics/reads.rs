@@ -63,7 +63,7 @@ impl Semantics<'_> {
     pub(super) fn event_reads(&self, ev: &Event) -> AtomSet {
         let mut out = AtomSet::empty(self.project.atoms.len());
         for &pi in self.relevant_plans(&ev.trigger) {
-            let plan = &self.project.plans.plans[pi as usize];
+            let plan = self.plan(pi);
             let mut u = Substitution::new();
             if unify(&plan.trigger.literal, &ev.trigger.literal, &mut u) {
                 self.formula_reads(&plan.context, &u, &mut out);

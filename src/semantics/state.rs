@@ -168,13 +168,18 @@ pub struct ActionFailure {
 }
 
 /// An intention suspended by `.wait`: Jason's pending intention (`Circumstance.PI`), with
-/// the `WaitEvent` listener that resumes it (stdlib `wait`).
+/// the `WaitEvent` listener that resumes it (stdlib `wait`); or by `.send` of `askOne` or
+/// `askAll` with an answer variable, until the answer comes (stdlib `send`, resumed by
+/// `TransitionSystem.resumeSyncAskIntention`).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Waiting {
-    /// The intention, its top plan past the `.wait` step.
+    /// The intention, its top plan past the `.wait` (or `.send`) step.
     pub intention: Intention,
-    /// The `.wait` step: its plan, block and position, and where it is written.
+    /// The `.wait` (or `.send`) step: its plan, block and position, and where it is written.
     pub step: (u32, u16, u16, Span),
+    /// For an ask: its id (`samidN`, the answer's `in_reply_to`) and the term the answer
+    /// is unified with (the `.send`'s fourth argument, as the step ran).
+    pub ask: Option<(u8, Term)>,
     /// Whether a timer runs (a timeout of at least 0 ms): it may end the wait at the start
     /// of any later cycle.
     pub timed: bool,
@@ -236,6 +241,11 @@ pub struct State {
     pub library: Option<Arc<[InLibrary]>>,
     /// The beliefs other agents told, by atom (empty outside a system of several agents).
     pub told: Vec<Told>,
+    /// The ids of the agent's asks that wait for an answer, one bit each (`samidN`): set
+    /// when the ask is sent, cleared when its answer is read, whether an intention still
+    /// waits for it or not (Jason ignores an answer that comes after the timeout), so no
+    /// id is used again while an answer to it may come.
+    pub asked: u64,
 }
 
 /// The hash of one part of a state: std's SipHash with fixed keys, so it is the same in
@@ -278,7 +288,7 @@ pub fn hash_parts<H: Hasher>(
     if let Some(l) = library {
         h.write_u64(l);
     }
-    // Only agents told something by others: every other state hashes as before.
+    // Only agents told something by others, or asking: every other state hashes as before.
     if let Some(t) = told {
         h.write_u64(t);
     }
@@ -295,7 +305,11 @@ impl Hash for State {
             self.waiting.iter().map(part_hash),
             self.requested,
             self.library.as_ref().map(part_hash),
-            (!self.told.is_empty()).then(|| part_hash(&self.told)),
+            match (self.told.is_empty(), self.asked) {
+                (true, 0) => None,
+                (false, 0) => Some(part_hash(&self.told)),
+                (_, asked) => Some(part_hash(&(&self.told, asked))),
+            },
         );
     }
 }
@@ -310,7 +324,7 @@ impl State {
     }
 
     /// Whether the agent has nothing to do: no event, no intention (suspended ones wait
-    /// inside events).
+    /// inside events, or for the end of a `.wait` or for an answer).
     pub fn is_idle(&self) -> bool {
         self.events.is_empty()
             && self.intentions.is_empty()
@@ -429,6 +443,7 @@ mod tests {
             requested: 0,
             library: None,
             told: Vec::new(),
+            asked: 0,
         };
         assert_eq!(state.pending_requests(), 0b10_0110);
     }

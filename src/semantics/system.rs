@@ -15,11 +15,11 @@
 //! The user's requests go to the first agent.
 
 use super::cycle::{Note, Performative, Semantics, Transition};
-use super::state::{Event, EventTrigger, Origin, State, Told};
+use super::state::State;
 use crate::model::atoms::AtomSet;
 use crate::model::project::Project;
 use crate::model::term::Term;
-use crate::syntax::ast::{TriggerKind, TriggerOp};
+use crate::syntax::ast::TriggerKind;
 use crate::syntax::Diagnostic;
 
 /// A message in an agent's mailbox.
@@ -27,10 +27,14 @@ use crate::syntax::Diagnostic;
 pub struct Message {
     /// The sender's index.
     pub from: u8,
-    /// `achieve` or `tell`.
+    /// The performative.
     pub performative: Performative,
-    /// The goal to achieve or the belief told.
+    /// The goal to achieve, the belief told, or what is asked.
     pub content: Term,
+    /// For an ask whose answer an intention of the sender waits for: its id (`samidN`).
+    pub ask: Option<u8>,
+    /// For an answer to such an ask of the receiver: that ask's id (`in_reply_to`).
+    pub reply_to: Option<u8>,
 }
 
 /// The state of every agent, the environment and the messages in transit.
@@ -87,6 +91,14 @@ impl<'p> System<'p> {
             sem.me = k as u8;
             sem.shared_world = true;
             agents.push(sem);
+        }
+        // What one agent asks with variables, another answers from its beliefs in their
+        // order: a predicate whose order can show for one can for all.
+        let ordered: Vec<bool> = (0..agents[0].ordered.len())
+            .map(|i| agents.iter().any(|a| a.ordered[i]))
+            .collect();
+        for a in &mut agents {
+            a.ordered = ordered.clone();
         }
         Ok(System { agents })
     }
@@ -201,44 +213,7 @@ impl<'p> System<'p> {
         }
         if !mail.is_empty() {
             let m = mail.remove(0);
-            let sender = if m.from as usize == k {
-                "self".to_string()
-            } else {
-                self.names()[m.from as usize].clone()
-            };
-            let literal = super::cycle::with_source(&m.content, &sender);
-            let trigger = match m.performative {
-                Performative::Achieve => Some(EventTrigger {
-                    op: TriggerOp::Add,
-                    kind: TriggerKind::Achieve,
-                    literal,
-                }),
-                Performative::Tell => {
-                    self.tell(&mut agent, m.from, &m.content, k)
-                        .then_some(EventTrigger {
-                            op: TriggerOp::Add,
-                            kind: TriggerKind::Belief,
-                            literal,
-                        })
-                }
-            };
-            before.push(Note::Received {
-                from: m.from,
-                performative: m.performative,
-                content: m.content.clone(),
-            });
-            if let Some(trigger) = trigger {
-                // The achieve shortcut and `Agent.addBel`: an external event.
-                sem.post_event(
-                    &mut agent,
-                    Event {
-                        trigger,
-                        intention: None,
-                        origin: Origin::Spawned,
-                        posted_at: None,
-                    },
-                );
-            }
+            before.extend(sem.receive(&mut agent, &m));
         }
         let perceived = agent.beliefs.clone();
         let transitions = if agent.is_idle() {
@@ -274,6 +249,8 @@ impl<'p> System<'p> {
                         to,
                         performative,
                         content,
+                        ask,
+                        reply_to,
                     } = n
                     {
                         for &r in to {
@@ -281,6 +258,8 @@ impl<'p> System<'p> {
                                 from: k as u8,
                                 performative: *performative,
                                 content: content.clone(),
+                                ask: *ask,
+                                reply_to: *reply_to,
                             });
                         }
                     }
@@ -302,62 +281,21 @@ impl<'p> System<'p> {
 }
 
 impl System<'_> {
+    /// Whether agent `k` has nothing to do but wait for a timer or an answer: no message,
+    /// nothing to perceive, no event, no running intention.
+    pub fn asleep(&self, s: &SystemState, k: usize) -> bool {
+        let a = &s.agents[k];
+        s.mail[k].is_empty()
+            && !self.unperceived(s, k)
+            && a.events.is_empty()
+            && a.intentions.is_empty()
+            && a.pending.is_none()
+            && a.waiting.iter().all(|w| !w.woken)
+    }
+
     /// Whether agent `k` has perceived the environment as it is now.
     pub fn has_perceived(&self, s: &SystemState, k: usize) -> bool {
         !self.unperceived(s, k)
-    }
-}
-
-impl System<'_> {
-    /// Agent `k` believes `b[source(from)]` (`Agent.addBel`, `DefaultBeliefBase.add`):
-    /// whether anything changed (a new belief, or a new source of one already held).
-    /// Only mental notes are told (a percept is refused where the `tell` is written).
-    fn tell(&self, agent: &mut State, from: u8, content: &Term, k: usize) -> bool {
-        let sem = &self.agents[k];
-        let Some(a) = sem.ground_atom(content) else {
-            return false;
-        };
-        let at = agent.told.binary_search_by_key(&a, |t| t.atom);
-        // A message from the agent itself is `source(self)`: its own belief.
-        if from as usize == k {
-            return match at {
-                Ok(i) if agent.told[i].own => false,
-                Ok(i) => {
-                    agent.told[i].own = true;
-                    true
-                }
-                Err(_) if agent.beliefs.contains(a) => false,
-                Err(_) => {
-                    agent.beliefs.insert(a);
-                    sem.note_added(agent, a);
-                    true
-                }
-            };
-        }
-        let bit = 1u64 << from;
-        match at {
-            Ok(i) if agent.told[i].from & bit != 0 => false,
-            Ok(i) => {
-                agent.told[i].from |= bit;
-                true
-            }
-            Err(i) => {
-                let own = agent.beliefs.contains(a);
-                agent.told.insert(
-                    i,
-                    Told {
-                        atom: a,
-                        from: bit,
-                        own,
-                    },
-                );
-                if !own {
-                    agent.beliefs.insert(a);
-                    sem.note_added(agent, a);
-                }
-                true
-            }
-        }
     }
 }
 

@@ -47,7 +47,8 @@ impl Semantics<'_> {
         }
         let mut i = 0;
         while i < s.waiting.len() {
-            if s.waiting[i].woken {
+            // An ask waits for its answer, not for an event.
+            if s.waiting[i].woken || s.waiting[i].ask.is_some() {
                 i += 1;
                 continue;
             }
@@ -131,6 +132,7 @@ impl Semantics<'_> {
         s.waiting.push(Waiting {
             intention: int,
             step,
+            ask: None,
             timed,
             woken: false,
         });
@@ -183,6 +185,10 @@ impl Semantics<'_> {
             .collect();
         for i in order {
             let w = all[i].take().expect("each waiting intention resumes once");
+            if w.ask.is_some() {
+                self.ask_timed_out(s, w, notes);
+                continue;
+            }
             let (plan, block, pos, span) = w.step;
             let BodyStep::Wait {
                 event, condition, ..

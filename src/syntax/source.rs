@@ -9,6 +9,29 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
 pub struct FileId(pub u32);
 
+impl FileId {
+    /// The plans every Jason agent has for the messages it receives ([`KQML_PLANS`]): a
+    /// file of bdi-check's own that every map resolves, though no project holds it.
+    pub const KQML: FileId = FileId(u32::MAX);
+}
+
+/// bdi-check's rendering of the plans Jason 3 gives every agent for the performatives its
+/// reasoning cycle does not take by a shortcut (Jason's `kqmlPlans.asl`).
+pub const KQML_PLANS: &str = include_str!("builtin/kqml.asl");
+
+/// The file [`FileId::KQML`] names.
+fn kqml_file() -> &'static SourceFile {
+    static FILE: std::sync::OnceLock<SourceFile> = std::sync::OnceLock::new();
+    FILE.get_or_init(|| {
+        SourceFile::new(
+            FileId::KQML,
+            "kqmlPlans.asl",
+            "kqmlPlans.asl",
+            KQML_PLANS.into(),
+        )
+    })
+}
+
 /// A byte range `start..end` in one source file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct Span {
@@ -92,6 +115,23 @@ pub struct SourceFile {
 }
 
 impl SourceFile {
+    fn new(
+        id: FileId,
+        path: impl AsRef<Path>,
+        name: impl Into<String>,
+        text: String,
+    ) -> SourceFile {
+        let mut line_starts = vec![0];
+        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
+        SourceFile {
+            id,
+            path: path.as_ref().to_path_buf(),
+            name: name.into(),
+            text,
+            line_starts,
+        }
+    }
+
     /// 1-based (line, column) of a byte offset; the column counts characters.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = offset.min(self.text.len());
@@ -135,15 +175,7 @@ impl SourceMap {
     /// Adds a file's text under a display name and returns its id.
     pub fn add(&mut self, path: impl AsRef<Path>, name: impl Into<String>, text: String) -> FileId {
         let id = FileId(self.files.len() as u32);
-        let mut line_starts = vec![0];
-        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        self.files.push(SourceFile {
-            id,
-            path: path.as_ref().to_path_buf(),
-            name: name.into(),
-            text,
-            line_starts,
-        });
+        self.files.push(SourceFile::new(id, path, name, text));
         id
     }
 
@@ -152,15 +184,18 @@ impl SourceMap {
     /// # Panics
     /// When the id does not come from this map.
     pub fn file(&self, id: FileId) -> &SourceFile {
-        &self.files[id.0 as usize]
+        self.get(id).expect("a file of this map")
     }
 
-    /// The file with this id, if it is in the map.
+    /// The file with this id, if it is in the map (or is [`FileId::KQML`]).
     pub fn get(&self, id: FileId) -> Option<&SourceFile> {
+        if id == FileId::KQML {
+            return Some(kqml_file());
+        }
         self.files.get(id.0 as usize)
     }
 
-    /// Every file, in the order they were added.
+    /// Every file, in the order they were added ([`FileId::KQML`] is none of them).
     pub fn files(&self) -> &[SourceFile] {
         &self.files
     }

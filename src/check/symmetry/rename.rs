@@ -288,6 +288,7 @@ pub fn rename_state<R: Rename>(r: &R, s: &State) -> State {
             .iter()
             .map(|w| Waiting {
                 intention: rename_intention(r, &w.intention),
+                ask: w.ask.as_ref().map(|(id, t)| (*id, term(r, t))),
                 ..w.clone()
             })
             .collect(),
@@ -295,5 +296,6 @@ pub fn rename_state<R: Rename>(r: &R, s: &State) -> State {
         // Plans name no interchangeable object or agent (the reductions refuse them).
         library: s.library.clone(),
         told,
+        asked: s.asked,
     }
 }

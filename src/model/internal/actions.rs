@@ -54,9 +54,62 @@ pub fn call(name: &str, args: &[Term], s: &Substitution) -> Option<Vec<Substitut
         ".difference" => set_op(&a, s, SetOp::Difference),
         ".intersection" => set_op(&a, s, SetOp::Intersection),
         ".union" => set_op(&a, s, SetOp::Union),
+        ".add_nested_source" => {
+            let [t, source, out] = &a[..] else {
+                return None;
+            };
+            Some(unified(s, &[(&nested_source(t, source), out)]))
+        }
+        ".remove_source_annot" => {
+            let [t, out] = &a[..] else { return None };
+            let plain = match t.list_elements() {
+                Some((elems, None)) => Term::list(elems.iter().map(without_sources).collect()),
+                _ => without_sources(t),
+            };
+            Some(unified(s, &[(&plain, out)]))
+        }
         _ => return None,
     };
     Some(answers.unwrap_or_default())
+}
+
+/// `add_nested_source.addAnnotToList`: `source(Source)` added to a literal, the sources it
+/// had nested inside that one (`b[source(a)]` gives `b[source(Source)[source(a)]]`); to each
+/// element of a list; any other term as it is.
+pub fn nested_source(t: &Term, source: &Term) -> Term {
+    if let Some((elems, tail)) = t.list_elements() {
+        let elems = elems.iter().map(|e| nested_source(e, source)).collect();
+        return Term::list_with_tail(elems, tail.unwrap_or(Term::Nil));
+    }
+    let Some((f, negated, args, annots)) = t.lit_view() else {
+        return t.clone();
+    };
+    let (sources, mut rest): (Vec<Term>, Vec<Term>) = annots
+        .iter()
+        .cloned()
+        .partition(|a| a.functor() == Some("source"));
+    // `Pred.createSource(source).addAnnots(result.getAnnots("source"))`.
+    let new = Term::literal("source", false, vec![source.clone()], sources);
+    rest.push(new);
+    Term::literal(f, negated, args.to_vec(), rest)
+}
+
+/// `remove_source_annot.processTerm` (`Literal.noSource`): a literal without its `source`
+/// annotations; any other term as it is.
+fn without_sources(t: &Term) -> Term {
+    match t.lit_view() {
+        Some((f, negated, args, annots)) => Term::literal(
+            f,
+            negated,
+            args.to_vec(),
+            annots
+                .iter()
+                .filter(|a| a.functor() != Some("source"))
+                .cloned()
+                .collect(),
+        ),
+        None => t.clone(),
+    }
 }
 
 /// `member.java`: every element that unifies with the first argument, in list order.

@@ -31,7 +31,7 @@ mod parse;
 #[cfg(test)]
 mod tests;
 
-pub use actions::call;
+pub use actions::{call, nested_source};
 pub use functions::function;
 pub use parse::parse_simple;
 
@@ -64,6 +64,8 @@ pub const PURE: &[(&str, &[usize])] = &[
     (".difference", &[3]),
     (".intersection", &[3]),
     (".union", &[3]),
+    (".add_nested_source", &[3]),
+    (".remove_source_annot", &[2]),
 ];
 
 /// The pure arithmetic functions [`function`] evaluates, as `(name, arity)`; a function with

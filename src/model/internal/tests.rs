@@ -506,6 +506,8 @@ fn every_pure_action_answers_something() {
         (".difference", vec![abc(), abc(), v("X")]),
         (".intersection", vec![abc(), abc(), v("X")]),
         (".union", vec![abc(), abc(), v("X")]),
+        (".add_nested_source", vec![a("a"), a("bob"), v("X")]),
+        (".remove_source_annot", vec![a("a"), v("X")]),
     ];
     for (name, arities) in PURE {
         let (_, args) = samples
@@ -606,4 +608,40 @@ fn every_function_evaluates() {
             "{name}/{arity}"
         );
     }
+}
+
+#[test]
+fn sources_are_nested_and_removed_as_jason_does() {
+    let src = |who: &str, inner: Vec<Term>| Term::literal("source", false, vec![a(who)], inner);
+    // `add_nested_source.addAnnotToList`: the sources a literal had go inside the new one.
+    let told = Term::literal("p", false, vec![a("x")], vec![src("ana", vec![]), a("u")]);
+    assert_eq!(
+        one(".add_nested_source", vec![told.clone(), a("bob"), v("X")]),
+        "p(x)[source(bob)[source(ana)],u]"
+    );
+    assert_eq!(
+        one(".add_nested_source", vec![a("q"), a("bob"), v("X")]),
+        "q[source(bob)]"
+    );
+    // Each element of a list; any other term as it is.
+    assert_eq!(
+        one(
+            ".add_nested_source",
+            vec![l(vec![a("q"), n(1.0)]), a("bob"), v("X")]
+        ),
+        "[q[source(bob)],1]"
+    );
+    assert!(!holds(".add_nested_source", vec![n(1.0), a("bob"), n(2.0)]));
+    // `remove_source_annot`: every `source`, nested or not, and the other annotations kept.
+    let nested = Term::literal(
+        "p",
+        false,
+        vec![a("x")],
+        vec![src("bob", vec![src("ana", vec![])]), a("u")],
+    );
+    assert_eq!(one(".remove_source_annot", vec![nested, v("X")]), "p(x)[u]");
+    assert_eq!(
+        one(".remove_source_annot", vec![l(vec![told, a("q")]), v("X")]),
+        "[p(x)[u],q]"
+    );
 }

@@ -100,14 +100,17 @@ impl Checker<'_> {
                                 self.declare_plan(p, true);
                             }
                         } else if let Some((ilf, content)) = message(l) {
-                            // What a message tells is a belief of its receiver; what it
-                            // asks to achieve, a goal.
+                            // What a message tells, untells or asks is a belief of its
+                            // receiver (and an answer, of its sender); what it asks to
+                            // achieve or drop, a goal.
                             if let ExprKind::Literal(c) = &content.kind {
                                 match ilf {
-                                    "tell" if !c.is_internal_action() => {
+                                    "tell" | "untell" | "askOne" | "askAll"
+                                        if !c.is_internal_action() =>
+                                    {
                                         self.declare_note(c, content.span)
                                     }
-                                    "achieve" if !c.is_internal_action() => {
+                                    "achieve" | "unachieve" if !c.is_internal_action() => {
                                         self.declare_goal(c, content.span, false)
                                     }
                                     _ => {}

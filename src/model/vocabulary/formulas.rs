@@ -346,9 +346,11 @@ impl Checker<'_> {
     }
 
     /// `.send(Receiver, Performative, Content)` and `.broadcast(Performative, Content)`:
-    /// the performatives bdi-check models (`achieve`, `tell`), with their content checked as
-    /// the step they stand for (`achieve g` as `!g`, `tell b` as `+b`); the others are
-    /// refused where written.
+    /// the performatives bdi-check models, with their content checked as the step they
+    /// stand for (`achieve g` as `!g`, `tell b` as `+b`, `untell b` as `-b`, `askOne b` as
+    /// a query); an ask may have an answer variable and a timeout
+    /// (`.send(R, askOne, b, Answer, Timeout)`). The other performatives are refused where
+    /// written.
     fn message(&mut self, cl: &mut Clause, l: &Literal, scope: Scope) {
         let send = l.functor == ".send";
         let (ilf, content) = if send {
@@ -381,41 +383,75 @@ impl Checker<'_> {
                 return;
             }
         };
+        let extra = if send { l.args.len() - 3 } else { 0 };
+        fn literal(e: &Expr) -> Option<&Literal> {
+            match &e.kind {
+                ExprKind::Literal(b) if !b.is_internal_action() => Some(b),
+                _ => None,
+            }
+        }
         match performative {
-            "achieve" if l.args.len() == 3 || !send => match &content.kind {
-                ExprKind::Literal(g) if !g.is_internal_action() => {
-                    self.goal_literal(cl, g, super::Role::Use, scope)
-                }
-                _ => self.unsupported(
+            "achieve" | "unachieve" if extra == 0 => match literal(content) {
+                Some(g) => self.goal_literal(cl, g, super::Role::Use, scope),
+                None => self.unsupported(
                     content.span,
-                    "`achieve` of something other than a goal literal (a list, a variable)",
+                    &format!("`{performative}` of something other than a goal literal (a list, a variable)"),
                     "content",
                 ),
             },
-            "achieve" => self.unsupported(
+            "achieve" | "unachieve" => self.unsupported(
                 l.span,
-                "`.send` of `achieve` with an answer or a timeout",
+                &format!("`.send` of `{performative}` with a fourth or fifth argument"),
                 "extra arguments",
             ),
-            "tell" if l.args.len() == 3 || !send => match &content.kind {
-                ExprKind::Literal(b) if !b.is_internal_action() => {
-                    self.belief_literal(cl, b, Usage::Add, scope)
+            "tell" | "untell" if extra == 0 => match literal(content) {
+                Some(b) => {
+                    let usage = if performative == "tell" {
+                        Usage::Add
+                    } else {
+                        Usage::Del
+                    };
+                    self.belief_literal(cl, b, usage, scope)
                 }
-                _ => self.unsupported(
+                None => self.unsupported(
                     content.span,
-                    "`tell` of something other than a belief literal (a list, a variable)",
+                    &format!("`{performative}` of something other than a belief literal (a list, a variable)"),
                     "content",
                 ),
             },
-            "tell" => self.unsupported(
+            "tell" | "untell" => self.unsupported(
                 l.span,
-                "`.send` of `tell` in reply to a message (`in_reply_to`)",
+                &format!("`.send` of `{performative}` in reply to a message (`in_reply_to`)"),
                 "extra argument",
             ),
-            "untell" | "unachieve" | "askOne" | "askAll" | "tellHow" | "untellHow"
-            | "askHow" | "signal" => self.unsupported(
+            "askOne" | "askAll" => {
+                match literal(content) {
+                    Some(b) => self.belief_literal(cl, b, Usage::Query, scope),
+                    None => self.unsupported(
+                        content.span,
+                        &format!("`{performative}` of something other than a belief literal (a list, a variable)"),
+                        "content",
+                    ),
+                }
+                // The answer, and the timeout.
+                for a in l.args.iter().skip(3) {
+                    self.term(cl, a, scope);
+                }
+                if let Some(t) = l.args.get(4) {
+                    if !matches!(t.kind, ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Var(_)) {
+                        self.diags.push(
+                            Diagnostic::error(
+                                "input",
+                                "the timeout of `.send` must be a number of milliseconds",
+                            )
+                            .with_label(t.span, "not a number"),
+                        );
+                    }
+                }
+            }
+            "tellHow" | "untellHow" | "askHow" | "signal" => self.unsupported(
                 ilf.span,
-                &format!("the performative `{performative}` (bdi-check models `achieve` and `tell` so far)"),
+                &format!("the performative `{performative}` (bdi-check models achieve, tell, untell, unachieve, askOne and askAll)"),
                 "performative",
             ),
             other => self.diags.push(
