@@ -4,12 +4,18 @@
 //! action failures and goal failures of every agent, and deadlock. Each violation comes
 //! with the shortest run to it, every step naming its agent.
 //!
+//! Instances of one agent are interchangeable: with symmetry on, states equal up to a
+//! renaming of them are explored once ([`Instances`]), every run shown is still a concrete
+//! run of the system, and a failure found stands for its renamings (another instance's, a
+//! goal that names another), each reported with its run renamed, as the full search would.
+//!
 //! Not yet for several agents, and refused where written: formulas over an agent's mental
 //! notes, `eventually` properties, and the explanation checks.
 
 use super::explore::{explore_with, Graph, Limits, Options, Walk};
 use super::model::{beyond_of, Model};
 use super::por::PartialOrder;
+use super::symmetry::Instances;
 use super::trace::Builder;
 use super::Verification;
 use super::VerifyOptions;
@@ -40,10 +46,12 @@ impl Model for System<'_> {
 }
 
 /// The interleavings the search follows: the system's, with partial-order reduction
-/// when it is on ([`PartialOrder`]).
+/// when it is on ([`PartialOrder`]), and states stored up to renaming of interchangeable
+/// instances when symmetry is on ([`Instances`]).
 struct Interleavings<'a, 's> {
     system: &'a System<'s>,
     partial_order: Option<PartialOrder>,
+    instances: Option<&'a Instances>,
 }
 
 impl Model for Interleavings<'_, '_> {
@@ -60,6 +68,13 @@ impl Model for Interleavings<'_, '_> {
 
     fn beyond(&self, label: &Step) -> Option<(Span, String)> {
         beyond_of(label.notes.iter())
+    }
+
+    fn fingerprint(&self, s: &SystemState) -> u64 {
+        match self.instances {
+            Some(i) => i.fingerprint(s),
+            None => super::explore::fingerprint(s),
+        }
     }
 
     fn ample(
@@ -88,6 +103,8 @@ struct Failure {
 struct Summary {
     fails: Vec<bool>,
     stuck: Option<Vec<u8>>,
+    /// Under symmetry: a renaming of instances that changes what the system does here.
+    unequal: Option<String>,
 }
 
 /// Explores every interleaving of the agents of `projects` and runs the checks. The
@@ -195,11 +212,18 @@ pub fn verify_system(
         keep_edges: true,
         ..Options::default()
     };
+    let instances = options.symmetry.then(|| {
+        let named: Vec<(&str, &Cond)> = conds.iter().map(|c| (c.0.as_str(), &c.3)).collect();
+        Instances::new(&system, &named)
+    });
+    let active = instances.as_ref().filter(|i| !i.is_empty());
+    let mut unequal: Option<String> = None;
     let model = Interleavings {
         system: &system,
         partial_order: options
             .partial_order
             .then(|| PartialOrder::new(&system, conds.iter().map(|c| &c.3))),
+        instances: active,
     };
     let graph: Graph<SystemState> = explore_with(
         &model,
@@ -219,6 +243,9 @@ pub fn verify_system(
                     .collect();
                 (!busy.is_empty() && system.successors(s).is_empty()).then_some(busy)
             },
+            // Every stored state is checked: reduction is exact only where renaming a
+            // state renames its successors.
+            unequal: active.and_then(|i| i.equivariance_violation(&system, s)),
         },
         |i, sum| {
             for (j, &fails) in sum.fails.iter().enumerate() {
@@ -231,6 +258,9 @@ pub fn verify_system(
             }
             if let (Some(b), None) = (sum.stuck, &first_stuck) {
                 first_stuck = Some((i, b));
+            }
+            if unequal.is_none() {
+                unequal = sum.unequal;
             }
         },
         |src, k, label, fp| {
@@ -272,6 +302,7 @@ pub fn verify_system(
     let cx = Cx {
         projects,
         system: &system,
+        model: &model,
         graph: &graph,
     };
     let held = if graph.complete() {
@@ -342,11 +373,20 @@ pub fn verify_system(
         .map_or(whole, |m| m.written.span);
     match first_stuck {
         Some((i, busy)) => {
+            // The agents of the run's last state: under symmetry, a renaming of the stored
+            // one's.
+            let run = cx.run(&graph.path_to(i), None);
+            let busy: Vec<u8> = run.states.last().map_or(busy, |s| {
+                (0..s.agents.len())
+                    .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
+                    .map(|k| k as u8)
+                    .collect()
+            });
             let names: Vec<String> = busy
                 .iter()
                 .map(|&k| format!("`{}`", system.names()[k as usize]))
                 .collect();
-            findings.push(cx.reached(
+            let mut f = cx.finding(
                 "deadlock",
                 "system",
                 place,
@@ -356,9 +396,10 @@ pub fn verify_system(
                     names.join(", "),
                     if names.len() == 1 { "is" } else { "are" }
                 ),
-                i,
-                Severity::Error,
-            ));
+            );
+            f.severity = Severity::Error;
+            f.counterexample = Some(cx.counterexample_of(&run));
+            findings.push(f);
         }
         None => findings.push(cx.finding(
             "deadlock",
@@ -368,24 +409,25 @@ pub fn verify_system(
             "no reachable state is stuck".into(),
         )),
     }
-    let who = |x: &Failure| &system.names()[x.agent as usize];
+    let who = |agent: u8| &system.names()[agent as usize];
     cx.failures(
         &mut findings,
         ("action-failure", place, held),
         "no agent ever attempts an action whose precondition does not hold",
         actions.values(),
-        |x| match &x.note {
+        |agent, note| match note {
             Note::ActionFailed {
                 text,
                 plan,
                 span,
                 reason,
             } => Some((
+                (agent, span.file.0, span.start, span.end, String::new()),
                 *span,
                 format!(
                     "`{text}` of agent `{}` in plan {} fails: {reason}",
-                    who(x),
-                    projects[x.agent as usize].plans.plans[*plan as usize].name()
+                    who(agent),
+                    projects[agent as usize].plans.plans[*plan as usize].name()
                 ),
             )),
             _ => None,
@@ -396,7 +438,7 @@ pub fn verify_system(
         ("goal-failure", place, held),
         "no agent's goal ever fails without a failure plan to handle it",
         goals.values(),
-        |x| match &x.note {
+        |agent, note| match note {
             Note::GoalFailed {
                 goal,
                 cause,
@@ -404,17 +446,17 @@ pub fn verify_system(
                 reason,
                 ..
             } => {
-                let at =
-                    span.unwrap_or(projects[x.agent as usize].manifest.agent.plans.written.span);
+                let at = span.unwrap_or(projects[agent as usize].manifest.agent.plans.written.span);
                 let what = if goal == cause {
-                    format!("goal {goal} of agent `{}` fails ({reason})", who(x))
+                    format!("goal {goal} of agent `{}` fails ({reason})", who(agent))
                 } else {
                     format!(
                         "{cause} fails ({reason}), so goal {goal} of agent `{}` fails",
-                        who(x)
+                        who(agent)
                     )
                 };
                 Some((
+                    (agent, 0, 0, 0, format!("{goal} {cause}")),
                     at,
                     format!("{what}, and no failure plan handles it: the intention is dropped"),
                 ))
@@ -475,7 +517,8 @@ pub fn verify_system(
             Some(x) => {
                 f.severity = Severity::Error;
                 f.message = format!("{} — and a run reaches it", f.message);
-                f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
+                f.counterexample =
+                    Some(cx.counterexample_of(&cx.run(&graph.path_to(x.src), Some(x))));
             }
             None if graph.complete() => {
                 f.severity = Severity::Note;
@@ -484,13 +527,73 @@ pub fn verify_system(
             None => {}
         }
     }
-    Ok(Verification::of(&graph, project, all))
+    let mut v = Verification::of(&graph, project, all);
+    if let Some(i) = &instances {
+        v.symmetric_types = i.describe();
+        v.warnings.extend(i.refused.iter().cloned());
+    }
+    if let Some(r) = unequal {
+        v.warnings.push(format!("symmetry reduction treats instances of one agent as interchangeable, but renaming {r} changes what the agents do in a reachable state (Jason perceives several changes of the environment in the hash order of their names, and lists a belief's sources sorted by name): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict"));
+    }
+    Ok(v)
 }
 
 struct Cx<'a> {
     projects: &'a [Project],
     system: &'a System<'a>,
+    model: &'a Interleavings<'a, 'a>,
     graph: &'a Graph<SystemState>,
+}
+
+/// A concrete run of the system: its states, and the steps between them.
+struct Run {
+    states: Vec<SystemState>,
+    steps: Vec<Step>,
+}
+
+/// The key a failure is reported under, per agent (its index first): the file, start and
+/// end of an action's step, or a goal failure's goal and cause.
+type FailureKey = (u8, u32, u32, u32, String);
+
+/// Whether two notes are one failure, up to the names of interchangeable agents: the same
+/// step of the same plan, the same goal signatures.
+fn alike(a: &Note, b: &Note) -> bool {
+    let shape = |t: &crate::semantics::EventTrigger| {
+        (
+            t.op,
+            t.kind,
+            t.literal.functor().map(str::to_string),
+            t.literal.arity(),
+        )
+    };
+    match (a, b) {
+        (
+            Note::ActionFailed {
+                span: s, plan: p, ..
+            },
+            Note::ActionFailed {
+                span: t, plan: q, ..
+            },
+        ) => s == t && p == q,
+        (
+            Note::GoalFailed {
+                goal: g,
+                cause: c,
+                plan: p,
+                span: s,
+                ..
+            },
+            Note::GoalFailed {
+                goal: h,
+                cause: d,
+                plan: q,
+                span: t,
+                ..
+            },
+        ) => s == t && p == q && shape(g) == shape(h) && shape(c) == shape(d),
+        (Note::NoApplicablePlan(t), Note::NoApplicablePlan(u)) => shape(t) == shape(u),
+        _ => false,
+    }
 }
 
 impl Cx<'_> {
@@ -507,26 +610,84 @@ impl Cx<'_> {
     }
 
     /// One failing finding per failure, with its run (its id `check:file:line`), or, when
-    /// there is none, one that says so (`none`).
+    /// there is none, one that says so (`none`). `describe` gives a failure's key, place
+    /// and message from its agent and note. Under symmetry, every renaming of a failure
+    /// found is a failure the full search finds, keyed apart (another agent, a goal with
+    /// other names): each is reported, with its run renamed, as that search reports it.
     fn failures<'f>(
         &self,
         out: &mut Vec<Finding>,
         (check, place, held): (&str, Span, Status),
         none: &str,
         failures: impl ExactSizeIterator<Item = &'f Failure>,
-        describe: impl Fn(&Failure) -> Option<(Span, String)>,
+        describe: impl Fn(u8, &Note) -> Option<(FailureKey, Span, String)>,
     ) {
         if failures.len() == 0 {
             out.push(self.finding(check, "all", place, held, none.into()));
         }
-        for x in failures {
-            let Some((span, message)) = describe(x) else {
-                continue;
+        // Key -> (depth of the failing state, order found, span, message, run).
+        let mut found: BTreeMap<FailureKey, (u32, usize, Span, String, Run)> = BTreeMap::new();
+        for (order, x) in failures.enumerate() {
+            let depth = self.graph.depth(x.src);
+            let run = self.run(&self.graph.path_to(x.src), Some(x));
+            // The failure as the run shows it (under symmetry, a renaming of the stored
+            // one).
+            let last = |run: &Run| {
+                run.steps
+                    .last()
+                    .filter(|_| run.steps.len() == self.graph.depth(x.src) as usize + 1)
+                    .and_then(|l| {
+                        let n = l.notes.iter().find(|n| alike(n, &x.note))?;
+                        Some((l.agent, n.clone()))
+                    })
             };
+            let (agent, note) = last(&run).unwrap_or((x.agent, x.note.clone()));
+            let mut renamed = vec![(agent, note.clone(), run)];
+            if let Some(inst) = self.model.instances {
+                let mut involved = vec![agent];
+                if let Note::GoalFailed { goal, cause, .. } = &note {
+                    for t in [&goal.literal, &cause.literal] {
+                        involved.extend(inst.named_in(t));
+                    }
+                }
+                let mut distinct = Vec::new();
+                for k in involved {
+                    if !distinct.contains(&k) {
+                        distinct.push(k);
+                    }
+                }
+                let base = &renamed[0].2;
+                let mut more = Vec::new();
+                for perm in inst.images(&distinct).into_iter().skip(1) {
+                    let Some((states, steps)) =
+                        inst.rename_run(self.system, &base.states, &base.steps, &perm)
+                    else {
+                        continue;
+                    };
+                    let r = Run { states, steps };
+                    if let Some((a, n)) = last(&r) {
+                        more.push((a, n, r));
+                    }
+                }
+                renamed.extend(more);
+            }
+            for (agent, note, run) in renamed {
+                let Some((key, span, message)) = describe(agent, &note) else {
+                    continue;
+                };
+                let better = found
+                    .get(&key)
+                    .is_none_or(|(d, o, ..)| (depth, order) < (*d, *o));
+                if better {
+                    found.insert(key, (depth, order, span, message, run));
+                }
+            }
+        }
+        for (_, (_, _, span, message, run)) in found {
             let loc = self.projects[0].map.location(span);
             let name = format!("{}:{}", loc.file, loc.line);
             let mut f = self.finding(check, &name, span, Status::Fail, message);
-            f.counterexample = Some(self.counterexample(&self.graph.path_to(x.src), Some(x)));
+            f.counterexample = Some(self.counterexample_of(&run));
             out.push(f);
         }
     }
@@ -544,22 +705,53 @@ impl Cx<'_> {
     ) -> Finding {
         let mut f = self.finding(check, name, span, status, message);
         f.severity = severity;
-        f.counterexample = Some(self.counterexample(&self.graph.path_to(at), None));
+        f.counterexample = Some(self.counterexample_of(&self.run(&self.graph.path_to(at), None)));
         f
     }
 
-    /// The run along `path`, then the failing transition `extra`: every step names its
-    /// agent.
-    fn counterexample(&self, path: &[u32], extra: Option<&Failure>) -> Counterexample {
-        let p = &self.projects[0];
+    /// The concrete run along `path` (each step the first transition to a state stored
+    /// under the next fingerprint: under symmetry, a renaming of the stored state), then
+    /// the failing transition `extra` (under symmetry, by an instance of its agent). It
+    /// ends early where a step cannot be followed.
+    fn run(&self, path: &[u32], extra: Option<&Failure>) -> Run {
+        let mut run = Run {
+            states: Vec::new(),
+            steps: Vec::new(),
+        };
         let Some(mut walk) = path
             .first()
-            .and_then(|&i| Walk::start(self.system, self.graph, i))
+            .and_then(|&i| Walk::start(self.model, self.graph, i))
         else {
+            return run;
+        };
+        run.states.push(walk.state.clone());
+        for &j in &path[1..] {
+            let Some(l) = walk.step_to(j) else {
+                return run;
+            };
+            run.steps.push(l);
+            run.states.push(walk.state.clone());
+        }
+        if let Some(x) = extra {
+            let fits = |l: &Step| match self.model.instances {
+                None => l.agent == x.agent,
+                Some(i) => i.alike(l.agent, x.agent) && l.notes.iter().any(|n| alike(n, &x.note)),
+            };
+            if let Some(l) = walk.step_by(x.k, x.fp, fits) {
+                run.steps.push(l);
+                run.states.push(walk.state.clone());
+            }
+        }
+        run
+    }
+
+    /// A run as a counterexample: every step names its agent.
+    fn counterexample_of(&self, run: &Run) -> Counterexample {
+        let p = &self.projects[0];
+        let Some(first) = run.states.first() else {
             return Counterexample::default();
         };
-        let initial = walk
-            .state
+        let initial = first
             .world
             .iter()
             .map(|a| p.atoms.display(a, &p.universe))
@@ -571,23 +763,14 @@ impl Cx<'_> {
             .map(|(p, sem)| Builder::new(p, sem))
             .collect();
         let mut steps = Vec::new();
-        let mut push = |label: Option<Step>, steps: &mut Vec<crate::findings::TraceStep>| {
-            let Some(label) = label else { return };
+        for label in &run.steps {
             let b = &mut builders[label.agent as usize];
             let from = b.steps().len();
-            b.push(label.notes);
+            b.push(label.notes.clone());
             for mut st in b.steps()[from..].iter().cloned() {
                 st.agent = Some(self.system.names()[label.agent as usize].clone());
                 steps.push(st);
             }
-        };
-        for &j in &path[1..] {
-            let l = walk.step_to(j);
-            push(l, &mut steps);
-        }
-        if let Some(x) = extra {
-            let l = walk.step_by(x.k, x.fp, |l: &Step| l.agent == x.agent);
-            push(l, &mut steps);
         }
         Counterexample {
             initial,
