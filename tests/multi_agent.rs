@@ -981,6 +981,31 @@ fn a_renaming_of_instances_that_changes_what_the_agents_do_is_announced() {
     );
     assert!(full.get("warnings").is_none(), "{full:#}");
     assert_eq!(verdicts(&r), verdicts(&full));
+    // Jason lists a belief's sources sorted by name: a test goal over two senders answers
+    // the first name, whichever instance told it last.
+    let d = project(
+        "sym-sources",
+        &[
+            (
+                "bdi-check.toml",
+                "[[agent]]\nname = \"collector\"\nplans = \"collector.asl\"\nactions = \"d.pddl\"\n\n[[agent]]\nname = \"worker\"\nplans = \"worker.asl\"\ninstances = 2\n",
+            ),
+            ("d.pddl", DOMAIN),
+            ("worker.asl", "!work.\n+!work <- .send(collector, tell, done).\n"),
+            (
+                "collector.asl",
+                "+done[source(A)] <- ?done[source(B)]; .print(A, B).\n",
+            ),
+        ],
+    );
+    let (_, r, _) = verify_json(d.to_str().unwrap(), "sym-sources-report");
+    let w = r["warnings"][0].as_str().unwrap_or("");
+    assert!(
+        w.contains(
+            "but renaming worker1 -> worker2, worker2 -> worker1 changes what the agents do"
+        ),
+        "{r:#}"
+    );
 }
 
 /// Every state of `system` reachable over every interleaving.

@@ -270,7 +270,8 @@ impl Instances {
         }
     }
 
-    /// Whether some group's instances are interchangeable.
+    /// Whether no group is left: no two agents are interchangeable, and symmetry reduces
+    /// nothing.
     pub fn is_empty(&self) -> bool {
         self.groups.is_empty()
     }
@@ -458,17 +459,18 @@ impl Instances {
         world
             .iter()
             .for_each(|a| w.insert(self.atom_image(a, perm)));
-        let mut new_agents = agents.clone();
-        let mut new_mail = mail.clone();
-        for (k, st) in agents.iter().enumerate() {
-            let to = perm[k] as usize;
-            new_agents[to] = rename_state(&r, st);
-            new_mail[to] = mail[k].iter().map(|m| self.message(&r, m)).collect();
+        // Agent `perm[k]` of the image is agent `k` renamed.
+        let mut from = vec![0usize; perm.len()];
+        for (k, &to) in perm.iter().enumerate() {
+            from[to as usize] = k;
         }
         SystemState {
             world: w,
-            agents: new_agents,
-            mail: new_mail,
+            agents: from.iter().map(|&k| rename_state(&r, &agents[k])).collect(),
+            mail: from
+                .iter()
+                .map(|&k| mail[k].iter().map(|m| self.message(&r, m)).collect())
+                .collect(),
         }
     }
 
