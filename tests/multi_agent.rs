@@ -925,10 +925,31 @@ fn instances_something_tells_apart_get_no_symmetry_and_the_report_says_why() {
         PONGER,
         "\n[[property]]\nname = \"mine\"\nalways = \"not pinger2::ponged(pinger3)\"\n",
     );
+    // An initial state that renaming does not keep.
+    let initial = ping_pong(
+        "sym-initial",
+        3,
+        PINGER,
+        PONGER,
+        "\n[initial]\nfacts = [\"ponged(pinger1)\"]\n",
+    );
+    // A request that names an instance.
+    let request = ping_pong(
+        "sym-request",
+        3,
+        PINGER,
+        "+!ping[source(A)] <- pong(A).\n+!ask(A) <- .print(A).\n",
+        "\n[requests]\ngoals = [\"ask(pinger1)\"]\n",
+    );
     for (d, why) in [
         (&named, "pinger.asl:3:18 names `pinger1`"),
         (&property, "`first` is not symmetric in them"),
         (&invariant, "`mine` is not symmetric in them"),
+        (
+            &initial,
+            "renaming them turns an initial state of the environment into one that is not initial",
+        ),
+        (&request, "the request `ask(pinger1)` names `pinger1`"),
     ] {
         let (_, r, _) = verify_json(d.to_str().unwrap(), "sym-refused");
         let (_, full, _) = common::report_json(
