@@ -1,10 +1,11 @@
 //! Several agents: `cargo bench --bench agents` prints, for `specs/two-robots`, for a
 //! generated ping-pong of one ponger and N pinger instances and for a collector told by N
 //! workers that each take four cycles of their own first (N = 1 to 4, or up to the first
-//! argument; ping-pong 5 takes about two minutes), the states and transitions of the search
-//! with partial-order reduction (`por`) and over every interleaving (`full`), the time of
-//! the whole `verify` (loading and lint included) and the states per second. Symmetry
-//! over instances is not there yet.
+//! argument; ping-pong 5 takes about two minutes without symmetry), the states and
+//! transitions of the search with symmetry over instances and partial-order reduction
+//! (`sym+por`), with symmetry alone (`sym`), with partial-order reduction alone (`por`)
+//! and over every interleaving (`full`), the time of the whole `verify` (loading and lint
+//! included) and the states per second.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -77,13 +78,19 @@ fn workers(n: usize) -> PathBuf {
 }
 
 fn row(name: &str, dir: &Path) {
-    for partial_order in [true, false] {
-        one(name, dir, partial_order);
+    for (symmetry, partial_order) in [(true, true), (true, false), (false, true), (false, false)] {
+        one(name, dir, symmetry, partial_order);
     }
 }
 
-fn one(name: &str, dir: &Path, partial_order: bool) {
-    let name = format!("{name} {}", if partial_order { "por" } else { "full" });
+fn one(name: &str, dir: &Path, symmetry: bool, partial_order: bool) {
+    let mode = match (symmetry, partial_order) {
+        (true, true) => "sym+por",
+        (true, false) => "sym",
+        (false, true) => "por",
+        (false, false) => "full",
+    };
+    let name = format!("{name} {mode}");
     let started = Instant::now();
     let bounds = bdi_check::commands::verify::Bounds::default();
     let run = bdi_check::commands::verify::run(
@@ -91,6 +98,7 @@ fn one(name: &str, dir: &Path, partial_order: bool) {
         &bounds,
         &bdi_check::check::VerifyOptions {
             threads: 1,
+            symmetry,
             partial_order,
             ..Default::default()
         },
@@ -98,11 +106,11 @@ fn one(name: &str, dir: &Path, partial_order: bool) {
     );
     let seconds = started.elapsed().as_secs_f64();
     let Some(stats) = run.report.stats.as_ref() else {
-        println!("{name:<20} not verified: {:?}", run.report.verdict);
+        println!("{name:<22} not verified: {:?}", run.report.verdict);
         return;
     };
     println!(
-        "{name:<20} {:>10} {:>12} {:>8.2} {:>12.0}   {:?}",
+        "{name:<22} {:>10} {:>12} {:>8.2} {:>12.0}   {:?}",
         stats.states,
         stats.transitions,
         seconds,
@@ -117,7 +125,7 @@ fn main() {
         .find_map(|a| a.parse().ok())
         .unwrap_or(4);
     println!(
-        "{:<20} {:>10} {:>12} {:>8} {:>12}   verdict",
+        "{:<22} {:>10} {:>12} {:>8} {:>12}   verdict",
         "project", "states", "transitions", "seconds", "states/s"
     );
     row(

@@ -137,7 +137,8 @@ struct Search {
     /// Worker threads for the search (default: every core). Results do not depend on it.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
-    /// Turn symmetry reduction over `[bounds] symmetry` types off.
+    /// Turn symmetry reduction off: over `[bounds] symmetry` types, and over instances of
+    /// one agent.
     #[arg(long)]
     no_symmetry: bool,
     /// Turn partial-order reduction among several agents off: every interleaving, and

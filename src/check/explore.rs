@@ -374,8 +374,8 @@ fn expand_one<M: Model, T>(
             let succ = model.next_states(s);
             ample = model.ample(s, &succ);
             succ.into_iter()
-                .map(|(l, t)| {
-                    let fp = model.fingerprint(&t);
+                .map(|(mut l, t)| {
+                    let fp = model.fingerprint_labelled(&mut l, &t);
                     (l, t, fp)
                 })
                 .collect()

@@ -69,7 +69,8 @@ pub struct Verification {
     pub memory: (usize, usize),
     /// Peak resident memory of the process, in bytes (0 if unknown).
     pub peak_memory: u64,
-    /// The symmetric types (and how many objects each has) when symmetry reduction was on.
+    /// The symmetric types (and how many objects each has) when symmetry reduction was on;
+    /// with several agents, the groups of interchangeable instances (and their sizes).
     pub symmetric_types: Vec<(String, usize)>,
     /// States the search followed through an ample set only (partial-order reduction):
     /// their counterexamples may be longer than the shortest.
@@ -78,6 +79,10 @@ pub struct Verification {
     /// reachable state whose renaming has other successors than its successors renamed):
     /// the renaming, and which plans the stored state was about to use.
     pub symmetry_caveat: Option<String>,
+    /// What else the report must say about how the search was reduced (symmetry over
+    /// instances of one agent: the groups left out and why, where renaming them changes
+    /// what the agents do).
+    pub warnings: Vec<String>,
 }
 
 /// How `verify` searches.
@@ -333,6 +338,7 @@ impl Verification {
             symmetric_types: Vec::new(),
             reduced_states: graph.reduced,
             symmetry_caveat: None,
+            warnings: Vec::new(),
         }
     }
 }

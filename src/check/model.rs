@@ -32,6 +32,13 @@ pub trait Model {
         fingerprint(s)
     }
 
+    /// [`Model::fingerprint`] of the target of a transition, which the model may note in
+    /// the transition's label (how the state is stored, for checks that follow one part of
+    /// it from state to state).
+    fn fingerprint_labelled(&self, _label: &mut Self::Label, s: &Self::State) -> u64 {
+        self.fingerprint(s)
+    }
+
     /// Whether a transition leaves the model ([`Note::Beyond`]): the search does not follow
     /// it and is incomplete.
     fn beyond(&self, _label: &Self::Label) -> Option<(crate::syntax::Span, String)> {

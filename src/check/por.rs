@@ -107,12 +107,13 @@ impl PartialOrder {
     /// the requests, then each agent's outcomes in agent order): the outcomes of the first
     /// agent whose cycle is local, invisible and independent of what the others can do
     /// first. `None` when there is none, or when it would be every successor anyway.
-    pub fn ample(
+    pub fn ample<'a>(
         &self,
         system: &System,
         s: &SystemState,
-        successors: &[(Step, SystemState)],
+        successors: impl Iterator<Item = (&'a Step, &'a SystemState)>,
     ) -> Option<Range<usize>> {
+        let successors: Vec<(&Step, &SystemState)> = successors.collect();
         let is_request = |st: &Step| {
             matches!(st.notes.first(), Some(Note::Request { .. })) && st.notes.len() == 1
         };
@@ -146,7 +147,7 @@ impl PartialOrder {
         s: &SystemState,
         k: usize,
         requests_now: bool,
-        outcomes: &[(Step, SystemState)],
+        outcomes: &[(&Step, &SystemState)],
     ) -> bool {
         // Local and invisible.
         let local = outcomes.iter().all(|(_, t)| {

@@ -1,8 +1,14 @@
 //! `verify` of a project of several agents: every interleaving of their reasoning cycles
 //! ([`System`]) is explored, and the checks that one state or one transition decides are
 //! made: invariants, `always` and `reachable` properties over the shared environment,
-//! action failures and goal failures of every agent, and deadlock. Each violation comes
-//! with the shortest run to it, every step naming its agent.
+//! action failures and goal failures of every agent, and the deadlock of each agent (it
+//! is not done and can never take a step again). Each violation comes with the shortest
+//! run to it, every step naming its agent.
+//!
+//! Instances of one agent are interchangeable: with symmetry on, states equal up to a
+//! renaming of them are explored once ([`Instances`]), every run shown is still a concrete
+//! run of the system, and a failure found stands for its renamings (another instance's, a
+//! goal that names another), each reported with its run renamed, as the full search would.
 //!
 //! Not yet for several agents, and refused where written: formulas over an agent's mental
 //! notes, `eventually` properties, and the explanation checks.
@@ -10,6 +16,7 @@
 use super::explore::{explore_with, Graph, Limits, Options, Walk};
 use super::model::{beyond_of, Model};
 use super::por::PartialOrder;
+use super::symmetry::{AgentPerm, Instances};
 use super::trace::Builder;
 use super::Verification;
 use super::VerifyOptions;
@@ -40,36 +47,77 @@ impl Model for System<'_> {
 }
 
 /// The interleavings the search follows: the system's, with partial-order reduction
-/// when it is on ([`PartialOrder`]).
+/// when it is on ([`PartialOrder`]), and states stored up to renaming of interchangeable
+/// instances when symmetry is on ([`Instances`]).
 struct Interleavings<'a, 's> {
     system: &'a System<'s>,
     partial_order: Option<PartialOrder>,
+    instances: Option<&'a Instances>,
+}
+
+/// A transition the search follows: a step of one agent, and under symmetry over
+/// instances the renaming that takes its target to the canonical member of its class
+/// (what the search stores it under), so that a check following one agent from state to
+/// state knows which agent it is in the next stored state.
+#[derive(Clone, Debug)]
+struct Move {
+    step: Step,
+    canon: Option<AgentPerm>,
+}
+
+impl std::ops::Deref for Move {
+    type Target = Step;
+    fn deref(&self) -> &Step {
+        &self.step
+    }
 }
 
 impl Model for Interleavings<'_, '_> {
     type State = SystemState;
-    type Label = Step;
+    type Label = Move;
 
     fn init_states(&self) -> Vec<SystemState> {
         self.system.initial_states()
     }
 
-    fn next_states(&self, s: &SystemState) -> Vec<(Step, SystemState)> {
-        self.system.successors(s)
+    fn next_states(&self, s: &SystemState) -> Vec<(Move, SystemState)> {
+        self.system
+            .successors(s)
+            .into_iter()
+            .map(|(step, t)| (Move { step, canon: None }, t))
+            .collect()
     }
 
-    fn beyond(&self, label: &Step) -> Option<(Span, String)> {
+    fn beyond(&self, label: &Move) -> Option<(Span, String)> {
         beyond_of(label.notes.iter())
+    }
+
+    fn fingerprint(&self, s: &SystemState) -> u64 {
+        match self.instances {
+            Some(i) => i.fingerprint(s),
+            None => super::explore::fingerprint(s),
+        }
+    }
+
+    fn fingerprint_labelled(&self, label: &mut Move, s: &SystemState) -> u64 {
+        match self.instances {
+            Some(i) => {
+                let (fp, perm) = i.canonical_renaming(s);
+                label.canon = Some(perm);
+                fp
+            }
+            None => super::explore::fingerprint(s),
+        }
     }
 
     fn ample(
         &self,
         s: &SystemState,
-        successors: &[(Step, SystemState)],
+        successors: &[(Move, SystemState)],
     ) -> Option<std::ops::Range<usize>> {
         self.partial_order
             .as_ref()
-            .and_then(|p| p.ample(self.system, s, successors))
+            .and_then(|p| p.ample(self.system, s, successors.iter().map(|(m, t)| (&m.step, t))))
     }
 }
 
@@ -88,6 +136,8 @@ struct Failure {
 struct Summary {
     fails: Vec<bool>,
     busy: u64,
+    /// Under symmetry: a renaming of instances that changes what the system does here.
+    unequal: Option<String>,
 }
 
 /// Explores every interleaving of the agents of `projects` and runs the checks. The
@@ -182,9 +232,8 @@ pub fn verify_system(
     // fails, and where it holds.
     let mut first_fails: Vec<Option<u32>> = vec![None; conds.len()];
     let mut first_holds: Vec<Option<u32>> = vec![None; conds.len()];
-    // Per state: the agents not done, and the agents that take a step from it.
-    let mut busy: Vec<u64> = Vec::new();
-    let mut moves: Vec<u64> = Vec::new();
+    let mut steps = Steps::default();
+    let mut busy = Vec::new();
     let mut actions: BTreeMap<(u8, u32, u32, u32), Failure> = BTreeMap::new();
     let mut goals: BTreeMap<(u8, String), Failure> = BTreeMap::new();
     // Per agent: the plans some run adopts, and the goals some event found no plan for.
@@ -197,11 +246,18 @@ pub fn verify_system(
         keep_edges: true,
         ..Options::default()
     };
+    let instances = options.symmetry.then(|| {
+        let named: Vec<(&str, &Cond)> = conds.iter().map(|c| (c.0.as_str(), &c.3)).collect();
+        Instances::new(&system, &named)
+    });
+    let active = instances.as_ref().filter(|i| !i.is_empty());
+    let mut unequal: Option<String> = None;
     let model = Interleavings {
         system: &system,
         partial_order: options
             .partial_order
             .then(|| PartialOrder::new(&system, conds.iter().map(|c| &c.3))),
+        instances: active,
     };
     let graph: Graph<SystemState> = explore_with(
         &model,
@@ -214,9 +270,10 @@ pub fn verify_system(
                 let all = system.everything(s);
                 conds.iter().map(|(_, _, _, c, _)| !c.eval(&all)).collect()
             },
-            busy: (0..s.agents.len())
-                .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
-                .fold(0, |b, k| b | 1 << k),
+            busy: busy_agents(s),
+            // Every stored state is checked: reduction is exact only where renaming a
+            // state renames its successors.
+            unequal: active.and_then(|i| i.equivariance_violation(&system, s)),
         },
         |i, sum| {
             for (j, &fails) in sum.fails.iter().enumerate() {
@@ -227,18 +284,13 @@ pub fn verify_system(
                 };
                 first.get_or_insert(i);
             }
-            let i = i as usize;
-            if busy.len() <= i {
-                busy.resize(i + 1, 0);
+            record_busy(&mut busy, i, sum.busy);
+            if unequal.is_none() {
+                unequal = sum.unequal;
             }
-            busy[i] = sum.busy;
         },
         |src, k, label, fp| {
-            let at = src as usize;
-            if moves.len() <= at {
-                moves.resize(at + 1, 0);
-            }
-            moves[at] |= 1 << label.agent;
+            steps.transition(src, label, fp);
             for n in &label.notes {
                 let x = || Failure {
                     src,
@@ -277,6 +329,7 @@ pub fn verify_system(
     let cx = Cx {
         projects,
         system: &system,
+        model: &model,
         graph: &graph,
     };
     let held = if graph.complete() {
@@ -345,92 +398,33 @@ pub fn verify_system(
         .mas
         .as_ref()
         .map_or(whole, |m| m.written.span);
-    busy.resize(n, 0);
-    moves.resize(n, 0);
-    let stuck = stuck_forever(&graph, &busy, &moves, projects.len());
-    for (k, first) in stuck.into_iter().enumerate() {
-        let name = &system.names()[k];
-        let Some(i) = first else {
-            findings.push(cx.finding(
-                "deadlock",
-                name,
-                place,
-                held,
-                format!("`{name}` can always take a step until it is done"),
-            ));
-            continue;
-        };
-        let mut message = if moves[i as usize] == 0 {
-            let waiting: Vec<String> = (0..projects.len())
-                .filter(|&j| busy[i as usize] >> j & 1 == 1)
-                .map(|j| format!("`{}`", system.names()[j]))
-                .collect();
-            format!(
-                "no agent can take a step, but {} {} not done",
-                waiting.join(", "),
-                if waiting.len() == 1 { "is" } else { "are" }
-            )
-        } else {
-            format!("`{name}` is not done, and can never take a step again")
-        };
-        // An intention that waits for an answer no agent will send is the likely cause:
-        // the finding points at its `.send`.
-        let ask = graph.state(&model, i).and_then(|st| {
-            st.agents[k]
-                .waiting
-                .iter()
-                .find(|w| w.ask.is_some())
-                .map(|w| w.step.3)
-        });
-        let at = match ask {
-            Some(span) => {
-                message.push_str(&format!(
-                    ": `{name}` waits for the answer to `{}`, which no agent will send",
-                    projects[k].map.slice(span).trim()
-                ));
-                span
-            }
-            None => place,
-        };
-        // The run goes on to show what becomes of the agent: the others' steps, taking
-        // the first successor each time, until a state comes again or none follows.
-        let mut path = graph.path_to(i);
-        let mut seen: std::collections::HashMap<u32, usize> =
-            std::collections::HashMap::from([(i, path.len() - 1)]);
-        let mut loop_from = None;
-        while let Some(&j) = graph
-            .successors(*path.last().expect("a state"))
-            .and_then(|s| s.first())
-        {
-            path.push(j);
-            if let Some(&at) = seen.get(&j) {
-                loop_from = Some(at);
-                break;
-            }
-            seen.insert(j, path.len() - 1);
-        }
-        let mut f = cx.finding("deadlock", name, at, Status::Fail, message);
-        f.counterexample = Some(cx.lasso(&path, None, loop_from));
-        findings.push(f);
-    }
-    let who = |x: &Failure| &system.names()[x.agent as usize];
+    let stuck = steps.stuck_forever(&graph, busy, &system, active);
+    cx.deadlocks(
+        &mut findings,
+        &first_stuck(&stuck, projects.len()),
+        place,
+        held,
+    );
+
+    let who = |agent: u8| &system.names()[agent as usize];
     cx.failures(
         &mut findings,
         ("action-failure", place, held),
         "no agent ever attempts an action whose precondition does not hold",
         actions.values(),
-        |x| match &x.note {
+        |agent, note| match note {
             Note::ActionFailed {
                 text,
                 plan,
                 span,
                 reason,
             } => Some((
+                (agent, span.file.0, span.start, span.end, String::new()),
                 *span,
                 format!(
                     "`{text}` of agent `{}` in plan {} fails: {reason}",
-                    who(x),
-                    system.agents[x.agent as usize].plan(*plan).name()
+                    who(agent),
+                    system.agents[agent as usize].plan(*plan).name()
                 ),
             )),
             _ => None,
@@ -441,7 +435,7 @@ pub fn verify_system(
         ("goal-failure", place, held),
         "no agent's goal ever fails without a failure plan to handle it",
         goals.values(),
-        |x| match &x.note {
+        |agent, note| match note {
             Note::GoalFailed {
                 goal,
                 cause,
@@ -449,17 +443,17 @@ pub fn verify_system(
                 reason,
                 ..
             } => {
-                let at =
-                    span.unwrap_or(projects[x.agent as usize].manifest.agent.plans.written.span);
+                let at = span.unwrap_or(projects[agent as usize].manifest.agent.plans.written.span);
                 let what = if goal == cause {
-                    format!("goal {goal} of agent `{}` fails ({reason})", who(x))
+                    format!("goal {goal} of agent `{}` fails ({reason})", who(agent))
                 } else {
                     format!(
                         "{cause} fails ({reason}), so goal {goal} of agent `{}` fails",
-                        who(x)
+                        who(agent)
                     )
                 };
                 Some((
+                    (agent, 0, 0, 0, format!("{goal} {cause}")),
                     at,
                     format!("{what}, and no failure plan handles it: the intention is dropped"),
                 ))
@@ -520,7 +514,8 @@ pub fn verify_system(
             Some(x) => {
                 f.severity = Severity::Error;
                 f.message = format!("{} — and a run reaches it", f.message);
-                f.counterexample = Some(cx.counterexample(&graph.path_to(x.src), Some(x)));
+                f.counterexample =
+                    Some(cx.counterexample_of(&cx.run(&graph.path_to(x.src), Some(x))));
             }
             None if graph.complete() => {
                 f.severity = Severity::Note;
@@ -529,184 +524,225 @@ pub fn verify_system(
             None => {}
         }
     }
-    Ok(Verification::of(&graph, project, all))
+    let mut v = Verification::of(&graph, project, all);
+    if let Some(i) = &instances {
+        v.symmetric_types = i.describe();
+        v.warnings.extend(i.refused.iter().cloned());
+    }
+    if let Some(r) = unequal {
+        v.warnings.push(format!("symmetry reduction treats instances of one agent as interchangeable, but renaming {r} changes what the agents do in a reachable state (Jason perceives several changes of the environment in the hash order of their names, and lists a belief's sources sorted by name): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict"));
+    }
+    Ok(v)
 }
 
-/// For each agent, the first state (in search order, so at least depth) where it is not
-/// done and can never take a step again: no run from there reaches a state where it takes
-/// one. A state the search did not expand completely may lead anywhere.
+/// Who moves in the search: per stored state, the agents not done there; per transition
+/// followed, in order from each state, its agent and the renaming to the canonical member
+/// of its target (see [`Move`]); per fingerprint, the renaming of the member the search
+/// stored (the first one found).
+#[derive(Default)]
+struct Steps {
+    moves: Vec<Vec<(u8, Option<AgentPerm>)>>,
+    stored_canon: std::collections::HashMap<u64, AgentPerm>,
+}
+
+/// Records the busy agents of stored state `i`.
+fn record_busy(busy: &mut Vec<u64>, i: u32, bits: u64) {
+    let i = i as usize;
+    if busy.len() <= i {
+        busy.resize(i + 1, 0);
+    }
+    busy[i] = bits;
+}
+
+impl Steps {
+    fn transition(&mut self, src: u32, label: &Move, fp: u64) {
+        let at = src as usize;
+        if self.moves.len() <= at {
+            self.moves.resize(at + 1, Vec::new());
+        }
+        self.moves[at].push((label.agent, label.canon.clone()));
+        if let Some(c) = &label.canon {
+            self.stored_canon.entry(fp).or_insert_with(|| c.clone());
+        }
+    }
+
+    /// [`stuck_forever`] on the explored graph, whose states have `busy` agents.
+    fn stuck_forever(
+        mut self,
+        graph: &Graph<SystemState>,
+        mut busy: Vec<u64>,
+        system: &System,
+        instances: Option<&Instances>,
+    ) -> Vec<u64> {
+        let n = graph.len();
+        busy.resize(n, 0);
+        self.moves.resize(n, Vec::new());
+        // The renaming each stored state's member was stored under (an initial state's:
+        // the first initial state of its class).
+        let canon_of: Vec<Option<AgentPerm>> = match instances {
+            None => vec![None; n],
+            Some(inst) => {
+                let mut init: std::collections::HashMap<u64, AgentPerm> = Default::default();
+                for s in system.initial_states() {
+                    let (fp, perm) = inst.canonical_renaming(&s);
+                    init.entry(fp).or_insert(perm);
+                }
+                (0..n as u32)
+                    .map(|i| {
+                        let fp = graph.fingerprint(i);
+                        init.get(&fp)
+                            .or_else(|| self.stored_canon.get(&fp))
+                            .cloned()
+                    })
+                    .collect()
+            }
+        };
+        stuck_forever(graph, &busy, &self.moves, &canon_of, system.names().len())
+    }
+}
+
+/// Busy agents of a state, one bit each: not idle, or mail waiting.
+fn busy_agents(s: &SystemState) -> u64 {
+    (0..s.agents.len())
+        .filter(|&k| !s.agents[k].is_idle() || !s.mail[k].is_empty())
+        .fold(0, |b, k| b | 1 << k)
+}
+
+/// Every state of the search of `projects` (its member stored), with the agents stuck
+/// for ever there, one bit each: what the `deadlock` findings are made of, for the tests
+/// to compare with each state's continuations ([`stuck_from`]).
+#[doc(hidden)]
+pub fn stuck_states(
+    projects: &[Project],
+    symmetry: bool,
+    partial_order: bool,
+) -> Result<Vec<(SystemState, u64)>, Vec<Diagnostic>> {
+    let system = System::new(projects)?;
+    let instances = symmetry.then(|| Instances::new(&system, &[]));
+    let active = instances.as_ref().filter(|i| !i.is_empty());
+    let model = Interleavings {
+        system: &system,
+        partial_order: partial_order.then(|| PartialOrder::new(&system, std::iter::empty())),
+        instances: active,
+    };
+    let mut steps = Steps::default();
+    let mut busy = Vec::new();
+    let opts = Options {
+        threads: 1,
+        keep_edges: true,
+        ..Options::default()
+    };
+    let graph: Graph<SystemState> = explore_with(
+        &model,
+        Limits {
+            max_states: 1_000_000,
+            max_depth: 100_000,
+            timeout: None,
+        },
+        &opts,
+        busy_agents,
+        |i, bits| record_busy(&mut busy, i, bits),
+        |src, _, label, fp| steps.transition(src, label, fp),
+        |_, _, _| {},
+    );
+    let stuck = steps.stuck_forever(&graph, busy, &system, active);
+    Ok((0..graph.len() as u32)
+        .filter_map(|i| Some((graph.state(&model, i)?, stuck[i as usize])))
+        .collect())
+}
+
+/// Per stored state, the agents (in the numbering of the member stored, one bit each)
+/// that are not done there and can never take a step again: no run from there reaches a
+/// state where they take one. `canon_of` gives, per stored state, the renaming its member
+/// was stored under (under symmetry: the agent that is `x` in a transition's target is
+/// `canon_of[j]⁻¹(canon[x])` in the member stored for `j`). A state the search did not
+/// expand completely may lead anywhere.
 fn stuck_forever(
     graph: &Graph<SystemState>,
     busy: &[u64],
-    moves: &[u64],
+    moves: &[Vec<(u8, Option<AgentPerm>)>],
+    canon_of: &[Option<AgentPerm>],
     agents: usize,
-) -> Vec<Option<u32>> {
+) -> Vec<u64> {
     let n = graph.len();
-    // Predecessors, as one array sliced by state.
-    let mut start = vec![0usize; n + 1];
+    // Which agent of the stored member of a transition's target each agent of the source
+    // becomes.
+    let into = |j: u32, canon: &Option<AgentPerm>, x: usize| -> usize {
+        match (canon, &canon_of[j as usize]) {
+            (Some(c), Some(stored)) => {
+                let slot = c[x];
+                stored.iter().position(|&y| y == slot).unwrap_or(x)
+            }
+            _ => x,
+        }
+    };
+    // Predecessor pairs `(source, agent there)` of each `(target, agent there)`, as one
+    // array sliced by target and agent.
+    let pair = |i: u32, x: usize| i as usize * agents + x;
+    let mut start = vec![0usize; n * agents + 1];
+    let mut edges: Vec<(usize, usize)> = Vec::new();
     for i in 0..n as u32 {
-        for &j in graph.successors(i).unwrap_or(&[]) {
-            start[j as usize + 1] += 1;
+        let Some(succ) = graph.successors(i) else {
+            continue;
+        };
+        for (e, &j) in succ.iter().enumerate() {
+            let canon = moves[i as usize]
+                .get(e)
+                .and_then(|(_, c)| c.as_ref())
+                .cloned();
+            for x in 0..agents {
+                edges.push((pair(j, into(j, &canon, x)), pair(i, x)));
+            }
         }
     }
-    for i in 0..n {
-        start[i + 1] += start[i];
+    for &(to, _) in &edges {
+        start[to + 1] += 1;
+    }
+    for p in 0..n * agents {
+        start[p + 1] += start[p];
     }
     let mut fill = start.clone();
-    let mut preds = vec![0u32; start[n]];
+    let mut preds = vec![0usize; edges.len()];
+    for &(to, from) in &edges {
+        preds[fill[to]] = from;
+        fill[to] += 1;
+    }
+    // The pairs from which the agent takes a step on some run.
+    let mut may_move = vec![false; n * agents];
+    let mut queue = Vec::new();
     for i in 0..n as u32 {
-        for &j in graph.successors(i).unwrap_or(&[]) {
-            preds[fill[j as usize]] = i;
-            fill[j as usize] += 1;
+        let expanded = graph.successors(i).is_some();
+        for x in 0..agents {
+            let moves_here = moves[i as usize].iter().any(|(a, _)| *a as usize == x);
+            if moves_here || !expanded {
+                may_move[pair(i, x)] = true;
+                queue.push(pair(i, x));
+            }
         }
     }
-    (0..agents)
-        .map(|k| {
-            let bit = 1u64 << k;
-            if busy.iter().all(|b| b & bit == 0) {
-                return None;
+    while let Some(p) = queue.pop() {
+        for &q in &preds[start[p]..start[p + 1]] {
+            if !may_move[q] {
+                may_move[q] = true;
+                queue.push(q);
             }
-            let mut may_move: Vec<bool> = (0..n as u32)
-                .map(|i| moves[i as usize] & bit != 0 || graph.successors(i).is_none())
-                .collect();
-            let mut queue: Vec<u32> = (0..n as u32).filter(|&i| may_move[i as usize]).collect();
-            while let Some(j) = queue.pop() {
-                for &i in &preds[start[j as usize]..start[j as usize + 1]] {
-                    if !may_move[i as usize] {
-                        may_move[i as usize] = true;
-                        queue.push(i);
-                    }
-                }
-            }
-            (0..n as u32).find(|&i| busy[i as usize] & bit != 0 && !may_move[i as usize])
+        }
+    }
+    (0..n as u32)
+        .map(|i| {
+            (0..agents)
+                .filter(|&x| busy[i as usize] >> x & 1 == 1 && !may_move[pair(i, x)])
+                .fold(0, |b, x| b | 1 << x)
         })
         .collect()
 }
 
-struct Cx<'a> {
-    projects: &'a [Project],
-    system: &'a System<'a>,
-    graph: &'a Graph<SystemState>,
-}
-
-impl Cx<'_> {
-    fn finding(
-        &self,
-        check: &str,
-        name: &str,
-        span: Span,
-        status: Status,
-        message: String,
-    ) -> Finding {
-        let at = (span, self.projects[0].map.location(span));
-        super::checker::dynamic_finding(check, name, at, status, message)
-    }
-
-    /// One failing finding per failure, with its run (its id `check:file:line`), or, when
-    /// there is none, one that says so (`none`).
-    fn failures<'f>(
-        &self,
-        out: &mut Vec<Finding>,
-        (check, place, held): (&str, Span, Status),
-        none: &str,
-        failures: impl ExactSizeIterator<Item = &'f Failure>,
-        describe: impl Fn(&Failure) -> Option<(Span, String)>,
-    ) {
-        if failures.len() == 0 {
-            out.push(self.finding(check, "all", place, held, none.into()));
-        }
-        for x in failures {
-            let Some((span, message)) = describe(x) else {
-                continue;
-            };
-            let loc = self.projects[0].map.location(span);
-            let name = format!("{}:{}", loc.file, loc.line);
-            let mut f = self.finding(check, &name, span, Status::Fail, message);
-            f.counterexample = Some(self.counterexample(&self.graph.path_to(x.src), Some(x)));
-            out.push(f);
-        }
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn reached(
-        &self,
-        check: &str,
-        name: &str,
-        span: Span,
-        status: Status,
-        message: String,
-        at: u32,
-        severity: Severity,
-    ) -> Finding {
-        let mut f = self.finding(check, name, span, status, message);
-        f.severity = severity;
-        f.counterexample = Some(self.counterexample(&self.graph.path_to(at), None));
-        f
-    }
-
-    /// The run along `path`, then the failing transition `extra`: every step names its
-    /// agent.
-    fn counterexample(&self, path: &[u32], extra: Option<&Failure>) -> Counterexample {
-        self.lasso(path, extra, None)
-    }
-
-    /// [`Cx::counterexample`] of a run that ends in a loop: `path[loop_from..]` is a cycle
-    /// (its last state is `path[loop_from]`).
-    fn lasso(
-        &self,
-        path: &[u32],
-        extra: Option<&Failure>,
-        loop_from: Option<usize>,
-    ) -> Counterexample {
-        let p = &self.projects[0];
-        let Some(mut walk) = path
-            .first()
-            .and_then(|&i| Walk::start(self.system, self.graph, i))
-        else {
-            return Counterexample::default();
-        };
-        let initial = walk
-            .state
-            .world
-            .iter()
-            .map(|a| p.atoms.display(a, &p.universe))
-            .collect();
-        let mut builders: Vec<Builder> = self
-            .projects
-            .iter()
-            .zip(&self.system.agents)
-            .map(|(p, sem)| Builder::new(p, sem))
-            .collect();
-        let mut steps = Vec::new();
-        let mut push = |label: Option<Step>, steps: &mut Vec<crate::findings::TraceStep>| {
-            let Some(label) = label else { return };
-            let b = &mut builders[label.agent as usize];
-            let from = b.steps().len();
-            b.push(label.notes);
-            for mut st in b.steps()[from..].iter().cloned() {
-                st.agent = Some(self.system.names()[label.agent as usize].clone());
-                steps.push(st);
-            }
-        };
-        let mut loop_start = None;
-        for (at, &j) in path.iter().enumerate().skip(1) {
-            if Some(at - 1) == loop_from {
-                loop_start = Some(steps.len());
-            }
-            let l = walk.step_to(j);
-            push(l, &mut steps);
-        }
-        if let Some(x) = extra {
-            let l = walk.step_by(x.k, x.fp, |l: &Step| l.agent == x.agent);
-            push(l, &mut steps);
-        }
-        Counterexample {
-            initial,
-            requests: builders[0].requests().to_vec(),
-            steps,
-            loop_start,
-        }
-    }
+/// The first stored state (in search order, so at least depth) where each agent is stuck
+/// for ever ([`stuck_forever`]).
+fn first_stuck(stuck: &[u64], agents: usize) -> Vec<Option<u32>> {
+    (0..agents)
+        .map(|x| (0..stuck.len() as u32).find(|&i| stuck[i as usize] >> x & 1 == 1))
+        .collect()
 }
 
 /// Most states [`stuck_from`] looks at.
@@ -737,6 +773,368 @@ pub fn stuck_from(system: &System, s: &SystemState, k: usize) -> Option<bool> {
         }
     }
     Some(true)
+}
+
+struct Cx<'a> {
+    projects: &'a [Project],
+    system: &'a System<'a>,
+    model: &'a Interleavings<'a, 'a>,
+    graph: &'a Graph<SystemState>,
+}
+
+/// A concrete run of the system: its states, and the steps between them.
+struct Run {
+    states: Vec<SystemState>,
+    steps: Vec<Step>,
+}
+
+/// The key a failure is reported under, per agent (its index first): the file, start and
+/// end of an action's step, or a goal failure's goal and cause.
+type FailureKey = (u8, u32, u32, u32, String);
+
+/// Whether two notes are one failure, up to the names of interchangeable agents: the same
+/// step of the same plan, the same goal signatures.
+fn alike(a: &Note, b: &Note) -> bool {
+    let shape = |t: &crate::semantics::EventTrigger| {
+        (
+            t.op,
+            t.kind,
+            t.literal.functor().map(str::to_string),
+            t.literal.arity(),
+        )
+    };
+    match (a, b) {
+        (
+            Note::ActionFailed {
+                span: s, plan: p, ..
+            },
+            Note::ActionFailed {
+                span: t, plan: q, ..
+            },
+        ) => s == t && p == q,
+        (
+            Note::GoalFailed {
+                goal: g,
+                cause: c,
+                plan: p,
+                span: s,
+                ..
+            },
+            Note::GoalFailed {
+                goal: h,
+                cause: d,
+                plan: q,
+                span: t,
+                ..
+            },
+        ) => s == t && p == q && shape(g) == shape(h) && shape(c) == shape(d),
+        (Note::NoApplicablePlan(t), Note::NoApplicablePlan(u)) => shape(t) == shape(u),
+        _ => false,
+    }
+}
+
+impl Cx<'_> {
+    /// The `deadlock` findings, one per agent: for an agent `stuck` names a first state of
+    /// (in the numbering of the member stored), a run to it, gone on to show what becomes
+    /// of the agent; under symmetry, each instance of its agent is stuck on a renamed run.
+    fn deadlocks(&self, out: &mut Vec<Finding>, stuck: &[Option<u32>], place: Span, held: Status) {
+        let names = self.system.names();
+        // Per agent: the depth of its first stuck state and the run there.
+        let mut found: Vec<Option<(u32, Run, usize)>> = (0..names.len()).map(|_| None).collect();
+        for (x, first) in stuck.iter().enumerate() {
+            let Some(i) = *first else { continue };
+            let (run, prefix) = self.gone_on(i);
+            if run.states.len() <= prefix {
+                continue;
+            }
+            let mut runs = vec![(x, run, prefix)];
+            if let Some(inst) = self.model.instances {
+                let base = &runs[0].1;
+                let mut more = Vec::new();
+                for perm in inst.images(&[x as u8]).into_iter().skip(1) {
+                    if let Some((states, steps)) =
+                        inst.rename_run(self.system, &base.states, &base.steps, &perm)
+                    {
+                        more.push((perm[x] as usize, Run { states, steps }, prefix));
+                    }
+                }
+                runs.extend(more);
+            }
+            let depth = self.graph.depth(i);
+            for (k, run, prefix) in runs {
+                if found[k].as_ref().is_none_or(|(d, ..)| depth < *d) {
+                    found[k] = Some((depth, run, prefix));
+                }
+            }
+        }
+        for (k, f) in found.into_iter().enumerate() {
+            let name = &names[k];
+            let Some((_, run, prefix)) = f else {
+                out.push(self.finding(
+                    "deadlock",
+                    name,
+                    place,
+                    held,
+                    format!("`{name}` can always take a step until it is done"),
+                ));
+                continue;
+            };
+            let at_stuck = &run.states[prefix];
+            let nobody = self.system.successors(at_stuck).is_empty();
+            let mut message = if nobody {
+                let waiting: Vec<String> = (0..names.len())
+                    .filter(|&j| !at_stuck.agents[j].is_idle() || !at_stuck.mail[j].is_empty())
+                    .map(|j| format!("`{}`", names[j]))
+                    .collect();
+                format!(
+                    "no agent can take a step, but {} {} not done",
+                    waiting.join(", "),
+                    if waiting.len() == 1 { "is" } else { "are" }
+                )
+            } else {
+                format!("`{name}` is not done, and can never take a step again")
+            };
+            // An intention that waits for an answer no agent will send is the likely
+            // cause: the finding points at its `.send`.
+            let ask = at_stuck.agents[k]
+                .waiting
+                .iter()
+                .find(|w| w.ask.is_some())
+                .map(|w| w.step.3);
+            let at = match ask {
+                Some(span) => {
+                    message.push_str(&format!(
+                        ": `{name}` waits for the answer to `{}`, which no agent will send",
+                        self.projects[k].map.slice(span).trim()
+                    ));
+                    span
+                }
+                None => place,
+            };
+            let mut f = self.finding("deadlock", name, at, Status::Fail, message);
+            // The run ends in a loop when its last state is one it went through.
+            let loop_from = run.states[..run.states.len() - 1]
+                .iter()
+                .position(|s| Some(s) == run.states.last())
+                .filter(|_| run.states.len() > prefix + 1);
+            f.counterexample = Some(self.counterexample_looping(&run, loop_from));
+            out.push(f);
+        }
+    }
+
+    /// The run to stored state `i`, then on, by the first transition followed from each
+    /// state, until a state is stored again or none follows: the run, and where `i` is in
+    /// it.
+    fn gone_on(&self, i: u32) -> (Run, usize) {
+        let mut path = self.graph.path_to(i);
+        let prefix = path.len() - 1;
+        let mut seen: std::collections::HashSet<u32> = path.iter().copied().collect();
+        while let Some(&j) = self
+            .graph
+            .successors(*path.last().expect("a state"))
+            .and_then(|s| s.first())
+        {
+            path.push(j);
+            if !seen.insert(j) {
+                break;
+            }
+        }
+        (self.run(&path, None), prefix)
+    }
+}
+
+impl Cx<'_> {
+    fn finding(
+        &self,
+        check: &str,
+        name: &str,
+        span: Span,
+        status: Status,
+        message: String,
+    ) -> Finding {
+        let at = (span, self.projects[0].map.location(span));
+        super::checker::dynamic_finding(check, name, at, status, message)
+    }
+
+    /// One failing finding per failure, with its run (its id `check:file:line`), or, when
+    /// there is none, one that says so (`none`). `describe` gives a failure's key, place
+    /// and message from its agent and note. Under symmetry, every renaming of a failure
+    /// found is a failure the full search finds, keyed apart (another agent, a goal with
+    /// other names): each is reported, with its run renamed, as that search reports it.
+    fn failures<'f>(
+        &self,
+        out: &mut Vec<Finding>,
+        (check, place, held): (&str, Span, Status),
+        none: &str,
+        failures: impl ExactSizeIterator<Item = &'f Failure>,
+        describe: impl Fn(u8, &Note) -> Option<(FailureKey, Span, String)>,
+    ) {
+        if failures.len() == 0 {
+            out.push(self.finding(check, "all", place, held, none.into()));
+        }
+        // Key -> (depth of the failing state, order found, span, message, run).
+        let mut found: BTreeMap<FailureKey, (u32, usize, Span, String, Run)> = BTreeMap::new();
+        for (order, x) in failures.enumerate() {
+            let depth = self.graph.depth(x.src);
+            let run = self.run(&self.graph.path_to(x.src), Some(x));
+            // The failure as the run shows it (under symmetry, a renaming of the stored
+            // one).
+            let last = |run: &Run| {
+                run.steps
+                    .last()
+                    .filter(|_| run.steps.len() == self.graph.depth(x.src) as usize + 1)
+                    .and_then(|l| {
+                        let n = l.notes.iter().find(|n| alike(n, &x.note))?;
+                        Some((l.agent, n.clone()))
+                    })
+            };
+            let (agent, note) = last(&run).unwrap_or((x.agent, x.note.clone()));
+            let mut renamed = vec![(agent, note.clone(), run)];
+            if let Some(inst) = self.model.instances {
+                let mut involved = vec![agent];
+                if let Note::GoalFailed { goal, cause, .. } = &note {
+                    for t in [&goal.literal, &cause.literal] {
+                        involved.extend(inst.named_in(t));
+                    }
+                }
+                let mut distinct = Vec::new();
+                for k in involved {
+                    if !distinct.contains(&k) {
+                        distinct.push(k);
+                    }
+                }
+                let base = &renamed[0].2;
+                let mut more = Vec::new();
+                for perm in inst.images(&distinct).into_iter().skip(1) {
+                    let Some((states, steps)) =
+                        inst.rename_run(self.system, &base.states, &base.steps, &perm)
+                    else {
+                        continue;
+                    };
+                    let r = Run { states, steps };
+                    if let Some((a, n)) = last(&r) {
+                        more.push((a, n, r));
+                    }
+                }
+                renamed.extend(more);
+            }
+            for (agent, note, run) in renamed {
+                let Some((key, span, message)) = describe(agent, &note) else {
+                    continue;
+                };
+                let better = found
+                    .get(&key)
+                    .is_none_or(|(d, o, ..)| (depth, order) < (*d, *o));
+                if better {
+                    found.insert(key, (depth, order, span, message, run));
+                }
+            }
+        }
+        for (_, (_, _, span, message, run)) in found {
+            let loc = self.projects[0].map.location(span);
+            let name = format!("{}:{}", loc.file, loc.line);
+            let mut f = self.finding(check, &name, span, Status::Fail, message);
+            f.counterexample = Some(self.counterexample_of(&run));
+            out.push(f);
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn reached(
+        &self,
+        check: &str,
+        name: &str,
+        span: Span,
+        status: Status,
+        message: String,
+        at: u32,
+        severity: Severity,
+    ) -> Finding {
+        let mut f = self.finding(check, name, span, status, message);
+        f.severity = severity;
+        f.counterexample = Some(self.counterexample_of(&self.run(&self.graph.path_to(at), None)));
+        f
+    }
+
+    /// The concrete run along `path` (each step the first transition to a state stored
+    /// under the next fingerprint: under symmetry, a renaming of the stored state), then
+    /// the failing transition `extra` (under symmetry, by an instance of its agent). It
+    /// ends early where a step cannot be followed.
+    fn run(&self, path: &[u32], extra: Option<&Failure>) -> Run {
+        let mut run = Run {
+            states: Vec::new(),
+            steps: Vec::new(),
+        };
+        let Some(mut walk) = path
+            .first()
+            .and_then(|&i| Walk::start(self.model, self.graph, i))
+        else {
+            return run;
+        };
+        run.states.push(walk.state.clone());
+        for &j in &path[1..] {
+            let Some(l) = walk.step_to(j) else {
+                return run;
+            };
+            run.steps.push(l.step);
+            run.states.push(walk.state.clone());
+        }
+        if let Some(x) = extra {
+            let fits = |l: &Move| match self.model.instances {
+                None => l.agent == x.agent,
+                Some(i) => i.alike(l.agent, x.agent) && l.notes.iter().any(|n| alike(n, &x.note)),
+            };
+            if let Some(l) = walk.step_by(x.k, x.fp, fits) {
+                run.steps.push(l.step);
+                run.states.push(walk.state.clone());
+            }
+        }
+        run
+    }
+
+    /// A run as a counterexample: every step names its agent.
+    fn counterexample_of(&self, run: &Run) -> Counterexample {
+        self.counterexample_looping(run, None)
+    }
+
+    /// [`Cx::counterexample_of`] of a run whose steps from `loop_from` on repeat for ever.
+    fn counterexample_looping(&self, run: &Run, loop_from: Option<usize>) -> Counterexample {
+        let p = &self.projects[0];
+        let Some(first) = run.states.first() else {
+            return Counterexample::default();
+        };
+        let initial = first
+            .world
+            .iter()
+            .map(|a| p.atoms.display(a, &p.universe))
+            .collect();
+        let mut builders: Vec<Builder> = self
+            .projects
+            .iter()
+            .zip(&self.system.agents)
+            .map(|(p, sem)| Builder::new(p, sem))
+            .collect();
+        let mut steps = Vec::new();
+        let mut loop_start = None;
+        for (at, label) in run.steps.iter().enumerate() {
+            if Some(at) == loop_from {
+                loop_start = Some(steps.len());
+            }
+            let b = &mut builders[label.agent as usize];
+            let from = b.steps().len();
+            b.push(label.notes.clone());
+            for mut st in b.steps()[from..].iter().cloned() {
+                st.agent = Some(self.system.names()[label.agent as usize].clone());
+                steps.push(st);
+            }
+        }
+        Counterexample {
+            initial,
+            requests: builders[0].requests().to_vec(),
+            steps,
+            loop_start,
+        }
+    }
 }
 
 /// One run on a fixed schedule, as the Jason lab's driver runs a recorded scenario: before

@@ -246,6 +246,7 @@ fn report_of(
     if reduced_violation(&report.findings, v.reduced_states) {
         report.warnings.push("partial-order reduction left out interleavings, and the search over all of them stopped at a bound: a run shown may be longer than the shortest one (`--no-partial-order` searches every interleaving)".into());
     }
+    report.warnings.extend(v.warnings);
     report.warnings.extend(v.symmetry_caveat.map(|r| format!("symmetry reduction treats the objects as interchangeable, but renaming {r} changes what the agent does in a reachable state (Jason perceives the effects of one action in an order that depends on the names): a run of a merged state may have been left out; `--no-symmetry` gives the exact verdict")));
     VerifyRun {
         report,

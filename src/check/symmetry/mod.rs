@@ -23,10 +23,12 @@
 //! cupAt(cup2, c)` with two cups is), and checks that the initial states and the requests
 //! are closed under renaming.
 
+mod agents;
 mod canonical;
 mod rename;
 mod soundness;
 
+pub use agents::{AgentPerm, Instances};
 pub use rename::Renaming;
 
 use crate::model::atoms::AtomId;

@@ -4,7 +4,7 @@
 //! where the reasoning cycle itself does not treat the objects alike (the report's caveat).
 
 use super::Symmetry;
-use crate::model::atoms::AtomSet;
+use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::cond::{Cond, CountCmp};
 use crate::model::project::Project;
 use crate::semantics::{Semantics, State};
@@ -206,40 +206,47 @@ impl Symmetry {
     /// A condition under a renaming, in a form where the order of `&`, `|` and `.count`
     /// operands does not matter.
     fn normal(&self, c: &Cond, perm: &[u16]) -> Normal {
-        match c {
-            Cond::True => Normal::True,
-            Cond::False => Normal::False,
-            Cond::Atom(a) => Normal::Atom(self.atom_image(*a, perm).0),
-            Cond::Not(inner) => Normal::Not(Box::new(self.normal(inner, perm))),
-            Cond::And(parts) | Cond::Or(parts) => {
-                let mut v: Vec<Normal> = parts.iter().map(|p| self.normal(p, perm)).collect();
-                v.sort();
-                if matches!(c, Cond::And(_)) {
-                    Normal::And(v)
-                } else {
-                    Normal::Or(v)
-                }
+        normal(c, &|a| self.atom_image(a, perm))
+    }
+}
+
+/// A condition with its atoms mapped by `image`, in a form where the order of `&`, `|` and
+/// `.count` operands does not matter: a condition is symmetric under a renaming when its
+/// normal form under the renaming is its normal form.
+pub(super) fn normal(c: &Cond, image: &impl Fn(AtomId) -> AtomId) -> Normal {
+    match c {
+        Cond::True => Normal::True,
+        Cond::False => Normal::False,
+        Cond::Atom(a) => Normal::Atom(image(*a).0),
+        Cond::Not(inner) => Normal::Not(Box::new(normal(inner, image))),
+        Cond::And(parts) | Cond::Or(parts) => {
+            let mut v: Vec<Normal> = parts.iter().map(|p| normal(p, image)).collect();
+            v.sort();
+            if matches!(c, Cond::And(_)) {
+                Normal::And(v)
+            } else {
+                Normal::Or(v)
             }
-            Cond::Count { atoms, cmp, n } => {
-                let mut v: Vec<u32> = atoms.iter().map(|a| self.atom_image(*a, perm).0).collect();
-                v.sort();
-                let cmp = match cmp {
-                    CountCmp::Eq => 0,
-                    CountCmp::Lt => 1,
-                    CountCmp::Le => 2,
-                    CountCmp::Gt => 3,
-                    CountCmp::Ge => 4,
-                    CountCmp::Ne => 5,
-                };
-                Normal::Count(v, cmp, *n)
-            }
+        }
+        Cond::Count { atoms, cmp, n } => {
+            let mut v: Vec<u32> = atoms.iter().map(|a| image(*a).0).collect();
+            v.sort();
+            let cmp = match cmp {
+                CountCmp::Eq => 0,
+                CountCmp::Lt => 1,
+                CountCmp::Le => 2,
+                CountCmp::Gt => 3,
+                CountCmp::Ge => 4,
+                CountCmp::Ne => 5,
+            };
+            Normal::Count(v, cmp, *n)
         }
     }
 }
 
-/// A condition with sorted operands (see [`Symmetry::normal`]).
+/// A condition with sorted operands (see [`normal`]).
 #[derive(Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Normal {
+pub(super) enum Normal {
     True,
     False,
     Atom(u32),

@@ -1,0 +1,2 @@
+// Knows the answer.
+q(low).

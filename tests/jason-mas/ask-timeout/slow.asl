@@ -1,0 +1,2 @@
+// Works the answer out, slowly.
++?q(X) <- .wait(300); X = high.
