@@ -1475,3 +1475,35 @@ fn the_agents_stuck_in_each_state_are_those_no_continuation_moves() {
     }
     assert!(stuck_seen > 0);
 }
+
+#[test]
+fn requests_go_to_the_agent_the_manifest_names() {
+    let toml = |to: &str| {
+        format!("[[agent]]\nname = \"a\"\nplans = \"a.asl\"\nactions = \"d.pddl\"\n[[agent]]\nname = \"b\"\nplans = \"b.asl\"\n[requests]\ngoals = [\"go\"]\nto = \"{to}\"\n[[property]]\nname = \"done\"\nreachable = \"p\"\n")
+    };
+    let d = project(
+        "requests-to",
+        &[
+            ("bdi-check.toml", &toml("b")),
+            ("d.pddl", DOMAIN),
+            ("a.asl", "+!go <- .print(wrong).\n"),
+            ("b.asl", "+!go <- a.\n"),
+        ],
+    );
+    let (code, r, _) = verify_json(d.to_str().unwrap(), "requests-to-report");
+    assert_eq!(code, 0, "{r:#}");
+    let done = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["id"] == "property:done")
+        .unwrap();
+    let steps = agent_steps(done);
+    assert_eq!(steps[0], "b request !go", "{steps:#?}");
+    assert!(steps.iter().all(|s| s.starts_with("b ")), "{steps:#?}");
+    // A name no agent has is refused where written.
+    std::fs::write(d.join("bdi-check.toml"), toml("c")).unwrap();
+    let out = verify_error(&d);
+    assert!(out.contains("no agent is named `c`"), "{out}");
+    assert!(out.contains("bdi-check.toml:10:6"), "{out}");
+}

@@ -561,14 +561,22 @@ fn steps(
                     _ => BodyStep::Action(t),
                 }
             }
-            StepKind::Achieve(e) => BodyStep::Achieve {
-                goal: lit(c, e)?,
-                new_focus: false,
-            },
-            StepKind::AchieveNewFocus(e) => BodyStep::Achieve {
-                goal: lit(c, e)?,
-                new_focus: true,
-            },
+            StepKind::Achieve(e) | StepKind::AchieveNewFocus(e) => {
+                let goal = lit(c, e)?;
+                // `TransitionSystem.checkHardDeadline`: a timer that fails the goal if it is
+                // not achieved in time.
+                if goal
+                    .annots()
+                    .iter()
+                    .any(|a| a.functor() == Some("hard_deadline"))
+                {
+                    return Err(unsupported(e.span, "goals annotated `hard_deadline`"));
+                }
+                BodyStep::Achieve {
+                    goal,
+                    new_focus: matches!(s.kind, StepKind::AchieveNewFocus(_)),
+                }
+            }
             StepKind::Test(e) => BodyStep::Test(formula(c, e)?),
             StepKind::AddBel(e) | StepKind::AddBelEnd(e) | StepKind::AddBelNewFocus(e) => {
                 BodyStep::AddBel(lit(c, e)?)

@@ -165,6 +165,25 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
         );
         return fail(map, errors);
     }
+    // The agent the user's requests go to comes first (`[requests] to`; by default the
+    // first agent): the system posts requests to its first agent.
+    if let Some(to) = &manifest.requests.to {
+        match named.iter().position(|(n, _, _)| *n == to.value) {
+            Some(k) => {
+                let addressed = named.remove(k);
+                named.insert(0, addressed);
+            }
+            None => {
+                let names: Vec<String> = named.iter().map(|(n, _, _)| format!("`{n}`")).collect();
+                errors.push(
+                    Diagnostic::error("input", format!("no agent is named `{}`", to.value))
+                        .with_label(to.span, "the requests go to this agent")
+                        .with_help(format!("the agents are {}", names.join(", "))),
+                );
+                return fail(map, errors);
+            }
+        }
+    }
     // Each file is read once; instances share it.
     let mut loaded: Vec<(std::path::PathBuf, LoadedAgent)> = Vec::new();
     for (_, _, f) in &named {

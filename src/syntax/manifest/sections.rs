@@ -400,7 +400,8 @@ impl<'a> Cx<'a> {
 
     fn requests(&mut self, root: &DeTable) -> RequestsSection {
         let mut out = RequestsSection::default();
-        let Some(t) = self.section(root, "requests", &["goals", "max", "arrival", "from"]) else {
+        let Some(t) = self.section(root, "requests", &["goals", "max", "arrival", "from", "to"])
+        else {
             return out;
         };
         if let Some(v) = t.get("goals") {
@@ -418,26 +419,28 @@ impl<'a> Cx<'a> {
                 None => {}
             }
         }
-        if let Some(v) = t.get("from") {
-            if let Some(name) = self.string(v, "`requests.from`") {
-                let ok = name
+        for (key, field) in [("from", &mut out.from), ("to", &mut out.to)] {
+            let Some(v) = t.get(key) else { continue };
+            let Some(name) = self.string(v, &format!("`requests.{key}`")) else {
+                continue;
+            };
+            let ok = name
+                .value
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_lowercase())
+                && name
                     .value
                     .chars()
-                    .next()
-                    .is_some_and(|c| c.is_ascii_lowercase())
-                    && name
-                        .value
-                        .chars()
-                        .all(|c| c.is_ascii_alphanumeric() || c == '_');
-                if ok {
-                    out.from = Some(name);
-                } else {
-                    self.err(
-                        v.span(),
-                        format!("`{}` is not an agent name", name.value),
-                        "expected a Jason atom such as `owner`",
-                    );
-                }
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_');
+            if ok {
+                *field = Some(name);
+            } else {
+                self.err(
+                    v.span(),
+                    format!("`{}` is not an agent name", name.value),
+                    "expected a Jason atom such as `owner`",
+                );
             }
         }
         out

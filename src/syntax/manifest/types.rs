@@ -119,6 +119,9 @@ pub struct RequestsSection {
     /// `from`: who asks. A request is then the `achieve` message of that agent, and its
     /// goal carries `source(from)`; without it, `source(self)`, as an initial goal.
     pub from: Option<Located<String>>,
+    /// `to`: in a project of several agents, the agent the requests go to (by default,
+    /// the first).
+    pub to: Option<Located<String>>,
 }
 
 impl Default for RequestsSection {
@@ -128,6 +131,7 @@ impl Default for RequestsSection {
             max: DEFAULT_MAX_REQUESTS,
             arrival: Arrival::Idle,
             from: None,
+            to: None,
         }
     }
 }
