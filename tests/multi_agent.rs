@@ -1017,7 +1017,8 @@ fn masked(r: &serde_json::Value) -> Vec<String> {
 
 /// Every project of several agents the tests know: the repository's, and generated ones
 /// with instances that pass, break an invariant, fail goals and actions, and deadlock.
-fn multi_agent_projects() -> Vec<std::path::PathBuf> {
+/// `tag` sets the generated projects' folders apart (tests run side by side).
+fn multi_agent_projects(tag: &str) -> Vec<std::path::PathBuf> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut dirs: Vec<std::path::PathBuf> = vec![root.join("specs/two-robots")];
     for case in ["mas-lost-wakeup", "mas-race", "mas-list"] {
@@ -1027,17 +1028,17 @@ fn multi_agent_projects() -> Vec<std::path::PathBuf> {
         dirs.push(root.join("tests/jason-mas").join(case));
     }
     dirs.extend([
-        workers("sym-pass", 3, "+step3", ""),
+        workers(&format!("{tag}-sym-pass"), 3, "+step3", ""),
         workers(
-            "sym-invariant",
+            &format!("{tag}-sym-invariant"),
             3,
             "+step3",
             "\n[invariants]\nnot_all_done = \"not collector::done\"\n",
         ),
-        workers("sym-goal", 3, "?step4", ""),
+        workers(&format!("{tag}-sym-goal"), 3, "?step4", ""),
         // Each pinger asks twice: the second `pong` of a pinger fails its precondition.
         ping_pong(
-            "sym-action",
+            &format!("{tag}-sym-action"),
             3,
             "!start.\n+!start <- .send(ponger, achieve, ping); .send(ponger, achieve, ping).\n",
             PONGER,
@@ -1045,7 +1046,7 @@ fn multi_agent_projects() -> Vec<std::path::PathBuf> {
         ),
         // Each pinger waits for an answer that never comes.
         ping_pong(
-            "sym-deadlock",
+            &format!("{tag}-sym-deadlock"),
             3,
             "!start.\n+!start <- .send(ponger, achieve, ping); .wait({+never}).\n+!stop <- +never.\n",
             PONGER,
@@ -1054,7 +1055,7 @@ fn multi_agent_projects() -> Vec<std::path::PathBuf> {
         // The ponger serves the first pinger only: the others wait for ever, which ones
         // depending on the run (so the search must follow each pinger's identity).
         ping_pong(
-            "sym-first-served",
+            &format!("{tag}-sym-first-served"),
             3,
             "!start.\n+!start <- .my_name(Me); .send(ponger, achieve, ping); .wait(ponged(Me)).\n",
             "+!ping[source(A)] : not served <- +served; pong(A).\n+!ping[source(A)] : served.\n",
@@ -1063,7 +1064,7 @@ fn multi_agent_projects() -> Vec<std::path::PathBuf> {
         // The ponger serves two pingers: the third waits for ever, one of the three
         // depending on the run; the two served go on (each asks twice).
         ping_pong(
-            "sym-two-served",
+            &format!("{tag}-sym-two-served"),
             3,
             "!start.\n+!start <- .my_name(Me); .send(ponger, achieve, ping); .wait(ponged(Me)); .send(ponger, achieve, bye).\n",
             "count(0).\n+!ping[source(A)] : count(N) & N < 2 <- -+count(N + 1); pong(A).\n+!ping[source(A)] : count(2).\n+!bye.\n",
@@ -1071,7 +1072,7 @@ fn multi_agent_projects() -> Vec<std::path::PathBuf> {
         ),
         // The ponger tells each pinger; each pinger tells the others it was answered.
         ping_pong(
-            "sym-tell",
+            &format!("{tag}-sym-tell"),
             3,
             "!start.\n+!start <- .send(ponger, achieve, ping).\n+answered[source(ponger)] <- .my_name(Me); .broadcast(tell, heard(Me)).\n",
             "+!ping[source(A)] <- pong(A); .send(A, tell, answered).\n",
@@ -1083,7 +1084,7 @@ fn multi_agent_projects() -> Vec<std::path::PathBuf> {
 
 #[test]
 fn symmetry_over_instances_keeps_every_finding_and_its_runs_replay() {
-    for (i, d) in multi_agent_projects().iter().enumerate() {
+    for (i, d) in multi_agent_projects("same").iter().enumerate() {
         let at = d.display();
         let path = d.to_str().unwrap();
         for por in [&[][..], &["--no-partial-order"][..]] {
@@ -1441,7 +1442,7 @@ fn the_agents_stuck_in_each_state_are_those_no_continuation_moves() {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verify/mas-unanswered"),
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verify/mas-lost-wakeup"),
     ];
-    cases.extend(multi_agent_projects().into_iter().filter(|d| {
+    cases.extend(multi_agent_projects("stuck").into_iter().filter(|d| {
         let name = d.file_name().unwrap().to_string_lossy();
         name.contains("served") || name.contains("deadlock")
     }));
