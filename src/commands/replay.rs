@@ -844,6 +844,83 @@ fn replay_system(o: &Opened, finding: Option<&str>) -> Result<Replay, Refusal> {
     })
 }
 
+/// Whether a run among several agents (its `states`, one more than its `labels`; `before`:
+/// how many trace steps come before each transition) still shows the finding's violation
+/// that goes on for ever: a loop back to the state it starts in (at trace step
+/// `loop_start`) that is fair to every agent (one that can move in each of its states
+/// moves in it), in which the agent is busy and moves (`livelock`), the request stays
+/// pending (`request-not-completed`), and along which the property never held
+/// (`eventually`; or a run that ends there).
+fn system_lasso(
+    system: &crate::semantics::System,
+    f: &FindingIn,
+    check: &Check,
+    states: &[crate::semantics::SystemState],
+    labels: &[crate::semantics::Step],
+    before: &[usize],
+    loop_start: Option<usize>,
+) -> Result<(), &'static str> {
+    use crate::semantics::Note;
+    let last = states.last().expect("a state");
+    let name = f.id.split_once(':').map_or("", |(_, n)| n);
+    let never =
+        |c: &crate::model::cond::Cond| states.iter().all(|s| !c.eval(&system.everything(s)));
+    let Some(ls) = loop_start else {
+        // An `eventually` property may fail on a run that ends.
+        return match check {
+            Check::Eventually(c) if system.successors(last).is_empty() && never(c) => Ok(()),
+            _ => Err("the run no longer reaches the violation"),
+        };
+    };
+    let t0 = (0..labels.len())
+        .find(|&t| before[t] == ls && states[t] == *last)
+        .ok_or("the run no longer goes round its loop")?;
+    let lo = &states[t0..];
+    let moves = &labels[t0..];
+    let mover = |l: &crate::semantics::Step| match l.notes.as_slice() {
+        [Note::Request { .. }] => None,
+        _ => Some(l.agent as usize),
+    };
+    // Fair to every agent.
+    for j in 0..system.names().len() {
+        let always = lo.iter().all(|s| {
+            system
+                .successors(s)
+                .iter()
+                .any(|(l, _)| mover(l) == Some(j))
+        });
+        if always && !moves.iter().any(|l| mover(l) == Some(j)) {
+            return Err("its loop leaves out an agent that could move");
+        }
+    }
+    let holds = match check {
+        Check::Eventually(c) => never(c),
+        _ if f.check == "livelock" => match system.names().iter().position(|n| n == name) {
+            Some(k) => {
+                lo.iter()
+                    .all(|s| !s.agents[k].is_idle() || !s.mail[k].is_empty())
+                    && moves.iter().any(|l| mover(l) == Some(k))
+            }
+            None => false,
+        },
+        _ => match system.agents[0]
+            .requests
+            .iter()
+            .position(|g| g.to_string() == name)
+        {
+            Some(r) => lo
+                .iter()
+                .all(|s| s.agents[0].pending_requests() >> r & 1 == 1),
+            None => false,
+        },
+    };
+    if holds {
+        Ok(())
+    } else {
+        Err("the run no longer reaches the violation")
+    }
+}
+
 /// Replays one finding's run among several agents.
 fn replay_system_one(
     agents: &[Project],
@@ -893,8 +970,13 @@ fn replay_system_one(
         return no("the project no longer gives this run");
     };
     let mut steps = 0;
+    // The run's states and steps, and how many trace steps come before each transition.
+    let mut states = vec![state.clone()];
+    let mut labels: Vec<Step> = Vec::new();
+    let mut before: Vec<usize> = Vec::new();
     for &k in &run {
         let (label, t) = system.successors(&state).swap_remove(k);
+        before.push(steps);
         steps += shown(&label).len();
         if label.notes.iter().any(|n| check.note_violates(n, project)) {
             return Replayed {
@@ -904,6 +986,18 @@ fn replay_system_one(
             };
         }
         state = t;
+        states.push(state.clone());
+        labels.push(label);
+    }
+    if check.is_liveness() {
+        return match system_lasso(system, f, &check, &states, &labels, &before, c.loop_start) {
+            Ok(()) => Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!("reached after {steps} steps"),
+            },
+            Err(why) => no(why),
+        };
     }
     // A deadlock of one agent: it can never take a step again (a run that cannot be told
     // is counted as reaching it: replay never calls a finding fixed that it cannot decide).

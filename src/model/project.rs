@@ -40,6 +40,9 @@ pub struct Project {
     /// The agent's name, as Jason names it: its `.mas2j` or `[[agent]]` name (`name1` ...
     /// for instances), or the stem of its source file (`kitchen.asl` is `kitchen`).
     pub name: String,
+    /// Where the agent is named: its entry in the `.mas2j` or its `[[agent]]` name, or
+    /// its plans in the manifest of one agent (findings about the agent point there).
+    pub declared: Span,
     /// The agent and the files it includes.
     pub agent: LoadedAgent,
     /// The PDDL action model.
@@ -324,6 +327,42 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
             facts.insert(a);
         }
     }
+    // An action with an `?agent` parameter is done by the agent that calls it: that agent
+    // must be an object of the parameter's type.
+    for (name, declared, f) in &named {
+        let k = loaded
+            .iter()
+            .position(|(p, _)| *p == f.path)
+            .expect("loaded");
+        for (a, span) in actions_called(&libraries[k].plans) {
+            let Some((_, sig)) = vocabulary.action(&a) else {
+                continue;
+            };
+            let Some(p) = sig.actor else { continue };
+            let ty = sig.params[p];
+            let fits = universe
+                .object(name)
+                .is_some_and(|o| universe.is_subtype(universe.object_type(o), ty));
+            if !fits {
+                errors.push(
+                    Diagnostic::error(
+                        "input",
+                        format!(
+                            "`{a}` is done by the agent that calls it (its `?agent` parameter), but the agent `{name}` is no object of type `{}`",
+                            universe.type_name(ty)
+                        ),
+                    )
+                    .with_label(span, "called here")
+                    .with_secondary(*declared, "the agent")
+                    .with_help(format!(
+                        "declare `{name}` as an object of type `{}` (in `[objects]` or as a PDDL constant)",
+                        universe.type_name(ty)
+                    )),
+                );
+                break;
+            }
+        }
+    }
     let mut vary = Vec::new();
     for v in &manifest.initial.vary {
         match atoms.pred(&v.value) {
@@ -382,7 +421,7 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
         return fail(map, vec![d]);
     }
     let mut out = Vec::new();
-    for (name, _, f) in &named {
+    for (name, declared, f) in &named {
         let k = loaded
             .iter()
             .position(|(p, _)| *p == f.path)
@@ -393,6 +432,7 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
             map: map.clone(),
             manifest,
             name: name.clone(),
+            declared: *declared,
             agent: loaded[k].1.clone(),
             domain: domain.clone(),
             universe: universe.clone(),
@@ -480,4 +520,35 @@ fn ground_atom(l: &Literal, atoms: &AtomTable, universe: &Universe) -> Result<At
             ),
         )
     })
+}
+
+/// The environment actions a plan library calls, each with the place of a first call.
+fn actions_called(plans: &[crate::model::plans::Plan]) -> Vec<(String, Span)> {
+    use crate::model::plans::{BodyStep, Step};
+    fn walk(steps: &[Step], out: &mut Vec<(String, Span)>) {
+        for st in steps {
+            match &st.kind {
+                BodyStep::Action(t) => {
+                    let name = t.functor().unwrap_or("");
+                    if !out.iter().any(|(n, _)| n == name) {
+                        out.push((name.to_string(), st.span));
+                    }
+                }
+                BodyStep::If {
+                    branches,
+                    else_body,
+                } => {
+                    branches.iter().for_each(|(_, b)| walk(b, out));
+                    walk(else_body, out);
+                }
+                BodyStep::While(_, b) | BodyStep::For(_, b) => walk(b, out),
+                _ => {}
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for p in plans {
+        walk(&p.body, &mut out);
+    }
+    out
 }

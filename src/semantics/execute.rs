@@ -1030,6 +1030,15 @@ impl Semantics<'_> {
         t: &Term,
     ) -> Result<&crate::model::ground::GroundAction, String> {
         let name = t.functor().ok_or("it is not an action")?;
+        // An action with an `?agent` parameter is done by this agent.
+        let full;
+        let t = match self.project.vocabulary.action(name) {
+            Some((_, a)) if a.actor.is_some() => {
+                full = a.done_by(t, &self.agent_name);
+                &full
+            }
+            _ => t,
+        };
         let args = self.objects(t).ok_or("its arguments are not all objects")?;
         self.project.actions.get(name, &args).ok_or_else(|| {
             format!("`{name}` with these arguments is not an action of the PDDL domain")

@@ -264,11 +264,15 @@ impl Exec<'_, '_> {
         let l = self.l;
         let enc = &l.enc;
         let name = t.functor().unwrap_or("");
-        let params = match l.p.vocabulary.action(name) {
-            Some((_, a)) if a.params.len() == t.arity() => a.params.clone(),
+        let (params, full) = match l.p.vocabulary.action(name) {
+            // An action with an `?agent` parameter is done by this agent.
+            Some((_, a)) if a.call_arity() == t.arity() => {
+                (a.params.clone(), a.done_by(t, &l.p.name))
+            }
             // Undefined (its own finding) or the agent's explanation action: no effect.
             _ => return Ok((st, p)),
         };
+        let t = &full;
         // Unbound arguments are some object of the parameter's type.
         let mut extra = Vec::new();
         let mut args = Vec::new();

@@ -10,7 +10,7 @@ use crate::check::symmetry::{AgentPerm, Instances};
 use crate::findings::{Finding, Status};
 use crate::model::project::Project;
 use crate::semantics::{System, SystemState};
-use crate::syntax::{Diagnostic, Span};
+use crate::syntax::Diagnostic;
 
 /// Who moves in the search: per stored state, the agents not done there; per transition
 /// followed, in order from each state, its agent and the renaming to the canonical member
@@ -253,16 +253,11 @@ pub fn stuck_from(system: &System, s: &SystemState, k: usize) -> Option<bool> {
 }
 
 impl Cx<'_> {
-    /// The `deadlock` findings, one per agent: for an agent `stuck` names a first state of
+    /// The `deadlock` findings, one per agent, located where the agent is named: for an
+    /// agent `stuck` names a first state of
     /// (in the numbering of the member stored), a run to it, gone on to show what becomes
     /// of the agent; under symmetry, each instance of its agent is stuck on a renamed run.
-    pub(super) fn deadlocks(
-        &self,
-        out: &mut Vec<Finding>,
-        stuck: &[Option<u32>],
-        place: Span,
-        held: Status,
-    ) {
+    pub(super) fn deadlocks(&self, out: &mut Vec<Finding>, stuck: &[Option<u32>], held: Status) {
         let names = self.system.names();
         // Per agent: the depth of its first stuck state and the run there.
         let mut found: Vec<Option<(u32, Run, usize)>> = (0..names.len()).map(|_| None).collect();
@@ -294,6 +289,8 @@ impl Cx<'_> {
         }
         for (k, f) in found.into_iter().enumerate() {
             let name = &names[k];
+            // Where the agent is named.
+            let place = self.projects[k].declared;
             let Some((_, run, prefix)) = f else {
                 out.push(self.finding(
                     "deadlock",

@@ -10,8 +10,9 @@
 //! run of the system, and a failure found stands for its renamings (another instance's, a
 //! goal that names another), each reported with its run renamed, as the full search would.
 //!
-//! Not yet for several agents, and refused where written: formulas over an agent's mental
-//! notes, `eventually` properties, and the explanation checks.
+//! The checks that follow runs for ever (`livelock`, `request-not-completed`, `eventually`)
+//! are [`liveness`]'s, on a search of every interleaving. Not yet for several agents,
+//! and refused where written: the explanation checks.
 
 use super::explore::{explore_with, Graph, Limits, Options, Walk};
 use super::model::{beyond_of, Model};
@@ -30,6 +31,7 @@ use crate::syntax::{Diagnostic, Severity, Span};
 use std::collections::BTreeMap;
 
 mod deadlock;
+mod liveness;
 mod schedule;
 
 use deadlock::{busy_agents, first_stuck, record_busy, Steps};
@@ -70,6 +72,16 @@ struct Interleavings<'a, 's> {
 struct Move {
     step: Step,
     canon: Option<AgentPerm>,
+}
+
+impl Move {
+    /// The agent that takes the step; `None` for a request of the user.
+    fn mover(&self) -> Option<u8> {
+        match self.step.notes.as_slice() {
+            [Note::Request { .. }] => None,
+            _ => Some(self.step.agent),
+        }
+    }
 }
 
 impl std::ops::Deref for Move {
@@ -143,6 +155,10 @@ struct Failure {
 struct Summary {
     fails: Vec<bool>,
     busy: u64,
+    /// The requests pending (of the agent they go to), one bit each.
+    pending: u64,
+    /// The `eventually` properties that hold, one bit each.
+    holds: u64,
     /// Under symmetry: a renaming of instances that changes what the system does here.
     unequal: Option<String>,
 }
@@ -155,7 +171,7 @@ pub fn verify_system(
     projects: &[Project],
     limits: Limits,
     options: &VerifyOptions,
-    progress: impl FnMut(usize, u32, f64),
+    mut progress: impl FnMut(usize, u32, f64),
     lint: Vec<Finding>,
 ) -> Result<Verification, Vec<Diagnostic>> {
     let threads = options.threads;
@@ -186,28 +202,33 @@ pub fn verify_system(
             span,
         ));
     }
+    // `eventually` properties: decided on runs ([`liveness`]).
+    let mut eventually: Vec<(String, Cond, Span)> = Vec::new();
     for p in &project.manifest.properties {
-        if p.kind == PropertyKind::Eventually {
-            errors.push(
-                Diagnostic::error(
-                    "input",
-                    "an `eventually` property in a project of several agents is not supported yet",
-                )
-                .with_label(p.formula.span, "here"),
-            );
-            continue;
-        }
         match formula::compile_in(
             &p.formula.expr,
             &project.atoms,
             &project.universe,
             system.names(),
         ) {
+            Ok(c) if p.kind == PropertyKind::Eventually => {
+                eventually.push((p.name.value.clone(), c, p.formula.span))
+            }
             Ok(c) => conds.push((p.name.value.clone(), "property", p.kind, c, p.formula.span)),
             Err(d) => errors.push(d),
         }
     }
-    for (_, _, _, c, span) in &conds {
+    if eventually.len() > 64 {
+        errors.push(
+            Diagnostic::error("input", "more than 64 `eventually` properties")
+                .in_file(project.manifest.path.display().to_string()),
+        );
+    }
+    let checked = conds
+        .iter()
+        .map(|(_, _, _, c, span)| (c, span))
+        .chain(eventually.iter().map(|(_, c, span)| (c, span)));
+    for (c, span) in checked {
         if let Some(a) = mental(c) {
             errors.push(
                 Diagnostic::error(
@@ -241,6 +262,8 @@ pub fn verify_system(
     let mut first_holds: Vec<Option<u32>> = vec![None; conds.len()];
     let mut steps = Steps::default();
     let mut busy = Vec::new();
+    // Read in both the state and the transition callbacks of the search.
+    let facts = std::cell::RefCell::new(liveness::Facts::default());
     let mut actions: BTreeMap<(u8, u32, u32, u32), Failure> = BTreeMap::new();
     let mut goals: BTreeMap<(u8, String), Failure> = BTreeMap::new();
     // Per agent: the plans some run adopts, and the goals some event found no plan for.
@@ -266,22 +289,36 @@ pub fn verify_system(
             .then(|| PartialOrder::new(&system, conds.iter().map(|c| &c.3))),
         instances: active,
     };
+    let summary = |s: &SystemState, renamed: bool| {
+        let all = (!conds.is_empty() || !eventually.is_empty()).then(|| system.everything(s));
+        Summary {
+            fails: match &all {
+                Some(all) => conds.iter().map(|(_, _, _, c, _)| !c.eval(all)).collect(),
+                None => Vec::new(),
+            },
+            busy: busy_agents(s),
+            pending: s.agents[0].pending_requests(),
+            holds: match &all {
+                Some(all) => eventually
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, (_, c, _))| c.eval(all))
+                    .fold(0, |b, (j, _)| b | 1 << j),
+                None => 0,
+            },
+            // Every stored state is checked: reduction is exact only where renaming a
+            // state renames its successors.
+            unequal: active
+                .filter(|_| renamed)
+                .and_then(|i| i.equivariance_violation(&system, s)),
+        }
+    };
+    let started = std::time::Instant::now();
     let graph: Graph<SystemState> = explore_with(
         &model,
         limits,
         &opts,
-        |s| Summary {
-            fails: if conds.is_empty() {
-                Vec::new()
-            } else {
-                let all = system.everything(s);
-                conds.iter().map(|(_, _, _, c, _)| !c.eval(&all)).collect()
-            },
-            busy: busy_agents(s),
-            // Every stored state is checked: reduction is exact only where renaming a
-            // state renames its successors.
-            unequal: active.and_then(|i| i.equivariance_violation(&system, s)),
-        },
+        |s| summary(s, true),
         |i, sum| {
             for (j, &fails) in sum.fails.iter().enumerate() {
                 let first = if fails {
@@ -292,12 +329,16 @@ pub fn verify_system(
                 first.get_or_insert(i);
             }
             record_busy(&mut busy, i, sum.busy);
+            facts
+                .borrow_mut()
+                .state(i, sum.busy, sum.pending, sum.holds);
             if unequal.is_none() {
                 unequal = sum.unequal;
             }
         },
         |src, k, label, fp| {
             steps.transition(src, label, fp);
+            facts.borrow_mut().transition(src, label.mover());
             for n in &label.notes {
                 let x = || Failure {
                     src,
@@ -331,7 +372,7 @@ pub fn verify_system(
                 }
             }
         },
-        progress,
+        &mut progress,
     );
     let cx = Cx {
         projects,
@@ -406,12 +447,49 @@ pub fn verify_system(
         .as_ref()
         .map_or(whole, |m| m.written.span);
     let stuck = steps.stuck_forever(&graph, busy, &system, active);
-    cx.deadlocks(
-        &mut findings,
-        &first_stuck(&stuck, projects.len()),
-        place,
-        held,
-    );
+    cx.deadlocks(&mut findings, &first_stuck(&stuck, projects.len()), held);
+    // The checks that follow runs need every interleaving, states unrenamed: searched
+    // again when a reduction left some out.
+    let named: Vec<(String, Span)> = eventually
+        .iter()
+        .map(|(n, _, span)| (n.clone(), *span))
+        .collect();
+    if graph.reduced > 0 || active.is_some() {
+        let full = Interleavings {
+            system: &system,
+            partial_order: None,
+            instances: None,
+        };
+        let left = Limits {
+            timeout: limits
+                .timeout
+                .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
+            ..limits
+        };
+        let all_facts = std::cell::RefCell::new(liveness::Facts::default());
+        let every: Graph<SystemState> = explore_with(
+            &full,
+            left,
+            &opts,
+            |s| summary(s, false),
+            |i, sum| {
+                all_facts
+                    .borrow_mut()
+                    .state(i, sum.busy, sum.pending, sum.holds)
+            },
+            |src, _, label, _| all_facts.borrow_mut().transition(src, label.mover()),
+            &mut progress,
+        );
+        let cx = Cx {
+            projects,
+            system: &system,
+            model: &full,
+            graph: &every,
+        };
+        liveness::liveness(&cx, all_facts.into_inner(), &named, place, &mut findings);
+    } else {
+        liveness::liveness(&cx, facts.into_inner(), &named, place, &mut findings);
+    }
 
     let who = |agent: u8| &system.names()[agent as usize];
     cx.failures(

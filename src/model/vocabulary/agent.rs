@@ -227,7 +227,9 @@ impl Checker<'_> {
 
     /// The arguments of a call of PDDL action `a`, after an arity check.
     pub(super) fn action_args(&mut self, cl: &mut Clause, l: &Literal, a: usize) {
-        let want = self.actions[a].params.len();
+        // The `?agent` parameter is the acting agent's, not written.
+        let actor = self.actions[a].actor;
+        let want = self.actions[a].params.len() - usize::from(actor.is_some());
         if l.args.len() != want {
             let d = Diagnostic::error(
                 "input",
@@ -240,11 +242,22 @@ impl Checker<'_> {
             )
             .with_label(l.span, format!("expected {}", count(want, "argument")))
             .with_secondary(self.actions[a].decl, "declared in PDDL here");
+            let d = if actor.is_some() {
+                d.with_help(
+                    "its `?agent` parameter is the agent that does it, which a plan does not write",
+                )
+            } else {
+                d
+            };
             self.diags.push(d);
             return;
         }
         for (i, x) in l.args.iter().enumerate() {
-            self.strict_arg(cl, x, Sig::Action(a), i, Role::Use);
+            let param = match actor {
+                Some(p) if i >= p => i + 1,
+                _ => i,
+            };
+            self.strict_arg(cl, x, Sig::Action(a), param, Role::Use);
         }
     }
 

@@ -149,6 +149,38 @@ pub struct ActionSig {
     pub params: Vec<TypeId>,
     /// The action's name in its `(:action NAME ...)`.
     pub span: Span,
+    /// The parameter named `?agent`, if any: the agent that does the action (Jason's
+    /// environment is told who acts, `Environment.executeAction(agName, action)`), which
+    /// a plan does not write: `move(table)` by `fetcher` is `move(fetcher, table)`.
+    pub actor: Option<usize>,
+}
+
+impl ActionSig {
+    /// How many arguments a plan writes.
+    pub fn call_arity(&self) -> usize {
+        self.params.len() - usize::from(self.actor.is_some())
+    }
+
+    /// The parameter a plan's argument `i` stands for.
+    pub fn param_of_arg(&self, i: usize) -> usize {
+        match self.actor {
+            Some(a) if i >= a => i + 1,
+            _ => i,
+        }
+    }
+
+    /// The action `t` (as a plan writes it) done by `agent`: with the agent's name as the
+    /// `?agent` argument. `t` itself when the action has none or `t` has the wrong arity.
+    pub fn done_by(&self, t: &crate::model::Term, agent: &str) -> crate::model::Term {
+        match self.actor {
+            Some(a) if t.arity() == self.call_arity() => {
+                let mut args = t.args().to_vec();
+                args.insert(a, crate::model::Term::atom(agent));
+                crate::model::Term::structure(t.functor().unwrap_or(""), args)
+            }
+            _ => t.clone(),
+        }
+    }
 }
 
 /// An achievement goal `name/arity`.
@@ -346,6 +378,7 @@ pub fn check_items(
                 name: a.name,
                 params: a.params,
                 span: a.span,
+                actor: a.actor,
             })
             .collect(),
         goals: goals
@@ -436,6 +469,8 @@ struct ActInfo {
     params: Vec<TypeId>,
     span: Span,
     decl: Span,
+    /// The `?agent` parameter.
+    actor: Option<usize>,
 }
 
 #[derive(Clone, Debug)]
@@ -589,6 +624,10 @@ impl<'a> Checker<'a> {
                 params: a.params.iter().map(|v| ty(&v.ty)).collect(),
                 span: a.name_span,
                 decl: a.span,
+                actor: a
+                    .params
+                    .iter()
+                    .position(|v| v.name.eq_ignore_ascii_case("agent")),
             });
         }
         c
