@@ -285,6 +285,12 @@ pub struct Stats {
     pub states_per_second: f64,
     /// Whether the search covered every reachable state.
     pub complete: bool,
+    /// Among several agents, when the search was reduced (partial-order reduction,
+    /// symmetry over instances): the states of the search of every interleaving the checks
+    /// of runs that go on for ever were made on (counted in `seconds` and
+    /// `states_per_second` too).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liveness_states: Option<usize>,
 }
 
 /// The report every project command writes (SPEC §3).

@@ -327,6 +327,7 @@ impl Verification {
                     0.0
                 },
                 complete: graph.complete(),
+                liveness_states: None,
             },
             bound: graph.bound,
             beyond: graph.beyond.as_ref().map(|(span, why)| {

@@ -224,6 +224,11 @@ fn render_stats(s: &Stats, bound: Option<Bound>) -> String {
         s.states_per_second,
         collision_probability(s.states)
     );
+    if let Some(n) = s.liveness_states {
+        out.push_str(&format!(
+            "the checks of runs that go on for ever searched every interleaving again: {n} states\n"
+        ));
+    }
     if let Some(b) = bound {
         let why = match b {
             Bound::States => "the state bound (`--max-states`, `[bounds] max_states`) was reached",

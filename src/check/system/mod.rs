@@ -454,6 +454,8 @@ pub fn verify_system(
         .iter()
         .map(|(n, _, span)| (n.clone(), *span))
         .collect();
+    // The search of every interleaving for them, if it was another: its states and time.
+    let mut liveness_search: Option<(usize, f64)> = None;
     if graph.reduced > 0 || active.is_some() {
         let full = Interleavings {
             system: &system,
@@ -487,6 +489,7 @@ pub fn verify_system(
             graph: &every,
         };
         liveness::liveness(&cx, all_facts.into_inner(), &named, place, &mut findings);
+        liveness_search = Some((every.len(), every.seconds));
     } else {
         liveness::liveness(&cx, facts.into_inner(), &named, place, &mut findings);
     }
@@ -610,6 +613,14 @@ pub fn verify_system(
         }
     }
     let mut v = Verification::of(&graph, project, all);
+    if let Some((states, seconds)) = liveness_search {
+        let st = &mut v.stats;
+        st.liveness_states = Some(states);
+        st.seconds += seconds;
+        if st.seconds > 0.0 {
+            st.states_per_second = (st.states + states) as f64 / st.seconds;
+        }
+    }
     if let Some(i) = &instances {
         v.symmetric_types = i.describe();
         v.warnings.extend(i.refused.iter().cloned());
