@@ -161,9 +161,10 @@ pub struct Plan {
     pub span: Span,
     /// The context's span, if written.
     pub context_span: Option<Span>,
-    /// Its label says `[atomic]`: once chosen, its intention runs alone until it ends
-    /// (Jason's `Circumstance.AI`). Only Jason's own plans for messages are atomic here
-    /// (see [`super::kqml`]); an agent's own atomic plan is refused.
+    /// Its label says `[atomic]` (`Plan.setLabel`): while it is on an intention's stack,
+    /// that intention runs alone, Jason's `Circumstance.AI` (see `src/semantics/atomic.rs`).
+    /// Only Jason's own plans for messages are atomic here (see [`super::kqml`]); an
+    /// agent's own atomic plan is refused.
     pub atomic: bool,
 }
 
@@ -388,6 +389,21 @@ pub(super) fn compile_plan(
     };
     added.check_shared(&plan, first_added)?;
     Ok(plan)
+}
+
+/// Whether a plan's label makes it atomic: Jason's `Plan.setLabel` marks a plan atomic
+/// when one of its label's annotations equals the atom `atomic` (`Atom.equals`: no
+/// arguments, annotations, strong negation or namespace).
+pub(crate) fn is_atomic_label(label: &ast::Label) -> bool {
+    label.annots.as_ref().is_some_and(|a| {
+        a.elems.iter().any(|e| {
+            matches!(&e.kind, ExprKind::Literal(l) if l.functor == "atomic"
+                && l.args.is_empty()
+                && l.annots.is_none()
+                && !l.negated
+                && l.namespace.is_none())
+        })
+    })
 }
 
 /// A term, or an arithmetic expression kept as an operator structure.
