@@ -161,10 +161,9 @@ pub struct Plan {
     pub span: Span,
     /// The context's span, if written.
     pub context_span: Option<Span>,
-    /// Its label says `[atomic]` (`Plan.setLabel`): while it is on an intention's stack,
-    /// that intention runs alone, Jason's `Circumstance.AI` (see `src/semantics/atomic.rs`).
-    /// Only Jason's own plans for messages are atomic here (see [`super::kqml`]); an
-    /// agent's own atomic plan is refused.
+    /// Its label says `[atomic]` (`Plan.setLabel`: an annotation equal to the atom
+    /// `atomic`): while it is on an intention's stack, that intention runs alone, Jason's
+    /// `Circumstance.AI` (see `src/semantics/atomic.rs`).
     pub atomic: bool,
 }
 
@@ -325,16 +324,13 @@ pub(super) fn compile_plan(
     if !p.sub_plans.is_empty() {
         return Err(unsupported(p.span, "sub-plans"));
     }
-    // Label annotations that change how Jason runs the plan (`Plan.setLabel`): refused
-    // rather than run as if they were not written.
+    // Label annotations that change how Jason runs the plan (`Plan.setLabel`): `atomic`
+    // is modelled; `all_unifs` is refused rather than run as if it were not written.
     if let Some(annots) = p.label.as_ref().and_then(|l| l.annots.as_ref()) {
         for a in &annots.elems {
             if let ExprKind::Literal(l) = &a.kind {
-                if l.args.is_empty() && matches!(l.functor.as_str(), "atomic" | "all_unifs") {
-                    return Err(unsupported(
-                        a.span,
-                        &format!("plans labelled `[{}]`", l.functor),
-                    ));
+                if l.args.is_empty() && l.functor == "all_unifs" {
+                    return Err(unsupported(a.span, "plans labelled `[all_unifs]`"));
                 }
             }
         }
@@ -385,7 +381,7 @@ pub(super) fn compile_plan(
         body,
         span: p.span,
         context_span: p.context.as_ref().map(|e| e.span),
-        atomic: false,
+        atomic: p.label.as_ref().is_some_and(is_atomic_label),
     };
     added.check_shared(&plan, first_added)?;
     Ok(plan)

@@ -420,13 +420,12 @@ impl<'p> Semantics<'p> {
                 .as_ref()
                 .and_then(|e| e.emitted_by.as_ref())
                 .map(|e| e.value.clone()),
-            // A library that changes makes deliberation depend on more than the event.
+            // A library that changes makes deliberation depend on more than the event; an
+            // atomic plan makes every phase depend on where the atomic intention is.
             local: project.plans.changes.is_none()
-                && project
-                    .plans
-                    .plans
-                    .iter()
-                    .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
+                && project.plans.plans.iter().all(|p| {
+                    !p.atomic && formula_is_local(&p.context) && p.body.iter().all(step_is_local)
+                }),
             rule_reads: HashMap::new(),
             ordered: Vec::new(),
             jhash: Vec::new(),
