@@ -4,8 +4,10 @@
 //! argument; ping-pong 5 takes about two minutes without symmetry), the states and
 //! transitions of the search with symmetry over instances and partial-order reduction
 //! (`sym+por`), with symmetry alone (`sym`), with partial-order reduction alone (`por`)
-//! and over every interleaving (`full`), the time of the whole `verify` (loading and lint
-//! included) and the states per second.
+//! and over every interleaving (`full`), the states of the search of every interleaving
+//! that the checks of runs going on for ever need when the first was reduced (`liveness`),
+//! the time of the whole `verify` (loading, lint and both searches included) and the
+//! states per second of both searches.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -109,12 +111,18 @@ fn one(name: &str, dir: &Path, symmetry: bool, partial_order: bool) {
         println!("{name:<22} not verified: {:?}", run.report.verdict);
         return;
     };
+    // The search of every interleaving the checks of runs that go on for ever need when
+    // the first was reduced.
+    let again = stats
+        .liveness_states
+        .map_or_else(|| "-".to_string(), |n| n.to_string());
     println!(
-        "{name:<22} {:>10} {:>12} {:>8.2} {:>12.0}   {:?}",
+        "{name:<22} {:>10} {:>12} {:>10} {:>8.2} {:>12.0}   {:?}",
         stats.states,
         stats.transitions,
+        again,
         seconds,
-        stats.states as f64 / seconds,
+        (stats.states + stats.liveness_states.unwrap_or(0)) as f64 / seconds,
         run.report.verdict
     );
 }
@@ -125,8 +133,8 @@ fn main() {
         .find_map(|a| a.parse().ok())
         .unwrap_or(4);
     println!(
-        "{:<22} {:>10} {:>12} {:>8} {:>12}   verdict",
-        "project", "states", "transitions", "seconds", "states/s"
+        "{:<22} {:>10} {:>12} {:>10} {:>8} {:>12}   verdict",
+        "project", "states", "transitions", "liveness", "seconds", "states/s"
     );
     row(
         "two-robots",

@@ -243,6 +243,7 @@ impl Fixture {
             library: s.library.clone(),
             told: s.told.clone(),
             asked: s.asked,
+            atomic: s.atomic,
         }
     }
 }

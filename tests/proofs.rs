@@ -574,6 +574,7 @@ fn symmetry_twin_fails_on_broken_kernels() {
                 library: None,
                 told: Vec::new(),
                 asked: 0,
+                atomic: false,
             };
             (fp(&c), Some(c))
         })

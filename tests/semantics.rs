@@ -7,7 +7,7 @@ mod common;
 use bdi_check::model::project::{load_project, Project};
 use bdi_check::semantics::{Note, Semantics, State};
 use common::temp_dir;
-use std::collections::{HashSet, VecDeque};
+use std::collections::{HashMap, HashSet, VecDeque};
 
 const DOMAIN: &str = "(define (domain d) (:types thing)
   (:predicates (p ?x - thing))
@@ -94,6 +94,8 @@ fn a_library_is_local_unless_some_context_or_step_reads_other_intentions() {
         ("+!go <- while (.intend(g)) { act(a) }.", false),
         ("+!go <- for (p(X)) { .drop_intention(g) }.", false),
         ("+!go <- .wait(5); act(a).", false),
+        ("@g[atomic] +!go <- act(a).", false),
+        ("@g[breakpoint] +!go <- act(a).", true),
     ];
     for (i, (asl, local)) in cases.into_iter().enumerate() {
         let p = project(&format!("local-{i}"), &format!("{asl}\n{g}"));
@@ -576,4 +578,179 @@ fn a_subgoal_s_variables_are_apart_from_its_plan_s() {
         })
         .collect();
     assert_eq!(acted, ["act(b)", "act(a)"]);
+}
+
+/// Every transition of `sem`, by the state it leaves.
+fn successors_of(sem: &Semantics) -> HashMap<State, Vec<bdi_check::semantics::Transition>> {
+    let mut out: HashMap<State, Vec<_>> = HashMap::new();
+    for (from, t) in transitions(sem) {
+        out.entry(from).or_default().push(t);
+    }
+    out
+}
+
+/// What runs after an action `start` on any run, until the action `stop`: the actions
+/// (`action act(a)`) and the events handled (`event +!g`).
+fn between(sem: &Semantics, start: &str, stop: &str) -> HashSet<String> {
+    let succ = successors_of(sem);
+    let mut stack: Vec<State> = succ
+        .values()
+        .flatten()
+        .filter(|t| {
+            t.notes
+                .iter()
+                .any(|n| matches!(n, Note::Action { text, .. } if text == start))
+        })
+        .map(|t| t.next.clone())
+        .collect();
+    assert!(!stack.is_empty(), "some run runs {start}");
+    let mut seen = HashSet::new();
+    let mut out = HashSet::new();
+    while let Some(s) = stack.pop() {
+        if !seen.insert(s.clone()) {
+            continue;
+        }
+        for t in succ.get(&s).into_iter().flatten() {
+            let mut stopped = false;
+            for n in &t.notes {
+                match n {
+                    Note::Action { text, .. } if text == stop => {
+                        stopped = true;
+                        break;
+                    }
+                    Note::Action { text, .. } => {
+                        out.insert(format!("action {text}"));
+                    }
+                    Note::Event(e) => {
+                        out.insert(format!("event {e}"));
+                    }
+                    _ => {}
+                }
+            }
+            if !stopped {
+                stack.push(t.next.clone());
+            }
+        }
+    }
+    out
+}
+
+/// Two intentions from the start: `!other`, and `!work` under `label`.
+fn two_intentions(label: &str, work: &str) -> String {
+    format!(
+        "!other.\n!work.\n+!other <- ping; ping; ping; ping.\n{label}+!work <- {work}.\n\
+         +!more <- two(a, b).\n+p(a) <- ping.\n+!go <- true.\n"
+    )
+}
+
+#[test]
+fn an_atomic_intention_runs_alone_until_it_ends() {
+    // Once `@work[atomic]` is chosen, only its own steps run (its subgoal's plan
+    // included), and no other event is handled, until it ends: Jason's atomic intention
+    // (`Circumstance.AI`: `applySelEv` selects no event, `applySelInt` takes it first, and
+    // its subgoal's event `AE` comes before the queue). `act(a)` makes `p(a)` true, whose
+    // plan pings; `!other` pings too.
+    let work = "act(a); !more; act(b)";
+    let p = project("atomic-alone", &two_intentions("@work[atomic]\n", work));
+    let sem = Semantics::new(&p).expect("the semantics");
+    assert_eq!(
+        between(&sem, "act(a)", "act(b)"),
+        HashSet::from(["event +!more".to_string(), "action two(a,b)".to_string()])
+    );
+    // Without the label, the other intention and the percept's plan come in between.
+    let p = project("atomic-not", &two_intentions("@work\n", work));
+    let sem = Semantics::new(&p).expect("the semantics");
+    let seen = between(&sem, "act(a)", "act(b)");
+    assert!(seen.contains("action ping"), "{seen:?}");
+    assert!(seen.contains("event +p(a)[source(percept)]"), "{seen:?}");
+}
+
+#[test]
+fn an_atomic_intention_that_waits_holds_up_the_whole_agent() {
+    // In `.wait`, the atomic intention is suspended and still Jason's `AI`: no event is
+    // handled and no other intention runs (`isAtomicIntentionSuspended`), the agent sleeps
+    // (`canSleep`). Waiting for `+p(b)`, which nothing else can bring: no step at all.
+    let work = "act(a); .wait({+p(b)}); act(b)";
+    let p = project("atomic-waits", &two_intentions("@work[atomic]\n", work));
+    let sem = Semantics::new(&p).expect("the semantics");
+    let frozen: Vec<State> = successors_of(&sem)
+        .into_values()
+        .flatten()
+        .map(|t| t.next)
+        .filter(|s| !s.waiting.is_empty())
+        .collect();
+    assert!(!frozen.is_empty());
+    for s in &frozen {
+        assert!(!s.is_idle());
+        assert!(sem.successors(s).is_empty(), "{s:?}");
+    }
+    assert!(frozen.iter().any(|s| !s.intentions.is_empty()));
+    // Without the label, the other intention runs meanwhile.
+    let p = project("atomic-waits-not", &two_intentions("@work\n", work));
+    let sem = Semantics::new(&p).expect("the semantics");
+    let pings = successors_of(&sem)
+        .into_iter()
+        .filter(|(s, _)| !s.waiting.is_empty())
+        .flat_map(|(_, ts)| ts)
+        .flat_map(|t| t.notes)
+        .any(|n| matches!(n, Note::Action { text, .. } if text == "ping"));
+    assert!(pings, "the other intention runs while `!work` waits");
+    // A timer: the only step is the one in which it fires, and then `act(b)` comes next.
+    let p = project(
+        "atomic-timer",
+        &two_intentions("@work[atomic]\n", "act(a); .wait(5); act(b)"),
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    assert_eq!(between(&sem, "act(a)", "act(b)"), HashSet::new());
+}
+
+#[test]
+fn an_atomic_intention_left_atomic_while_it_fails_is_refused() {
+    // Jason clears its atomic intention when an action fails (`applyProcAct`), not when a
+    // `.wait` times out (`WaitEvent.resume`) nor when `.fail_goal` drops a goal of the
+    // intention running it (`removeActionReQueue`): the intention then runs on from `AI`
+    // while its failure event waits. Those steps are refused; without `[atomic]` they run.
+    let cases = [".wait({+p(b)}, 5); ping", "!sub; ping"];
+    let extra = "+!sub <- .fail_goal(sub); ping.\n-!sub <- ping.\n-!work <- ping.\n";
+    for work in cases {
+        for (label, refused) in [("@work[atomic]\n", true), ("@work\n", false)] {
+            let asl = format!("{}{extra}", two_intentions(label, work));
+            let p = project("atomic-refused", &asl);
+            let beyond: Vec<String> = all_notes(&Semantics::new(&p).expect("the semantics"))
+                .into_iter()
+                .filter_map(|n| match n {
+                    Note::Beyond { reason, .. } => Some(reason),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(!beyond.is_empty(), refused, "{asl}: {beyond:?}");
+            assert!(
+                beyond
+                    .iter()
+                    .all(|r| r.contains("in an atomic intention: Jason 3 leaves it")),
+                "{beyond:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_running_atomic_intention_is_part_of_the_fingerprint() {
+    // `State::atomic` (Jason's `AI` names the first intention) changes what the next
+    // cycle does; states without it hash as they did before it existed.
+    let p = project(
+        "atomic-hash",
+        &two_intentions("@work[atomic]\n", "act(a); !!more; act(b)"),
+    );
+    let sem = Semantics::new(&p).expect("the semantics");
+    let running = successors_of(&sem)
+        .into_values()
+        .flatten()
+        .map(|t| t.next)
+        .find(|s| s.atomic)
+        .expect("a state whose atomic intention runs");
+    let mut plain = running.clone();
+    plain.atomic = false;
+    let fingerprint = bdi_check::check::explore::fingerprint::<State>;
+    assert_ne!(fingerprint(&running), fingerprint(&plain));
 }

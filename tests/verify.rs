@@ -669,6 +669,33 @@ fn a_wait_timer_may_end_before_what_it_waits_for() {
 }
 
 #[test]
+fn an_atomic_plan_keeps_every_other_intention_out_until_it_ends() {
+    // Borrowing the drill takes it out of its rack for three steps; an inspection needs it
+    // in the rack. With `[atomic]` no interleaving of the two requests runs the inspection
+    // in between (lint's precondition warning is settled: no run reaches it).
+    let (code, r, _) = verify_json("tests/verify/atomic", "atomic");
+    assert_eq!(code, 0, "{r:#}");
+    assert!(failing(&r, "action-failure").is_empty(), "{r:#}");
+    // The same plans without the label fail, and the run replays.
+    let (code, r, file) = verify_json("tests/verify/atomic/interleaved.toml", "interleaved");
+    assert_eq!(code, 1, "{r:#}");
+    let f = failing(&r, "action-failure");
+    assert_eq!(f.len(), 1, "{r:#}");
+    assert_eq!(
+        f[0]["location"]["file"],
+        "tests/verify/atomic/interleaved.asl"
+    );
+    assert_eq!(f[0]["location"]["line"], 5);
+    let steps = steps(f[0]);
+    let take = steps.iter().position(|s| s.contains("take(drill)"));
+    let inspect = steps
+        .iter()
+        .position(|s| s.contains("inspect(drill) fails"));
+    assert!(take.is_some() && take < inspect, "{steps:?}");
+    assert_eq!(replay_code(&file, Some(f[0]["id"].as_str().unwrap())), 1);
+}
+
+#[test]
 fn random_values_are_choices_of_the_search() {
     // Every value `[bounds] random` lists, and every element of `.random`'s list, is tried:
     // the runs that fail are found and replay.

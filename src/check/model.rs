@@ -240,6 +240,7 @@ impl AgentState for Packed<'_> {
             library: None,
             told: Vec::new(),
             asked: 0,
+            atomic: false,
         };
         sem.applicable(&beliefs, trigger, false)
     }

@@ -66,11 +66,7 @@ fn compile() -> Result<Vec<Plan>, Vec<Diagnostic>> {
             body.push(Step { kind, span: s.span });
         }
         let label = p.label.as_ref();
-        let atomic = label.and_then(|l| l.annots.as_ref()).is_some_and(|a| {
-            a.elems
-                .iter()
-                .any(|e| matches!(&e.kind, ExprKind::Literal(l) if l.functor == "atomic"))
-        });
+        let atomic = label.is_some_and(super::plans::is_atomic_label);
         out.push(Plan {
             index: out.len(),
             label: label.and_then(|l| l.name.clone()),

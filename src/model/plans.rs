@@ -161,9 +161,9 @@ pub struct Plan {
     pub span: Span,
     /// The context's span, if written.
     pub context_span: Option<Span>,
-    /// Its label says `[atomic]`: once chosen, its intention runs alone until it ends
-    /// (Jason's `Circumstance.AI`). Only Jason's own plans for messages are atomic here
-    /// (see [`super::kqml`]); an agent's own atomic plan is refused.
+    /// Its label says `[atomic]` (`Plan.setLabel`: an annotation equal to the atom
+    /// `atomic`): while it is on an intention's stack, that intention runs alone, Jason's
+    /// `Circumstance.AI` (see `src/semantics/atomic.rs`).
     pub atomic: bool,
 }
 
@@ -324,16 +324,13 @@ pub(super) fn compile_plan(
     if !p.sub_plans.is_empty() {
         return Err(unsupported(p.span, "sub-plans"));
     }
-    // Label annotations that change how Jason runs the plan (`Plan.setLabel`): refused
-    // rather than run as if they were not written.
+    // Label annotations that change how Jason runs the plan (`Plan.setLabel`): `atomic`
+    // is modelled; `all_unifs` is refused rather than run as if it were not written.
     if let Some(annots) = p.label.as_ref().and_then(|l| l.annots.as_ref()) {
         for a in &annots.elems {
             if let ExprKind::Literal(l) = &a.kind {
-                if l.args.is_empty() && matches!(l.functor.as_str(), "atomic" | "all_unifs") {
-                    return Err(unsupported(
-                        a.span,
-                        &format!("plans labelled `[{}]`", l.functor),
-                    ));
+                if l.args.is_empty() && l.functor == "all_unifs" {
+                    return Err(unsupported(a.span, "plans labelled `[all_unifs]`"));
                 }
             }
         }
@@ -384,10 +381,25 @@ pub(super) fn compile_plan(
         body,
         span: p.span,
         context_span: p.context.as_ref().map(|e| e.span),
-        atomic: false,
+        atomic: p.label.as_ref().is_some_and(is_atomic_label),
     };
     added.check_shared(&plan, first_added)?;
     Ok(plan)
+}
+
+/// Whether a plan's label makes it atomic: Jason's `Plan.setLabel` marks a plan atomic
+/// when one of its label's annotations equals the atom `atomic` (`Atom.equals`: no
+/// arguments, annotations, strong negation or namespace).
+pub(crate) fn is_atomic_label(label: &ast::Label) -> bool {
+    label.annots.as_ref().is_some_and(|a| {
+        a.elems.iter().any(|e| {
+            matches!(&e.kind, ExprKind::Literal(l) if l.functor == "atomic"
+                && l.args.is_empty()
+                && l.annots.is_none()
+                && !l.negated
+                && l.namespace.is_none())
+        })
+    })
 }
 
 /// A term, or an arithmetic expression kept as an operator structure.

@@ -285,6 +285,8 @@ impl Hash for Packed<'_> {
             None,
             // Nor is one of several agents.
             None,
+            // Nor one with atomic plans.
+            false,
         );
     }
 }
@@ -481,6 +483,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             library: None,
             told: Vec::new(),
             asked: 0,
+            atomic: false,
         }
     }
 
@@ -660,6 +663,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             library: None,
             told: Vec::new(),
             asked: 0,
+            atomic: false,
         }
     }
 

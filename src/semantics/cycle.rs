@@ -11,7 +11,8 @@
 //!    recursive subgoal that is the last step of its plan replaces that plan's frame).
 //! 2. *Act*: the first running intention executes one body step and goes to the back of the
 //!    queue (round-robin). Finished plans are removed in the same cycle, and the bindings a
-//!    subgoal made flow back into the plan that posted it.
+//!    subgoal made flow back into the plan that posted it. (An intention with an `[atomic]`
+//!    plan runs alone instead: see `atomic.rs`.)
 //!
 //! Environment actions run when their PDDL precondition holds; their effects are perceived
 //! at once as `+p`/`-p` events. Events that no plan is relevant for are not queued at all:
@@ -26,9 +27,11 @@
 //! Jason's order). Each phase has a file of its own beside it, laid out as Jason's
 //! `TransitionSystem.java`: `perceive.rs` (perception and belief updates), `deliberate.rs`
 //! (`applySelEv` to `applyAddIM`), `execute.rs` (`applyProcAct`, `applySelInt`,
-//! `applyExecInt`), `failure.rs` (`generateGoalDeletion`, `applyClrInt`) and
-//! `internal_actions.rs` (`.succeed_goal`/`.fail_goal`); `reads.rs` says what each phase
-//! may read, for the compiled search.
+//! `applyExecInt`), `failure.rs` (`generateGoalDeletion`, `applyClrInt`),
+//! `internal_actions.rs` (`.succeed_goal`/`.fail_goal`), and `atomic.rs` for the atomic
+//! intention and event that decide which event and which intention a cycle takes
+//! (`Circumstance.AI`, `AE`); `reads.rs` says what each phase may read, for the compiled
+//! search.
 
 use super::java_hash::{literal_hash, negated_literal_hash, JArg};
 use super::query::Beliefs;
@@ -417,13 +420,12 @@ impl<'p> Semantics<'p> {
                 .as_ref()
                 .and_then(|e| e.emitted_by.as_ref())
                 .map(|e| e.value.clone()),
-            // A library that changes makes deliberation depend on more than the event.
+            // A library that changes makes deliberation depend on more than the event; an
+            // atomic plan makes every phase depend on where the atomic intention is.
             local: project.plans.changes.is_none()
-                && project
-                    .plans
-                    .plans
-                    .iter()
-                    .all(|p| formula_is_local(&p.context) && p.body.iter().all(step_is_local)),
+                && project.plans.plans.iter().all(|p| {
+                    !p.atomic && formula_is_local(&p.context) && p.body.iter().all(step_is_local)
+                }),
             rule_reads: HashMap::new(),
             ordered: Vec::new(),
             jhash: Vec::new(),
@@ -551,6 +553,7 @@ impl<'p> Semantics<'p> {
             library: None,
             told: Vec::new(),
             asked: 0,
+            atomic: false,
         };
         let notes = &self.project.initial.agent_beliefs;
         let noted: Vec<AtomId> = notes.iter().rev().copied().collect();
@@ -642,11 +645,19 @@ impl<'p> Semantics<'p> {
     /// waits, one branch per choice of timers fired before the cycle), then deliberate on
     /// the first event, then act on the first intention.
     pub(super) fn cycle(&self, state: &State) -> Vec<Transition> {
+        self.cycle_sensed(state, false)
+    }
+
+    /// [`Semantics::cycle`] of an agent that has just perceived something or read a
+    /// message (`sensed`, among several agents): that is a step even for an agent whose
+    /// atomic intention sleeps in `.wait` ([`Semantics::atomic_sleeps`]) when no timer
+    /// fires.
+    pub(super) fn cycle_sensed(&self, state: &State, sensed: bool) -> Vec<Transition> {
         if state.waiting.is_empty() {
             return self.cycle_from(state.clone(), Vec::new());
         }
         let mut out = Vec::new();
-        for fired in self.timer_choices(state) {
+        for fired in self.timer_choices(state, sensed) {
             let mut s = state.clone();
             let mut notes = Vec::new();
             self.resume_waiting(&mut s, &fired, &mut notes);
@@ -658,7 +669,8 @@ impl<'p> Semantics<'p> {
     /// The deliberation and act phases of a cycle, after the notes `before`.
     fn cycle_from(&self, state: State, before: Vec<Note>) -> Vec<Transition> {
         let mut options: Vec<(State, Vec<Note>)> = Vec::new();
-        if state.events.is_empty() {
+        // `applySelEv`: no event is selected while there is an atomic intention.
+        if state.events.is_empty() || self.has_atomic_intention(&state) {
             options.push((state, before));
         } else {
             let mut s = state;

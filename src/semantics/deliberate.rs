@@ -115,7 +115,7 @@ impl Semantics<'_> {
                 // A belief event an intention waits in: it goes on after its belief update
                 // (TransitionSystem.applyRelApplPlRule2, an internal event:
                 // removeActionReQueue).
-                s.intentions.push(int);
+                self.add_running(&mut s, int);
             } else {
                 // An external one is discarded, and another event selected.
                 return (vec![(s, notes)], true);
@@ -150,23 +150,13 @@ impl Semantics<'_> {
                 };
                 let subst = frame.subst.clone();
                 let depth = match ev.intention.clone() {
-                    // An atomic plan's intention is Jason's `C.AI`: `applySelInt` takes it
-                    // before the queue. (Only Jason's one-step plans for messages are
-                    // atomic here, so it ends in this cycle's act, and no later event
-                    // selection waits for it.)
-                    None if plan.atomic => {
+                    // `C.addRunningIntention`: an atomic plan's new intention is `C.AI`.
+                    None => {
                         let int = Intention {
                             frames: vec![frame],
                             origin,
                         };
-                        s.intentions.insert(0, int);
-                        0
-                    }
-                    None => {
-                        s.intentions.push(Intention {
-                            frames: vec![frame],
-                            origin,
-                        });
+                        self.add_running(&mut s, int);
                         0
                     }
                     Some(int) if int.frames.len() >= MAX_STACK => {
@@ -205,7 +195,7 @@ impl Semantics<'_> {
                         }
                         int.frames.push(frame);
                         let depth = int.frames.len() - 1;
-                        s.intentions.push(int);
+                        self.add_running(&mut s, int);
                         depth
                     }
                 };

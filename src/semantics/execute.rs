@@ -116,8 +116,11 @@ impl Semantics<'_> {
                 self.fail_intention(s, int, &failed, at, &reason, ("action_failed", &[]), notes);
             }
             None => {
+                // `removeActionReQueue` (`AI` again for an atomic intention), then
+                // `applyClrInt`.
+                let atomic = self.is_atomic(&int);
                 if self.clear_finished(&mut int, notes) {
-                    s.intentions.push(int);
+                    self.requeue(s, int, atomic);
                 }
             }
         }
@@ -134,6 +137,9 @@ impl Semantics<'_> {
     /// first intention's next step (stdlib `random`: an element of its list, or a number
     /// of `[bounds] random`), else one.
     pub(super) fn act_choices(&self, s: &State) -> usize {
+        if !s.atomic && self.atomic_suspended(s) {
+            return 1;
+        }
         let Some(f) = s.intentions.first().and_then(|i| i.frames.last()) else {
             return 1;
         };
@@ -168,9 +174,12 @@ impl Semantics<'_> {
     /// environment's atoms holding in the whole state (their number decides the order in
     /// which Jason perceives an action's effects).
     pub(super) fn act_with(&self, s: &mut State, notes: &mut Vec<Note>, env: usize, choice: usize) {
-        if s.intentions.is_empty() {
+        // `applySelInt`: the atomic intention first (`removeAtomicIntention` clears `AI`),
+        // none while it is suspended.
+        if s.intentions.is_empty() || !s.atomic && self.atomic_suspended(s) {
             return;
         }
+        s.atomic = false;
         let mut int = s.intentions.remove(0);
         let finished_top = int.frames.last().is_none_or(|f| f.cursors.is_empty());
         if !finished_top {
@@ -196,8 +205,11 @@ impl Semantics<'_> {
                 Flow::Suspended | Flow::Gone => return,
             }
         }
+        // `removeActionReQueue` puts it back (in `AI` when atomic), then `applyClrInt`
+        // pops its finished plans.
+        let atomic = self.is_atomic(&int);
         if self.clear_finished(&mut int, notes) {
-            s.intentions.push(int);
+            self.requeue(s, int, atomic);
         }
     }
 
@@ -976,12 +988,15 @@ impl Semantics<'_> {
             self.normalize(top);
         }
         let suspended = std::mem::replace(int, empty_intention(origin));
-        s.events.push(Event {
-            trigger,
-            intention: Some(suspended),
-            origin,
-            posted_at: Some(at),
-        });
+        self.queue_event(
+            s,
+            Event {
+                trigger,
+                intention: Some(suspended),
+                origin,
+                posted_at: Some(at),
+            },
+        );
         Flow::Suspended
     }
 

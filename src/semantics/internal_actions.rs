@@ -41,7 +41,8 @@ impl Semantics<'_> {
                 if int.frames.iter().any(|f| is_goal(&f.trigger)) {
                     let int = ev.intention.expect("checked");
                     if let Some(int) = self.drop_goal_in(s, int, g, fail, false, at, notes) {
-                        s.intentions.push(int);
+                        // `resumeIntention`.
+                        self.add_running(s, int);
                     }
                     continue;
                 }
@@ -66,7 +67,7 @@ impl Semantics<'_> {
                     self.normalize(top);
                 }
                 if self.clear_finished(&mut int, notes) {
-                    s.intentions.push(int);
+                    self.add_running(s, int);
                 }
             } else {
                 notes.push(Note::Finished(ev.origin));
@@ -88,7 +89,7 @@ impl Semantics<'_> {
         if let Some(p) = s.pending.take() {
             if p.intention.frames.iter().any(|f| is_goal(&f.trigger)) {
                 if let Some(int) = self.drop_goal_in(s, p.intention, g, fail, false, at, notes) {
-                    s.intentions.push(int);
+                    self.add_running(s, int);
                 }
             } else {
                 s.pending = Some(p);
@@ -101,18 +102,20 @@ impl Semantics<'_> {
         s.waiting = kept;
         for w in hit {
             if let Some(int) = self.drop_goal_in(s, w.intention, g, fail, false, at, notes) {
-                s.intentions.push(int);
+                self.add_running(s, int);
             }
         }
         if let Some(mut int) = current {
             // `removeActionReQueue`, once the internal action is done: the step just run
-            // is done (for a plan below a dropped goal, that is its `!g`).
+            // is done (for a plan below a dropped goal, that is its `!g`), and the
+            // intention back in the queue (`AI` when atomic), then `applyClrInt`.
             if let Some(top) = int.frames.last_mut() {
                 top.calling = None;
                 self.normalize(top);
             }
+            let atomic = self.is_atomic(&int);
             if self.clear_finished(&mut int, notes) {
-                s.intentions.push(int);
+                self.requeue(s, int, atomic);
             }
         }
     }
@@ -189,6 +192,11 @@ impl Semantics<'_> {
             literal: g.clone(),
         };
         match self.find_event_for_failure(s.library.as_deref(), &int, &tevent) {
+            Some(_) if current && self.is_atomic(&int) => {
+                // `removeActionReQueue` then makes it `AI` too.
+                notes.push(self.atomic_beyond(at.0, at.1, "`.fail_goal` of its own goal"));
+                None
+            }
             Some(fail) => {
                 if current {
                     if let Some(top) = int.frames.last_mut() {

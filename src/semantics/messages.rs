@@ -246,13 +246,17 @@ impl Semantics<'_> {
             plan,
             origin,
         });
+        let atomic = self.is_atomic(&int);
         let top = int.frames.last_mut().expect("a frame");
         let mut u = top.subst.clone();
         if unify(answer, &value, &mut u) {
             top.subst = u;
+            // `resumeIntention`: `AI` for an atomic intention (see `atomic.rs`).
             if self.clear_finished(&mut int, notes) {
-                s.intentions.push(int);
+                self.requeue(s, int, atomic);
             }
+        } else if atomic {
+            notes.push(self.atomic_beyond(plan, span, "an answer that does not unify"));
         } else {
             let failed = int.frames.last().map(|f| f.trigger.clone()).expect("frame");
             self.fail_intention(
@@ -286,8 +290,9 @@ impl Semantics<'_> {
         if unify(answer, &Term::atom("timeout"), &mut u) {
             top.subst = u;
         }
+        let atomic = self.is_atomic(&int);
         if self.clear_finished(&mut int, notes) {
-            s.intentions.push(int);
+            self.requeue(s, int, atomic);
         }
     }
 

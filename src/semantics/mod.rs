@@ -7,6 +7,7 @@
 //! function for search: states made of shared parts, each phase of a cycle computed once per
 //! part and per value of the beliefs it reads.
 
+mod atomic;
 pub mod compiled;
 pub mod cycle;
 mod deliberate;

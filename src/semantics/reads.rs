@@ -51,8 +51,9 @@ impl Semantics<'_> {
     /// deliberation on the event and the beliefs, acting on the intention and the beliefs.
     /// True unless some plan uses `.desire`, `.intend` (which read the other intentions),
     /// `.succeed_goal`, `.fail_goal`, `.drop_desire`, `.drop_intention` (which change
-    /// them), or changes the plan library (which deliberation reads). The compiled search
-    /// ([`super::compiled::Compiled`]) relies on it.
+    /// them), changes the plan library (which deliberation reads), or is atomic (an atomic
+    /// intention decides whether an event is selected and which intention runs). The
+    /// compiled search ([`super::compiled::Compiled`]) relies on it.
     pub fn is_local(&self) -> bool {
         self.local
     }

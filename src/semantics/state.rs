@@ -246,6 +246,15 @@ pub struct State {
     /// waits for it or not (Jason ignores an answer that comes after the timeout), so no
     /// id is used again while an answer to it may come.
     pub asked: u64,
+    /// Jason's `Circumstance.AI` holds a running intention, `intentions[0]`: one with an
+    /// atomic plan went back to the queue (`addRunningIntention`). Cleared when the act
+    /// phase selects it (`removeAtomicIntention`); while set, no event is selected. It
+    /// outlives the atomic plan by one cycle when that plan ends above a plan that is not
+    /// atomic (`applyClrInt` pops the plan after the intention went back to `AI`). An
+    /// atomic intention that waits for its action's feedback, in `.wait` or for an answer
+    /// is Jason's suspended `AI` (`atomicIntSuspended`): it is in [`State::pending`] or
+    /// [`State::waiting`], and this is not set (see `src/semantics/atomic.rs`).
+    pub atomic: bool,
 }
 
 /// The hash of one part of a state: std's SipHash with fixed keys, so it is the same in
@@ -269,6 +278,7 @@ pub fn hash_parts<H: Hasher>(
     requested: u64,
     library: Option<u64>,
     told: Option<u64>,
+    atomic: bool,
 ) {
     h.write_u64(beliefs);
     h.write_usize(events.len());
@@ -292,6 +302,10 @@ pub fn hash_parts<H: Hasher>(
     if let Some(t) = told {
         h.write_u64(t);
     }
+    // Only agents with atomic plans, while one runs: every other state hashes as before.
+    if atomic {
+        h.write_u8(1);
+    }
 }
 
 impl Hash for State {
@@ -310,6 +324,7 @@ impl Hash for State {
                 (false, 0) => Some(part_hash(&self.told)),
                 (_, asked) => Some(part_hash(&(&self.told, asked))),
             },
+            self.atomic,
         );
     }
 }
@@ -444,6 +459,7 @@ mod tests {
             library: None,
             told: Vec::new(),
             asked: 0,
+            atomic: false,
         };
         assert_eq!(state.pending_requests(), 0b10_0110);
     }

@@ -222,7 +222,7 @@ impl<'p> System<'p> {
                 next: agent,
             }]
         } else {
-            sem.cycle(&agent)
+            sem.cycle_sensed(&agent, !before.is_empty())
         };
         transitions
             .into_iter()
@@ -282,15 +282,17 @@ impl<'p> System<'p> {
 
 impl System<'_> {
     /// Whether agent `k` has nothing to do but wait for a timer or an answer: no message,
-    /// nothing to perceive, no event, no running intention.
+    /// nothing to perceive, no event, no running intention (or its atomic intention
+    /// sleeps in `.wait`, and the others wait for it: [`Semantics::atomic_sleeps`]).
     pub fn asleep(&self, s: &SystemState, k: usize) -> bool {
         let a = &s.agents[k];
         s.mail[k].is_empty()
             && !self.unperceived(s, k)
-            && a.events.is_empty()
-            && a.intentions.is_empty()
-            && a.pending.is_none()
-            && a.waiting.iter().all(|w| !w.woken)
+            && (self.agents[k].atomic_sleeps(a)
+                || a.events.is_empty()
+                    && a.intentions.is_empty()
+                    && a.pending.is_none()
+                    && a.waiting.iter().all(|w| !w.woken))
     }
 
     /// Whether agent `k` has perceived the environment as it is now.

@@ -35,7 +35,7 @@ impl Semantics<'_> {
     /// Queues an event the agent adds, and tells the waiting intentions of it.
     pub(super) fn post_event(&self, s: &mut State, ev: Event) {
         self.event_added(s, &ev.trigger);
-        s.events.push(ev);
+        self.queue_event(s, ev);
     }
 
     /// `WaitEvent.eventAdded` for every waiting intention not woken yet: an event wait
@@ -141,15 +141,21 @@ impl Semantics<'_> {
 
     /// Which timers may fire before the next cycle: every sequence of at most
     /// [`MAX_FIRED`] distinct running timers (indices into [`State::waiting`]), the empty
-    /// one first. The empty one is left out when nothing else could happen in the cycle.
-    pub(super) fn timer_choices(&self, s: &State) -> Vec<Vec<usize>> {
+    /// one first. The empty one is left out when nothing else could happen in the cycle:
+    /// the events and intentions of an agent whose atomic intention sleeps in `.wait` wait
+    /// too, and only what it `sensed` (among several agents) makes the cycle a step.
+    pub(super) fn timer_choices(&self, s: &State, sensed: bool) -> Vec<Vec<usize>> {
         let timers: Vec<usize> = (0..s.waiting.len())
             .filter(|&i| s.waiting[i].timed && !s.waiting[i].woken)
             .collect();
-        let busy = !s.events.is_empty()
-            || !s.intentions.is_empty()
-            || s.pending.is_some()
-            || s.waiting.iter().any(|w| w.woken);
+        let busy = if self.atomic_sleeps(s) {
+            sensed || s.waiting.iter().any(|w| w.woken)
+        } else {
+            !s.events.is_empty()
+                || !s.intentions.is_empty()
+                || s.pending.is_some()
+                || s.waiting.iter().any(|w| w.woken)
+        };
         let mut out = Vec::new();
         if busy {
             out.push(Vec::new());
@@ -212,7 +218,12 @@ impl Semantics<'_> {
                 origin: w.intention.origin,
             });
             let mut int = w.intention;
-            if !w.woken && waits_for_something {
+            let atomic = self.is_atomic(&int);
+            if !w.woken && waits_for_something && atomic {
+                // `WaitEvent.resume` fails it without clearing `AI` (as `applyProcAct`
+                // does after a failed action): refused.
+                notes.push(self.atomic_beyond(plan, span, "a `.wait` that times out"));
+            } else if !w.woken && waits_for_something {
                 // `generateGoalDeletion` with `wait_timeout`: the plan fails at its step.
                 let failed = int.frames.last().map(|f| f.trigger.clone()).expect("frame");
                 self.fail_intention(
@@ -225,8 +236,9 @@ impl Semantics<'_> {
                     notes,
                 );
             } else if self.clear_finished(&mut int, notes) {
-                // `resumeIntention`: back in the queue, the `.wait` step done.
-                s.intentions.push(int);
+                // `resumeIntention`: back in the queue, the `.wait` step done (`AI` for an
+                // atomic intention, see `atomic.rs`).
+                self.requeue(s, int, atomic);
             }
         }
         s.waiting = all.into_iter().flatten().collect();

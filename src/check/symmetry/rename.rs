@@ -297,5 +297,6 @@ pub fn rename_state<R: Rename>(r: &R, s: &State) -> State {
         library: s.library.clone(),
         told,
         asked: s.asked,
+        atomic: s.atomic,
     }
 }

@@ -1,0 +1,11 @@
+;; A drill in a rack: taken out, used, put back; inspected only in the rack.
+(define (domain tools)
+  (:requirements :strips :typing)
+  (:types tool)
+  (:predicates (inRack ?t - tool) (inHand ?t - tool))
+  (:action take :parameters (?t - tool) :precondition (inRack ?t)
+    :effect (and (inHand ?t) (not (inRack ?t))))
+  (:action use :parameters (?t - tool) :precondition (inHand ?t) :effect (and))
+  (:action putBack :parameters (?t - tool) :precondition (inHand ?t)
+    :effect (and (inRack ?t) (not (inHand ?t))))
+  (:action inspect :parameters (?t - tool) :precondition (inRack ?t) :effect (and)))
