@@ -1072,6 +1072,25 @@ fn multi_agent_projects(tag: &str) -> Vec<std::path::PathBuf> {
             "count(0).\n+!ping[source(A)] : count(N) & N < 2 <- -+count(N + 1); pong(A).\n+!ping[source(A)] : count(2).\n+!bye.\n",
             "\n[bounds]\nnumbers = [0, 2]\n",
         ),
+        // Every pinger is answered in the end: checked on the reduced graph, which has no
+        // loop.
+        ping_pong(
+            &format!("{tag}-sym-eventually"),
+            3,
+            PINGER,
+            PONGER,
+            "\n[[property]]\nname = \"each_answered\"\neventually = \"ponged(pinger1) & ponged(pinger2) & ponged(pinger3)\"\n",
+        ),
+        // Each pinger looks for its pong every 100 ms, for ever when the ponger serves
+        // only the first: loops, so the checks of runs that go on for ever search every
+        // interleaving again.
+        ping_pong(
+            &format!("{tag}-sym-polling"),
+            3,
+            "!start.\n+!start <- .send(ponger, achieve, ping); !look.\n+!look : .my_name(Me) & not ponged(Me) <- .wait(100); !look.\n+!look.\n",
+            "+!ping[source(A)] : not served <- +served; pong(A).\n+!ping[source(A)] : served.\n",
+            "\n[[property]]\nname = \"each_answered\"\neventually = \"ponged(pinger1) & ponged(pinger2) & ponged(pinger3)\"\n",
+        ),
         // The ponger tells each pinger; each pinger tells the others it was answered.
         ping_pong(
             &format!("{tag}-sym-tell"),

@@ -30,6 +30,7 @@
 
 use super::rename::{rename_names, rename_state, Rename};
 use super::soundness::{normal, words};
+use super::{mix, next_arrangement};
 use crate::check::explore::fingerprint;
 use crate::model::atoms::AtomId;
 use crate::model::cond::Cond;
@@ -834,47 +835,4 @@ fn project_file(system: &System, k: u8) -> String {
         .find_path(path)
         .and_then(|id| p.map.files().iter().find(|f| f.id == id))
         .map_or_else(|| path.display().to_string(), |f| f.name.clone())
-}
-
-/// A 64-bit mixer (splitmix64's finaliser), so that sums of features rarely collide.
-fn mix(mut x: u64) -> u64 {
-    x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    x ^ (x >> 31)
-}
-
-/// The next arrangement of every tie (odometer of per-tie permutations); `false` after
-/// the last.
-fn next_arrangement(ties: &mut [Vec<u8>]) -> bool {
-    for t in ties.iter_mut().rev() {
-        if next_permutation(t) {
-            return true;
-        }
-    }
-    false
-}
-
-/// The next permutation in lexicographic order, or `false` (and the first one) after the
-/// last.
-fn next_permutation(v: &mut [u8]) -> bool {
-    let n = v.len();
-    if n < 2 {
-        return false;
-    }
-    let mut i = n - 1;
-    while i > 0 && v[i - 1] >= v[i] {
-        i -= 1;
-    }
-    if i == 0 {
-        v.reverse();
-        return false;
-    }
-    let mut j = n - 1;
-    while v[j] <= v[i - 1] {
-        j -= 1;
-    }
-    v.swap(i - 1, j);
-    v[i..].reverse();
-    true
 }

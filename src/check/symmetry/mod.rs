@@ -269,3 +269,47 @@ impl Symmetry {
         }
     }
 }
+
+/// A 64-bit mixer (splitmix64's finaliser), so that sums of features rarely collide.
+pub(super) fn mix(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    x ^ (x >> 31)
+}
+
+/// The next arrangement of every tie, in lexicographic order of the ties (odometer of
+/// per-tie permutations). Returns `false` after the last.
+pub(super) fn next_arrangement<T: Ord>(ties: &mut [Vec<T>]) -> bool {
+    for t in ties.iter_mut().rev() {
+        if next_permutation(t) {
+            return true;
+        }
+        // Wrapped around: `t` is sorted again; carry to the previous tie.
+    }
+    false
+}
+
+/// The next permutation in lexicographic order, or `false` (and the first one) after the
+/// last.
+pub(super) fn next_permutation<T: Ord>(v: &mut [T]) -> bool {
+    let n = v.len();
+    if n < 2 {
+        return false;
+    }
+    let mut i = n - 1;
+    while i > 0 && v[i - 1] >= v[i] {
+        i -= 1;
+    }
+    if i == 0 {
+        v.reverse();
+        return false;
+    }
+    let mut j = n - 1;
+    while v[j] <= v[i - 1] {
+        j -= 1;
+    }
+    v.swap(i - 1, j);
+    v[i..].reverse();
+    true
+}

@@ -13,8 +13,10 @@
 //! one). A request arriving is the user's step, not an agent's: the user may stop asking.
 //!
 //! These checks follow runs, so they are made on a graph of every interleaving, states
-//! unrenamed: when partial-order reduction or symmetry reduced the search, `verify`
-//! searches again without them for these checks (see `verify_system`).
+//! unrenamed: when partial-order reduction or symmetry reduced the search and its graph
+//! has a loop, `verify` searches again without them for these checks (see
+//! `verify_system`). A reduced graph with no loop at all stands for a system that has no
+//! run going on for ever.
 
 use super::{Cx, Run};
 use crate::check::explore::Graph;
@@ -350,6 +352,31 @@ impl Loops<'_> {
         }
         seen
     }
+}
+
+/// Whether the explored graph has no loop (Kahn's topological sort takes every state).
+pub(super) fn acyclic(graph: &Graph<SystemState>) -> bool {
+    let n = graph.len();
+    let mut indegree = vec![0u32; n];
+    for i in 0..n as u32 {
+        for &j in graph.successors(i).unwrap_or(&[]) {
+            indegree[j as usize] += 1;
+        }
+    }
+    let mut ready: Vec<u32> = (0..n as u32)
+        .filter(|&i| indegree[i as usize] == 0)
+        .collect();
+    let mut taken = 0;
+    while let Some(i) = ready.pop() {
+        taken += 1;
+        for &j in graph.successors(i).unwrap_or(&[]) {
+            indegree[j as usize] -= 1;
+            if indegree[j as usize] == 0 {
+                ready.push(j);
+            }
+        }
+    }
+    taken == n
 }
 
 /// The strongly connected components of the graph restricted to states `keep` keeps

@@ -277,16 +277,21 @@ pub fn verify_system(
         ..Options::default()
     };
     let instances = options.symmetry.then(|| {
-        let named: Vec<(&str, &Cond)> = conds.iter().map(|c| (c.0.as_str(), &c.3)).collect();
+        let named: Vec<(&str, &Cond)> = conds
+            .iter()
+            .map(|c| (c.0.as_str(), &c.3))
+            .chain(eventually.iter().map(|(n, c, _)| (n.as_str(), c)))
+            .collect();
         Instances::new(&system, &named)
     });
     let active = instances.as_ref().filter(|i| !i.is_empty());
     let mut unequal: Option<String> = None;
     let model = Interleavings {
         system: &system,
-        partial_order: options
-            .partial_order
-            .then(|| PartialOrder::new(&system, conds.iter().map(|c| &c.3))),
+        partial_order: options.partial_order.then(|| {
+            let read = conds.iter().map(|c| &c.3);
+            PartialOrder::new(&system, read.chain(eventually.iter().map(|e| &e.1)))
+        }),
         instances: active,
     };
     let summary = |s: &SystemState, renamed: bool| {
@@ -456,7 +461,13 @@ pub fn verify_system(
         .collect();
     // The search of every interleaving for them, if it was another: its states and time.
     let mut liveness_search: Option<(usize, f64)> = None;
-    if graph.reduced > 0 || active.is_some() {
+    // A reduced search that is complete and has no loop at all stands for a system with
+    // no run that goes on for ever (partial-order reduction keeps a run of every run, up to
+    // steps no check sees; symmetry, a run of every class of runs), and its runs that end
+    // stand for all of them (the conditions read are visible to the reduction, and
+    // symmetric): the checks are made on it.
+    let reduced = graph.reduced > 0 || active.is_some();
+    if reduced && !(graph.complete() && liveness::acyclic(&graph)) {
         let full = Interleavings {
             system: &system,
             partial_order: None,
