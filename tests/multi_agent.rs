@@ -1681,3 +1681,43 @@ fn an_action_with_an_agent_parameter_is_done_by_the_agent_that_calls_it() {
         "{out}"
     );
 }
+
+#[test]
+fn a_run_where_a_property_never_holds_never_passes_through_it() {
+    // Two ways into the same loop: the shorter one makes `p` true on the way; the run shown
+    // must be the other.
+    let domain = "(define (domain d) (:requirements :strips) (:predicates (p)) (:action on :parameters () :precondition () :effect (p)) (:action off :parameters () :precondition () :effect (not (p))))";
+    let d = project(
+        "eventually-prefix",
+        &[
+            (
+                "bdi-check.toml",
+                "[[agent]]\nname = \"a\"\nplans = \"a.asl\"\nactions = \"d.pddl\"\n[[agent]]\nname = \"b\"\nplans = \"b.asl\"\n[[property]]\nname = \"marked\"\neventually = \"p\"\n",
+            ),
+            ("d.pddl", domain),
+            (
+                "a.asl",
+                "!g.\n+!g <- .random([yes, no], X); !act(X).\n+!act(yes) <- on; off; !!poll.\n+!act(no) <- .print(1); .print(2); .print(3); .print(4); .print(5); .print(6); !!poll.\n+!poll <- .wait(100); !poll.\n",
+            ),
+            ("b.asl", "\n"),
+        ],
+    );
+    std::fs::write(
+        d.join("bdi-check.toml"),
+        std::fs::read_to_string(d.join("bdi-check.toml")).unwrap()
+            + "[objects]\nobject = [\"yes\", \"no\"]\n[[allow]]\ncheck = \"livelock\"\nwhy = \"a polls for ever\"\n",
+    )
+    .unwrap();
+    let (code, r, file) = verify_json(d.to_str().unwrap(), "eventually-prefix-report");
+    assert_eq!(code, 1, "{r:#}");
+    let f = failing(&r, "property");
+    assert_eq!(f.len(), 1, "{r:#}");
+    let steps = agent_steps(f[0]);
+    assert!(!steps.iter().any(|s| s.contains("action on")), "{steps:#?}");
+    let o = bdi_check(&["replay", file.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        out.contains("property:marked: still reaches its violation"),
+        "{out}"
+    );
+}

@@ -116,6 +116,7 @@ pub(super) fn liveness(
                 at,
                 format!("`{name}` can run for ever without becoming idle"),
                 &lasso,
+                None,
             ),
             None => cx.finding(
                 "livelock",
@@ -145,6 +146,7 @@ pub(super) fn liveness(
                 names[0]
             ),
             &lasso,
+            None,
         ),
         None => cx.finding(
             "request-not-completed",
@@ -157,12 +159,14 @@ pub(super) fn liveness(
     for (j, (name, span)) in eventually.iter().enumerate() {
         let bit = 1u64 << j;
         let never = |i: u32| facts.holds[i as usize] & bit == 0;
-        // States a run reaches while the property has not held yet.
+        // States a run reaches while the property has not held yet, each with the one
+        // before it on a shortest such run.
         let region = lg.reachable_within(never);
-        let inside = |i: u32| region[i as usize];
-        // A run that ends there, or a fair loop there.
-        let dead_end =
-            (0..n as u32).find(|&i| inside(i) && graph.successors(i).is_some_and(|s| s.is_empty()));
+        let inside = |i: u32| region[i as usize].is_some();
+        // A run that ends there (the nearest), or a fair loop there.
+        let dead_end = (0..n as u32)
+            .filter(|&i| inside(i) && graph.successors(i).is_some_and(|s| s.is_empty()))
+            .min_by_key(|&i| path_within(&region, i).len());
         let f = match (dead_end, lg.fair_loop(inside, None)) {
             (Some(i), _) => {
                 let mut f = cx.finding(
@@ -172,16 +176,22 @@ pub(super) fn liveness(
                     Status::Fail,
                     format!("`{name}` never holds on a run that ends"),
                 );
-                f.counterexample = Some(cx.counterexample_of(&cx.run(&graph.path_to(i), None)));
+                let run = cx.run(&path_within(&region, i), None);
+                f.counterexample = Some(cx.counterexample_of(&run));
                 f
             }
-            (None, Some(lasso)) => cx.lasso_finding(
-                "property",
-                name,
-                *span,
-                format!("`{name}` never holds on a run that goes on for ever"),
-                &lasso,
-            ),
+            (None, Some(lasso)) => {
+                // The run to the loop does not meet the property either.
+                let prefix = path_within(&region, lasso.0);
+                cx.lasso_finding(
+                    "property",
+                    name,
+                    *span,
+                    format!("`{name}` never holds on a run that goes on for ever"),
+                    &lasso,
+                    Some(prefix),
+                )
+            }
             (None, None) => cx.finding(
                 "property",
                 name,
@@ -332,26 +342,40 @@ impl Loops<'_> {
         None
     }
 
-    /// The states reachable from an initial state through states `keep` keeps.
-    fn reachable_within(&self, keep: impl Fn(u32) -> bool) -> Vec<bool> {
+    /// The states reachable from an initial state through states `keep` keeps, each with
+    /// the state before it on a shortest such run (itself, for an initial state).
+    fn reachable_within(&self, keep: impl Fn(u32) -> bool) -> Vec<Option<u32>> {
         let n = self.graph.len();
-        let mut seen = vec![false; n];
+        let mut before = vec![None; n];
         let mut queue: VecDeque<u32> = (0..self.graph.initial as u32)
             .filter(|&i| keep(i))
             .collect();
         for &i in &queue {
-            seen[i as usize] = true;
+            before[i as usize] = Some(i);
         }
         while let Some(i) = queue.pop_front() {
             for &j in self.graph.successors(i).unwrap_or(&[]) {
-                if keep(j) && !seen[j as usize] {
-                    seen[j as usize] = true;
+                if keep(j) && before[j as usize].is_none() {
+                    before[j as usize] = Some(i);
                     queue.push_back(j);
                 }
             }
         }
-        seen
+        before
     }
+}
+
+/// The shortest run within a region ([`Loops::reachable_within`]) to state `i` of it,
+/// initial state first.
+fn path_within(region: &[Option<u32>], i: u32) -> Vec<u32> {
+    let mut path = vec![i];
+    let mut at = i;
+    while let Some(b) = region[at as usize].filter(|&b| b != at) {
+        path.push(b);
+        at = b;
+    }
+    path.reverse();
+    path
 }
 
 /// Whether the explored graph has no loop (Kahn's topological sort takes every state).
@@ -411,8 +435,8 @@ fn components(graph: &Graph<SystemState>, keep: &impl Fn(u32) -> bool) -> Vec<Ve
 }
 
 impl Cx<'_> {
-    /// A failing finding whose run is `lasso`: the shortest run to its entry, then the
-    /// loop, which repeats for ever.
+    /// A failing finding whose run is `lasso`: `prefix` (by default the shortest run) to its
+    /// entry, then the loop, which repeats for ever.
     fn lasso_finding(
         &self,
         check: &str,
@@ -420,8 +444,9 @@ impl Cx<'_> {
         span: Span,
         message: String,
         (entry, cycle): &Lasso,
+        prefix: Option<Vec<u32>>,
     ) -> Finding {
-        let mut path = self.graph.path_to(*entry);
+        let mut path = prefix.unwrap_or_else(|| self.graph.path_to(*entry));
         let loop_from = path.len() - 1;
         path.extend(&cycle[1..]);
         let run: Run = self.run(&path, None);
