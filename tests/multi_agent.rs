@@ -1721,3 +1721,37 @@ fn a_run_where_a_property_never_holds_never_passes_through_it() {
         "{out}"
     );
 }
+
+#[test]
+fn random_runs_of_several_agents_find_what_they_reach_and_never_pass() {
+    // `simulate`: the race of `tests/verify/mas-race` on random runs, found and replayed;
+    // what the runs cannot decide is undecided.
+    let (code, r, file) = common::report_json(
+        &[
+            "simulate",
+            "tests/verify/mas-race",
+            "--runs",
+            "20",
+            "--seed",
+            "1",
+        ],
+        "simulate-race",
+    );
+    assert_eq!(code, 1, "{r:#}");
+    assert!(!failing(&r, "action-failure").is_empty(), "{r:#}");
+    assert_eq!(r["stats"]["complete"], false);
+    let o = bdi_check(&["replay", file.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    assert!(!out.contains("no longer reaches"), "{out}");
+    // On the two robots, nothing fails and nothing passes for sure: incomplete.
+    let (code, r, _) = common::report_json(
+        &["simulate", "specs/two-robots", "--runs", "5", "--seed", "7"],
+        "simulate-two-robots",
+    );
+    assert_eq!(code, 3, "{r:#}");
+    assert_eq!(r["verdict"], "incomplete");
+    // Shards are refused.
+    let o = bdi_check(&["verify", "specs/two-robots", "--shard", "1/2"]);
+    assert_eq!(o.status.code(), Some(2));
+}

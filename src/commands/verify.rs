@@ -157,11 +157,11 @@ fn run_system(
     progress: impl FnMut(usize, u32, f64),
 ) -> VerifyRun {
     let mut bad = super::allow::check(&projects[0]);
-    if opts.shard.is_some() || opts.sample.is_some() {
+    if opts.shard.is_some() {
         bad.push(
             Diagnostic::error(
                 "input",
-                "a project of several agents is verified whole: `--shard` and sampling are not supported for it yet",
+                "a project of several agents is verified whole: `--shard` is not supported for it yet",
             )
             .in_file(projects[0].manifest.path.display().to_string()),
         );

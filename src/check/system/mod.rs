@@ -274,7 +274,10 @@ pub fn verify_system(
     let opts = Options {
         threads,
         keep_edges: true,
-        ..Options::default()
+        max_memory: options.max_memory,
+        // `simulate`: random runs only.
+        sample: options.sample,
+        shard: None,
     };
     let instances = options.symmetry.then(|| {
         let named: Vec<(&str, &Cond)> = conds
