@@ -1755,3 +1755,22 @@ fn random_runs_of_several_agents_find_what_they_reach_and_never_pass() {
     let o = bdi_check(&["verify", "specs/two-robots", "--shard", "1/2"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn the_state_graph_of_several_agents_names_the_agent_of_every_transition() {
+    let o = bdi_check(&["graph", "tests/verify/mas-lost-wakeup", "--states"]);
+    assert_eq!(o.status.code(), Some(0));
+    let dot = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(dot.starts_with("// the state graph has"), "{dot}");
+    assert!(dot.contains("digraph states"));
+    // Transitions of both agents, and the stuck states the deadlock ends in, drawn.
+    assert!(dot.contains("label = \"fetcher: "), "{dot}");
+    assert!(dot.contains("label = \"loader: "), "{dot}");
+    assert!(
+        dot.contains("loader: 0 events, 1 intentions, 0 messages\", style=filled"),
+        "{dot}"
+    );
+    // One agent's plans, not several.
+    let o = bdi_check(&["graph", "specs/two-robots", "--plans"]);
+    assert_eq!(o.status.code(), Some(2));
+}

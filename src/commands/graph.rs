@@ -4,7 +4,7 @@
 //! neighbourhood (or, when nothing fails, the states nearest the first initial state).
 
 use super::Output;
-use crate::check::explore::{explore_with, fingerprint, Limits, Options};
+use crate::check::explore::{explore_with, fingerprint, Graph, Limits, Options};
 use crate::check::trace::Builder;
 use crate::commands::verify::limits;
 use crate::model::project::{load_project, Project};
@@ -17,6 +17,33 @@ use std::path::Path;
 
 /// `graph PROJECT --plans` (`plans`) or `--states` (with `--max-states`).
 pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_color: bool) -> Output {
+    // Several agents: the graph of their interleavings.
+    if let Ok(agents) = crate::model::project::load_system(project) {
+        if agents.len() > 1 {
+            if plans {
+                let d = Diagnostic::error(
+                    "input",
+                    "`graph --plans` draws one agent's plans: give a project of one agent",
+                )
+                .in_file(agents[0].manifest.path.display().to_string());
+                return Output::refused(crate::report::diagnostics(
+                    &[d],
+                    &agents[0].map,
+                    stderr_color,
+                ));
+            }
+            let bounds = super::verify::Bounds {
+                max_states,
+                ..Default::default()
+            };
+            return match system_state_graph(&agents, limits(&agents[0], &bounds)) {
+                Ok(sg) => drawn_graph(sg),
+                Err(errs) => {
+                    Output::refused(crate::report::diagnostics(&errs, &agents[0].map, false))
+                }
+            };
+        }
+    }
     let p = match load_project(project) {
         Ok(p) => p,
         Err(e) => {
@@ -35,20 +62,23 @@ pub fn command(project: &Path, plans: bool, max_states: Option<u64>, stderr_colo
         ..Default::default()
     };
     match state_graph(&p, limits(&p, &bounds)) {
-        Ok(sg) => {
-            // An empty drawing says why (`--max-states 0`), as a cut one does.
-            let note = sg.note.clone().or_else(|| {
-                sg.nodes.is_empty().then(|| {
-                    "the state graph is empty: the state bound (`--max-states`, `[bounds] max_states`) stopped the search before its first state".to_string()
-                })
-            });
-            Output {
-                stderr: note.map(|n| format!("note: {n}\n")).unwrap_or_default(),
-                report: Some(states_dot(&sg)),
-                code: 0,
-            }
-        }
+        Ok(sg) => drawn_graph(sg),
         Err(errs) => Output::refused(crate::report::diagnostics(&errs, &p.map, false)),
+    }
+}
+
+/// The DOT of a state graph, and a note on stderr when it is cut or empty.
+fn drawn_graph(sg: StateGraph) -> Output {
+    // An empty drawing says why (`--max-states 0`), as a cut one does.
+    let note = sg.note.clone().or_else(|| {
+        sg.nodes.is_empty().then(|| {
+            "the state graph is empty: the state bound (`--max-states`, `[bounds] max_states`) stopped the search before its first state".to_string()
+        })
+    });
+    Output {
+        stderr: note.map(|n| format!("note: {n}\n")).unwrap_or_default(),
+        report: Some(states_dot(&sg)),
+        code: 0,
     }
 }
 
@@ -95,7 +125,6 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
         },
         |_, _, _| {},
     );
-    let n = graph.len();
     let stuck = |i: u32| {
         graph.successors(i).is_some_and(|e| e.is_empty())
             && !summary.get(i as usize).is_some_and(|x| x.1)
@@ -103,7 +132,76 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
     let failing = |i: u32| {
         summary.get(i as usize).is_some_and(|x| x.0) || failing_step.contains(&i) || stuck(i)
     };
-    let (drawn, note): (BTreeSet<u32>, Option<String>) = if n <= MAX_DRAWN_STATES {
+    let (drawn, note) = drawn_states(&graph, &failing);
+    // Rebuild each drawn state (by replaying its run) and label it and its transitions.
+    let mut states: std::collections::BTreeMap<u32, State> = std::collections::BTreeMap::new();
+    for &i in &drawn {
+        if let Some(s) = graph.state(&sem, i) {
+            states.insert(i, s);
+        }
+    }
+    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
+    for (&i, from) in &states {
+        let Some(targets) = graph.successors(i) else {
+            continue;
+        };
+        let succ = sem.successors(from);
+        for &j in targets {
+            if !states.contains_key(&j) {
+                continue;
+            }
+            let want = graph.fingerprint(j);
+            let Some(t) = succ.iter().find(|t| fingerprint(&t.next) == want) else {
+                continue;
+            };
+            let mut b = Builder::new(p, &sem);
+            b.push(t.notes.clone());
+            let steps: Vec<String> = b.steps().iter().map(|s| s.text.clone()).collect();
+            let label = if steps.is_empty() {
+                "(a cycle that shows no step)".to_string()
+            } else {
+                steps.join("\n")
+            };
+            edges.push((i, j, label, t.notes.iter().any(is_failure)));
+        }
+    }
+    let looping = looping(states.keys().copied(), &edges);
+    let nodes = states
+        .iter()
+        .map(|(&i, s)| {
+            let beliefs: Vec<String> = s
+                .beliefs
+                .iter()
+                .map(|a| p.atoms.display(a, &p.universe))
+                .collect();
+            let mut label = format!("s{i}\n{}", beliefs.join("\n"));
+            if !s.is_idle() {
+                label.push_str(&format!(
+                    "\n({} events, {} intentions)",
+                    s.events.len(),
+                    s.intentions.len() + usize::from(s.pending.is_some()) + s.waiting.len()
+                ));
+            }
+            let style = StateStyle {
+                initial: (i as usize) < graph.initial,
+                failing: failing(i),
+                looping: looping.contains(&i),
+            };
+            (i, label, style)
+        })
+        .collect();
+    Ok(StateGraph { nodes, edges, note })
+}
+
+/// The states to draw: all, or, when there are too many, the runs to the first failing
+/// states with their one-step neighbourhood (or, when nothing fails, the states nearest the
+/// first initial state), and why not all.
+fn drawn_states<S>(
+    graph: &Graph<S>,
+    failing: &impl Fn(u32) -> bool,
+) -> (BTreeSet<u32>, Option<String>) {
+    let n = graph.len();
+    if n <= MAX_DRAWN_STATES {
         ((0..n as u32).collect(), None)
     } else {
         let mut keep = BTreeSet::new();
@@ -142,44 +240,15 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
             )
         };
         (keep, Some(why))
-    };
-    // Rebuild each drawn state (by replaying its run) and label it and its transitions.
-    let mut states: std::collections::BTreeMap<u32, State> = std::collections::BTreeMap::new();
-    for &i in &drawn {
-        if let Some(s) = graph.state(&sem, i) {
-            states.insert(i, s);
-        }
     }
-    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
-    for (&i, from) in &states {
-        let Some(targets) = graph.successors(i) else {
-            continue;
-        };
-        let succ = sem.successors(from);
-        for &j in targets {
-            if !states.contains_key(&j) {
-                continue;
-            }
-            let want = graph.fingerprint(j);
-            let Some(t) = succ.iter().find(|t| fingerprint(&t.next) == want) else {
-                continue;
-            };
-            let mut b = Builder::new(p, &sem);
-            b.push(t.notes.clone());
-            let steps: Vec<String> = b.steps().iter().map(|s| s.text.clone()).collect();
-            let label = if steps.is_empty() {
-                "(a cycle that shows no step)".to_string()
-            } else {
-                steps.join("\n")
-            };
-            edges.push((i, j, label, t.notes.iter().any(is_failure)));
-        }
-    }
-    // Looping states: those on a cycle among the drawn transitions.
+}
+
+/// The drawn states on a cycle among the drawn transitions.
+fn looping(states: impl Iterator<Item = u32>, edges: &[(u32, u32, String, bool)]) -> BTreeSet<u32> {
     let mut g: petgraph::graph::DiGraph<u32, ()> = petgraph::graph::DiGraph::new();
     let index: std::collections::HashMap<u32, petgraph::graph::NodeIndex> =
-        states.keys().map(|&i| (i, g.add_node(i))).collect();
-    for (i, j, _, _) in &edges {
+        states.map(|i| (i, g.add_node(i))).collect();
+    for (i, j, _, _) in edges {
         g.add_edge(index[i], index[j], ());
     }
     let mut looping: BTreeSet<u32> = BTreeSet::new();
@@ -189,21 +258,122 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
             looping.extend(scc.iter().map(|&k| g[k]));
         }
     }
+    looping
+}
+
+/// The graph of the interleavings of several agents (every one, no reduction), drawn as
+/// [`state_graph`] draws one agent's: a state shows the environment and what each agent
+/// has to do; a transition, its agent and the steps it shows.
+pub fn system_state_graph(
+    projects: &[Project],
+    limits: Limits,
+) -> Result<StateGraph, Vec<Diagnostic>> {
+    use crate::semantics::{System, SystemState};
+    let system = System::new(projects)?;
+    let p = &projects[0];
+    let names = system.names();
+    let conds: Vec<crate::model::cond::Cond> = p
+        .invariants
+        .iter()
+        .map(|(_, c)| c.clone())
+        .chain(
+            p.manifest
+                .properties
+                .iter()
+                .filter(|x| x.kind == PropertyKind::Always)
+                .filter_map(|x| {
+                    crate::model::formula::compile_in(&x.formula.expr, &p.atoms, &p.universe, names)
+                        .ok()
+                }),
+        )
+        .collect();
+    let busy = |s: &SystemState, k: usize| !s.agents[k].is_idle() || !s.mail[k].is_empty();
+    // Per state: whether a state property fails there, and whether every agent is done.
+    let mut summary: Vec<(bool, bool)> = Vec::new();
+    let mut failing_step: BTreeSet<u32> = BTreeSet::new();
+    let graph = explore_with(
+        &system,
+        limits,
+        &Options::default(),
+        |s: &SystemState| {
+            let all = system.everything(s);
+            let bad = conds.iter().any(|c| !c.eval(&all));
+            (bad, (0..s.agents.len()).all(|k| !busy(s, k)))
+        },
+        |i, x| {
+            let i = i as usize;
+            if summary.len() <= i {
+                summary.resize(i + 1, (false, true));
+            }
+            summary[i] = x;
+        },
+        |src, _, step: &crate::semantics::Step, _| {
+            if step.notes.iter().any(is_failure) {
+                failing_step.insert(src);
+            }
+        },
+        |_, _, _| {},
+    );
+    let stuck = |i: u32| {
+        graph.successors(i).is_some_and(|e| e.is_empty())
+            && !summary.get(i as usize).is_some_and(|x| x.1)
+    };
+    let failing = |i: u32| {
+        summary.get(i as usize).is_some_and(|x| x.0) || failing_step.contains(&i) || stuck(i)
+    };
+    let (drawn, note) = drawn_states(&graph, &failing);
+    let mut states: std::collections::BTreeMap<u32, SystemState> = Default::default();
+    for &i in &drawn {
+        if let Some(s) = graph.state(&system, i) {
+            states.insert(i, s);
+        }
+    }
+    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
+    for (&i, from) in &states {
+        let Some(targets) = graph.successors(i) else {
+            continue;
+        };
+        let succ = system.successors(from);
+        for &j in targets {
+            if !states.contains_key(&j) {
+                continue;
+            }
+            let want = graph.fingerprint(j);
+            let Some((step, _)) = succ.iter().find(|(_, t)| fingerprint(t) == want) else {
+                continue;
+            };
+            let k = step.agent as usize;
+            let mut b = Builder::new(&projects[k], &system.agents[k]);
+            b.push(step.notes.clone());
+            let shown: Vec<String> = b.steps().iter().map(|s| s.text.clone()).collect();
+            let label = if shown.is_empty() {
+                format!("{}: (a cycle that shows no step)", names[k])
+            } else {
+                format!("{}: {}", names[k], shown.join("\n"))
+            };
+            edges.push((i, j, label, step.notes.iter().any(is_failure)));
+        }
+    }
+    let looping = looping(states.keys().copied(), &edges);
     let nodes = states
         .iter()
         .map(|(&i, s)| {
-            let beliefs: Vec<String> = s
-                .beliefs
+            let world: Vec<String> = s
+                .world
                 .iter()
                 .map(|a| p.atoms.display(a, &p.universe))
                 .collect();
-            let mut label = format!("s{i}\n{}", beliefs.join("\n"));
-            if !s.is_idle() {
-                label.push_str(&format!(
-                    "\n({} events, {} intentions)",
-                    s.events.len(),
-                    s.intentions.len() + usize::from(s.pending.is_some()) + s.waiting.len()
-                ));
+            let mut label = format!("s{i}\n{}", world.join("\n"));
+            for (k, a) in s.agents.iter().enumerate() {
+                if busy(s, k) {
+                    label.push_str(&format!(
+                        "\n{}: {} events, {} intentions, {} messages",
+                        names[k],
+                        a.events.len(),
+                        a.intentions.len() + usize::from(a.pending.is_some()) + a.waiting.len(),
+                        s.mail[k].len()
+                    ));
+                }
             }
             let style = StateStyle {
                 initial: (i as usize) < graph.initial,
