@@ -4,7 +4,8 @@
 //! neighbourhood (or, when nothing fails, the states nearest the first initial state).
 
 use super::Output;
-use crate::check::explore::{explore_with, fingerprint, Graph, Limits, Options};
+use crate::check::explore::{explore_with, Graph, Limits, Options};
+use crate::check::model::Model;
 use crate::check::trace::Builder;
 use crate::commands::verify::limits;
 use crate::model::project::{load_project, Project};
@@ -99,76 +100,21 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
         .filter(|x| x.kind == PropertyKind::Always)
         .filter_map(|x| crate::model::formula::compile(&x.formula.expr, &p.atoms, &p.universe).ok())
         .collect();
-    // Per state: whether a state property fails there, and whether the agent is done.
-    let mut summary: Vec<(bool, bool)> = Vec::new();
-    let mut failing_step: BTreeSet<u32> = BTreeSet::new();
-    let graph = explore_with(
+    Ok(draw(
         &sem,
         limits,
-        &Options::default(),
         |s: &State| {
             let bad = invariants.iter().any(|c| !c.eval(&s.beliefs))
                 || always.iter().any(|c| !c.eval(&s.beliefs));
             (bad, s.is_idle())
         },
-        |i, x| {
-            let i = i as usize;
-            if summary.len() <= i {
-                summary.resize(i + 1, (false, true));
-            }
-            summary[i] = x;
-        },
-        |src, _, notes: &Vec<Note>, _| {
-            if notes.iter().any(is_failure) {
-                failing_step.insert(src);
-            }
-        },
-        |_, _, _| {},
-    );
-    let stuck = |i: u32| {
-        graph.successors(i).is_some_and(|e| e.is_empty())
-            && !summary.get(i as usize).is_some_and(|x| x.1)
-    };
-    let failing = |i: u32| {
-        summary.get(i as usize).is_some_and(|x| x.0) || failing_step.contains(&i) || stuck(i)
-    };
-    let (drawn, note) = drawn_states(&graph, &failing);
-    // Rebuild each drawn state (by replaying its run) and label it and its transitions.
-    let mut states: std::collections::BTreeMap<u32, State> = std::collections::BTreeMap::new();
-    for &i in &drawn {
-        if let Some(s) = graph.state(&sem, i) {
-            states.insert(i, s);
-        }
-    }
-    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
-    for (&i, from) in &states {
-        let Some(targets) = graph.successors(i) else {
-            continue;
-        };
-        let succ = sem.successors(from);
-        for &j in targets {
-            if !states.contains_key(&j) {
-                continue;
-            }
-            let want = graph.fingerprint(j);
-            let Some(t) = succ.iter().find(|t| fingerprint(&t.next) == want) else {
-                continue;
-            };
+        |notes: &Vec<Note>| notes.iter().any(is_failure),
+        |notes: &Vec<Note>| {
             let mut b = Builder::new(p, &sem);
-            b.push(t.notes.clone());
-            let steps: Vec<String> = b.steps().iter().map(|s| s.text.clone()).collect();
-            let label = if steps.is_empty() {
-                "(a cycle that shows no step)".to_string()
-            } else {
-                steps.join("\n")
-            };
-            edges.push((i, j, label, t.notes.iter().any(is_failure)));
-        }
-    }
-    let looping = looping(states.keys().copied(), &edges);
-    let nodes = states
-        .iter()
-        .map(|(&i, s)| {
+            b.push(notes.clone());
+            shown(b.steps())
+        },
+        |i, s: &State| {
             let beliefs: Vec<String> = s
                 .beliefs
                 .iter()
@@ -182,15 +128,106 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
                     s.intentions.len() + usize::from(s.pending.is_some()) + s.waiting.len()
                 ));
             }
+            label
+        },
+    ))
+}
+
+/// The drawing of the state graph of `model` within `limits`: `summary` says of a state
+/// whether a state property fails there and whether it is done, `failure` whether a
+/// transition shows a failure, `edge` what a transition shows, `node` what a state shows.
+fn draw<M: Model + Sync>(
+    model: &M,
+    limits: Limits,
+    summary: impl Fn(&M::State) -> (bool, bool) + Sync,
+    failure: impl Fn(&M::Label) -> bool,
+    edge: impl Fn(&M::Label) -> String,
+    node: impl Fn(u32, &M::State) -> String,
+) -> StateGraph
+where
+    M::State: Send + Sync,
+    M::Label: Send,
+{
+    // Per state: whether a state property fails there, and whether the run is done.
+    let mut facts: Vec<(bool, bool)> = Vec::new();
+    let mut failing_step: BTreeSet<u32> = BTreeSet::new();
+    let graph = explore_with(
+        model,
+        limits,
+        &Options::default(),
+        summary,
+        |i, x| {
+            let i = i as usize;
+            if facts.len() <= i {
+                facts.resize(i + 1, (false, true));
+            }
+            facts[i] = x;
+        },
+        |src, _, label: &M::Label, _| {
+            if failure(label) {
+                failing_step.insert(src);
+            }
+        },
+        |_, _, _| {},
+    );
+    let stuck = |i: u32| {
+        graph.successors(i).is_some_and(|e| e.is_empty())
+            && !facts.get(i as usize).is_some_and(|x| x.1)
+    };
+    let failing = |i: u32| {
+        facts.get(i as usize).is_some_and(|x| x.0) || failing_step.contains(&i) || stuck(i)
+    };
+    let (drawn, note) = drawn_states(&graph, &failing);
+    // Rebuild each drawn state (by replaying its run) and label it and its transitions.
+    let mut states: std::collections::BTreeMap<u32, M::State> = Default::default();
+    for &i in &drawn {
+        if let Some(s) = graph.state(model, i) {
+            states.insert(i, s);
+        }
+    }
+    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
+    for (&i, from) in &states {
+        let Some(targets) = graph.successors(i) else {
+            continue;
+        };
+        let succ = model.next_states(from);
+        for &j in targets {
+            if !states.contains_key(&j) {
+                continue;
+            }
+            let want = graph.fingerprint(j);
+            let Some((label, _)) = succ.iter().find(|(_, t)| model.fingerprint(t) == want) else {
+                continue;
+            };
+            edges.push((i, j, edge(label), failure(label)));
+        }
+    }
+    let looping = looping(states.keys().copied(), &edges);
+    let nodes = states
+        .iter()
+        .map(|(&i, s)| {
             let style = StateStyle {
                 initial: (i as usize) < graph.initial,
                 failing: failing(i),
                 looping: looping.contains(&i),
             };
-            (i, label, style)
+            (i, node(i, s), style)
         })
         .collect();
-    Ok(StateGraph { nodes, edges, note })
+    StateGraph { nodes, edges, note }
+}
+
+/// A transition's label: the steps it shows, one a line.
+fn shown(steps: &[crate::findings::TraceStep]) -> String {
+    if steps.is_empty() {
+        "(a cycle that shows no step)".to_string()
+    } else {
+        steps
+            .iter()
+            .map(|s| s.text.clone())
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
 }
 
 /// The states to draw: all, or, when there are too many, the runs to the first failing
@@ -268,7 +305,7 @@ pub fn system_state_graph(
     projects: &[Project],
     limits: Limits,
 ) -> Result<StateGraph, Vec<Diagnostic>> {
-    use crate::semantics::{System, SystemState};
+    use crate::semantics::{Step, System, SystemState};
     let system = System::new(projects)?;
     let p = &projects[0];
     let names = system.names();
@@ -288,76 +325,22 @@ pub fn system_state_graph(
         )
         .collect();
     let busy = |s: &SystemState, k: usize| !s.agents[k].is_idle() || !s.mail[k].is_empty();
-    // Per state: whether a state property fails there, and whether every agent is done.
-    let mut summary: Vec<(bool, bool)> = Vec::new();
-    let mut failing_step: BTreeSet<u32> = BTreeSet::new();
-    let graph = explore_with(
+    Ok(draw(
         &system,
         limits,
-        &Options::default(),
         |s: &SystemState| {
             let all = system.everything(s);
             let bad = conds.iter().any(|c| !c.eval(&all));
             (bad, (0..s.agents.len()).all(|k| !busy(s, k)))
         },
-        |i, x| {
-            let i = i as usize;
-            if summary.len() <= i {
-                summary.resize(i + 1, (false, true));
-            }
-            summary[i] = x;
-        },
-        |src, _, step: &crate::semantics::Step, _| {
-            if step.notes.iter().any(is_failure) {
-                failing_step.insert(src);
-            }
-        },
-        |_, _, _| {},
-    );
-    let stuck = |i: u32| {
-        graph.successors(i).is_some_and(|e| e.is_empty())
-            && !summary.get(i as usize).is_some_and(|x| x.1)
-    };
-    let failing = |i: u32| {
-        summary.get(i as usize).is_some_and(|x| x.0) || failing_step.contains(&i) || stuck(i)
-    };
-    let (drawn, note) = drawn_states(&graph, &failing);
-    let mut states: std::collections::BTreeMap<u32, SystemState> = Default::default();
-    for &i in &drawn {
-        if let Some(s) = graph.state(&system, i) {
-            states.insert(i, s);
-        }
-    }
-    let mut edges: Vec<(u32, u32, String, bool)> = Vec::new();
-    for (&i, from) in &states {
-        let Some(targets) = graph.successors(i) else {
-            continue;
-        };
-        let succ = system.successors(from);
-        for &j in targets {
-            if !states.contains_key(&j) {
-                continue;
-            }
-            let want = graph.fingerprint(j);
-            let Some((step, _)) = succ.iter().find(|(_, t)| fingerprint(t) == want) else {
-                continue;
-            };
+        |step: &Step| step.notes.iter().any(is_failure),
+        |step: &Step| {
             let k = step.agent as usize;
             let mut b = Builder::new(&projects[k], &system.agents[k]);
             b.push(step.notes.clone());
-            let shown: Vec<String> = b.steps().iter().map(|s| s.text.clone()).collect();
-            let label = if shown.is_empty() {
-                format!("{}: (a cycle that shows no step)", names[k])
-            } else {
-                format!("{}: {}", names[k], shown.join("\n"))
-            };
-            edges.push((i, j, label, step.notes.iter().any(is_failure)));
-        }
-    }
-    let looping = looping(states.keys().copied(), &edges);
-    let nodes = states
-        .iter()
-        .map(|(&i, s)| {
+            format!("{}: {}", names[k], shown(b.steps()))
+        },
+        |i, s: &SystemState| {
             let world: Vec<String> = s
                 .world
                 .iter()
@@ -375,15 +358,9 @@ pub fn system_state_graph(
                     ));
                 }
             }
-            let style = StateStyle {
-                initial: (i as usize) < graph.initial,
-                failing: failing(i),
-                looping: looping.contains(&i),
-            };
-            (i, label, style)
-        })
-        .collect();
-    Ok(StateGraph { nodes, edges, note })
+            label
+        },
+    ))
 }
 
 /// Whether a transition's note is a failure a check reports.
