@@ -142,6 +142,10 @@ fn the_full_manifest_loads_with_its_values() {
     );
 
     let e = m.explanation.as_ref().expect("[explanation] is present");
+    assert_eq!(map.slice(e.span), "explanation");
+    let robot = e.robot.as_ref().unwrap();
+    assert_eq!(robot.value, "kitchen");
+    assert_eq!(map.slice(robot.span), "\"kitchen\"");
     assert_eq!(e.modifies, Modifies::Semantic);
     assert_eq!(e.emitted_by.as_ref().unwrap().value, "explain");
     let phrases: Vec<(&str, &str)> = e

@@ -573,7 +573,8 @@ fn every_spec_has_its_expected_outcome() {
             "kitchen-explaining",
             "misleading-content",
             "paper",
-            "two-robots"
+            "two-robots",
+            "two-robots-explaining"
         ]
     );
 }

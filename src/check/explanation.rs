@@ -25,20 +25,33 @@
 //! * with `emitted_by`, `demand-conformance` and `content-conformance`: the agent's own
 //!   explanation action, executed before an environment action, must come exactly when
 //!   Algorithm 1 says one is due, and carry the reference content.
+//!
+//! The runs are those of one agent ([`Alone`]) or every interleaving of several agents'
+//! reasoning cycles ([`Among`]), one of which is the robot the users watch (`[explanation]
+//! robot`): the same checks on either ([`Runs`]). Among several agents, a user sees the
+//! robot's steps only: the requests that go to it and its actions, never another agent's
+//! (so that the robot itself can know what the user saw, as `emitted_by` needs). Content
+//! is about the robot's intentions and is judged on its beliefs, which change only in its
+//! own cycles: an action's effects, and whatever other agents changed, come at the sense
+//! that begins the robot's next cycle, and count for the step of the robot's body that was
+//! running then (its intentions as they were before that cycle).
 
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
 use super::model::Model;
-use super::symmetry::Symmetry;
+use super::symmetry::{Renaming, Symmetry};
 use super::trace::Builder;
 use crate::explain::agent::{Explainer, User};
 use crate::explain::{Content, ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
 use crate::findings::{Counterexample, Finding, Status, StepKindTag, TraceStep};
+use crate::model::atoms::AtomSet;
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
-use crate::semantics::{Note, Origin, Semantics, State};
+use crate::semantics::{Note, Origin, Semantics, State, System, SystemState};
 use crate::syntax::{Diagnostic, Severity, Span};
 use std::collections::BTreeMap;
+use std::fmt::Debug;
+use std::hash::Hash;
 
 /// Every explanation property, in report order.
 pub const CHECKS: [&str; 7] = [
@@ -51,19 +64,178 @@ pub const CHECKS: [&str; 7] = [
     "content-conformance",
 ];
 
-/// The agent's reasoning cycle as one user sees it.
-pub struct Explained<'a> {
-    sem: &'a Semantics<'a>,
-    ex: &'a Explainer<'a>,
-    user: &'a User,
-    symmetry: Option<&'a Symmetry>,
+/// The runs a user watches: the transitions of one agent's reasoning cycle, or of several
+/// agents', one of which (the robot) is the agent the user watches.
+pub trait Runs: Sync {
+    /// A state of the runs.
+    type State: Clone + Debug + Hash + Eq + Send + Sync;
+
+    /// Every agent's reasoning cycle, by index (one agent alone).
+    fn agents(&self) -> &[Semantics<'_>];
+
+    /// The robot's index among [`Runs::agents`].
+    fn robot(&self) -> usize;
+
+    /// The agents' names when there are several (the steps of a run then name their
+    /// agent), `None` for one agent.
+    fn names(&self) -> Option<&[String]>;
+
+    /// The robot's state in `s`.
+    fn robot_state<'s>(&self, s: &'s Self::State) -> &'s State;
+
+    /// The environment in `s` (a run's initial state, as a counterexample lists it).
+    fn world<'s>(&self, s: &'s Self::State) -> &'s AtomSet;
+
+    /// Every initial state.
+    fn initial(&self) -> Vec<Self::State>;
+
+    /// Every successor of `s`, in a fixed order: the agent that moved (for a request, the
+    /// agent it goes to), what it did, and the state after.
+    fn successors(&self, s: &Self::State) -> Vec<(u8, Vec<Note>, Self::State)>;
+
+    /// The robot's beliefs after the sense that begins its next cycle in `s`, when that
+    /// sense perceives or reads something. Among several agents the robot perceives the
+    /// environment only there (its own actions' effects too); one agent alone perceives
+    /// an action's effects as it acts: `None`.
+    fn sensed(&self, _s: &Self::State) -> Option<AtomSet> {
+        None
+    }
+
+    /// Whether the robot's next cycle in `s` begins by perceiving or reading something
+    /// (what [`Runs::sensed`] gives then): its beliefs are about to change.
+    fn to_sense(&self, _s: &Self::State) -> bool {
+        false
+    }
+
+    /// Under symmetry reduction, the fingerprint of `s` up to renaming, with `extra`
+    /// (the user's view) renamed along; `None` when states are stored as they are.
+    fn fingerprint_with<H: Hash>(
+        &self,
+        _s: &Self::State,
+        _extra: impl Fn(&Renaming) -> H,
+    ) -> Option<u64> {
+        None
+    }
 }
 
-/// A state of [`Explained`]: the agent's, and the user's view of the run so far.
+/// One agent's reasoning cycle, with its states stored up to renaming of interchangeable
+/// objects when `symmetry` is given.
+#[derive(Clone, Copy)]
+pub struct Alone<'a> {
+    /// The agent, who is the robot.
+    pub sem: &'a Semantics<'a>,
+    /// Symmetry reduction over objects, if on.
+    pub symmetry: Option<&'a Symmetry>,
+}
+
+impl Runs for Alone<'_> {
+    type State = State;
+
+    fn agents(&self) -> &[Semantics<'_>] {
+        std::slice::from_ref(self.sem)
+    }
+
+    fn robot(&self) -> usize {
+        0
+    }
+
+    fn names(&self) -> Option<&[String]> {
+        None
+    }
+
+    fn robot_state<'s>(&self, s: &'s State) -> &'s State {
+        s
+    }
+
+    fn world<'s>(&self, s: &'s State) -> &'s AtomSet {
+        &s.beliefs
+    }
+
+    fn initial(&self) -> Vec<State> {
+        self.sem.initial_states()
+    }
+
+    fn successors(&self, s: &State) -> Vec<(u8, Vec<Note>, State)> {
+        self.sem
+            .successors(s)
+            .into_iter()
+            .map(|t| (0, t.notes, t.next))
+            .collect()
+    }
+
+    fn fingerprint_with<H: Hash>(&self, s: &State, extra: impl Fn(&Renaming) -> H) -> Option<u64> {
+        self.symmetry.map(|sym| sym.fingerprint_with(s, extra))
+    }
+}
+
+/// Every interleaving of the reasoning cycles of several agents, the user watching the one
+/// numbered `robot`. No reduction: partial-order reduction would put off steps of the robot
+/// the user sees, and symmetry over instances would rename the robot.
+#[derive(Clone, Copy)]
+pub struct Among<'a> {
+    /// The agents.
+    pub system: &'a System<'a>,
+    /// The robot's index.
+    pub robot: usize,
+}
+
+impl Runs for Among<'_> {
+    type State = SystemState;
+
+    fn agents(&self) -> &[Semantics<'_>] {
+        &self.system.agents
+    }
+
+    fn robot(&self) -> usize {
+        self.robot
+    }
+
+    fn names(&self) -> Option<&[String]> {
+        Some(self.system.names())
+    }
+
+    fn robot_state<'s>(&self, s: &'s SystemState) -> &'s State {
+        &s.agents[self.robot]
+    }
+
+    fn world<'s>(&self, s: &'s SystemState) -> &'s AtomSet {
+        &s.world
+    }
+
+    fn initial(&self) -> Vec<SystemState> {
+        self.system.initial_states()
+    }
+
+    fn successors(&self, s: &SystemState) -> Vec<(u8, Vec<Note>, SystemState)> {
+        self.system
+            .successors(s)
+            .into_iter()
+            .map(|(step, t)| (step.agent, step.notes, t))
+            .collect()
+    }
+
+    fn sensed(&self, s: &SystemState) -> Option<AtomSet> {
+        self.system.sensed(s, self.robot)
+    }
+
+    fn to_sense(&self, s: &SystemState) -> bool {
+        !s.mail[self.robot].is_empty() || !self.system.has_perceived(s, self.robot)
+    }
+}
+
+/// The runs of an agent, or of several, as one user watching the robot sees them.
+pub struct Explained<'a, W = Alone<'a>> {
+    runs: W,
+    ex: &'a Explainer<'a>,
+    user: &'a User,
+}
+
+/// A state of [`Explained`]: the runs' (the agent's, or the system's), and the user's view
+/// of the run so far.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct ExplainedState {
-    /// The agent.
-    pub agent: State,
+pub struct ExplainedState<S = State> {
+    /// The agent, or every agent.
+    pub state: S,
     /// `N` as Algorithm 1 updates it on the observed sequence.
     n: ExpectedSuccessors,
     /// The last observation, if any.
@@ -78,10 +250,15 @@ pub struct ExplainedState {
     emitted: Option<Term>,
 }
 
-impl ExplainedState {
+impl<S> ExplainedState<S> {
     /// The user's expected successors `N`, as Algorithm 1 has updated them on the run so far.
     pub fn expected(&self) -> &ExpectedSuccessors {
         &self.n
+    }
+
+    /// What the user saw last, if anything.
+    pub fn last_observed(&self) -> Option<&Observation> {
+        self.prev.as_ref()
     }
 }
 
@@ -145,6 +322,9 @@ pub struct Violation {
 /// What one transition of [`Explained`] did.
 #[derive(Clone, Debug, Default)]
 pub struct Step {
+    /// The agent that moved (its index among [`Runs::agents`]; for a request, the agent it
+    /// goes to).
+    pub agent: u8,
     /// The agent's notes.
     pub notes: Vec<Note>,
     /// For each note, the explanation given at it, if any.
@@ -163,19 +343,27 @@ impl<'a> Explained<'a> {
         user: &'a User,
         symmetry: Option<&'a Symmetry>,
     ) -> Explained<'a> {
-        Explained {
-            sem,
-            ex,
-            user,
-            symmetry,
-        }
+        Explained::watching(Alone { sem, symmetry }, ex, user)
+    }
+}
+
+impl<'a, W: Runs> Explained<'a, W> {
+    /// The runs `runs` as `user`, watching their robot, sees them, explained by `ex` (made
+    /// for the robot).
+    pub fn watching(runs: W, ex: &'a Explainer<'a>, user: &'a User) -> Explained<'a, W> {
+        Explained { runs, ex, user }
     }
 
-    /// The user's view of a run that starts in `agent`: nothing seen, `N` as the manifest
+    /// The robot's reasoning cycle.
+    fn sem(&self) -> &Semantics<'_> {
+        &self.runs.agents()[self.runs.robot()]
+    }
+
+    /// The user's view of a run that starts in `state`: nothing seen, `N` as the manifest
     /// gives it.
-    pub fn start(&self, agent: State) -> ExplainedState {
+    pub fn start(&self, state: W::State) -> ExplainedState<W::State> {
         ExplainedState {
-            agent,
+            state,
             n: self.user.expected.clone(),
             prev: None,
             adoption: self.user.expected.clone(),
@@ -185,12 +373,14 @@ impl<'a> Explained<'a> {
         }
     }
 
-    fn step_text(&self, plan: u32, block: u16, pos: u16, st: &ExplainedState) -> String {
-        let Some(step) = self.sem.block(plan, block).get(pos as usize) else {
+    /// A step of the robot's plan `plan` as a message names it, its bindings read in the
+    /// robot's state `robot`.
+    fn step_text(&self, plan: u32, block: u16, pos: u16, robot: &State) -> String {
+        let sem = self.sem();
+        let Some(step) = sem.block(plan, block).get(pos as usize) else {
             return "the end of the body".into();
         };
-        let subst = st
-            .agent
+        let subst = robot
             .all_intentions()
             .flat_map(|i| &i.frames)
             .find(|f| f.plan == plan)
@@ -200,7 +390,7 @@ impl<'a> Explained<'a> {
             BodyStep::Action(t) => subst.apply(t).to_string(),
             BodyStep::Achieve { goal, .. } => format!("!{}", subst.apply(goal)),
             _ => {
-                let loc = self.sem.project.map.location(step.span);
+                let loc = sem.project.map.location(step.span);
                 format!("the step at {}:{}", loc.line, loc.column)
             }
         }
@@ -209,19 +399,20 @@ impl<'a> Explained<'a> {
     /// Algorithm 1 as the paper wrote it, at the adoption of `plan`.
     fn adopt(
         &self,
-        st: &mut ExplainedState,
+        st: &mut ExplainedState<W::State>,
         plan: u32,
         origin: Origin,
         subst: &crate::model::Substitution,
         depth: u16,
     ) {
+        let sem = self.sem();
         let mut prev = st.prev.clone();
-        for (pos, step) in self.sem.block(plan, 0).iter().enumerate() {
+        for (pos, step) in sem.block(plan, 0).iter().enumerate() {
             let BodyStep::Action(t) = &step.kind else {
                 continue;
             };
             let action = subst.apply(t);
-            if self.sem.is_emission(&action) {
+            if sem.is_emission(&action) {
                 continue;
             }
             let next = Observation::Action(action);
@@ -237,16 +428,26 @@ impl<'a> Explained<'a> {
         }
     }
 
-    /// Judges the open explanations against the state after a transition.
-    /// A failure in the transition decides nothing: its explanations are dropped.
-    fn judge(&self, st: &mut ExplainedState, failed: bool, out: &mut Vec<Violation>) {
-        let open = std::mem::take(&mut st.open);
+    /// Judges the open explanations against the robot's intentions in `robot` and its
+    /// beliefs `beliefs` (after a transition; among several agents, also after the sense
+    /// that begins its cycle, its intentions as before that cycle). A failure in the
+    /// transition decides nothing: its explanations are dropped. With `unsensed` (the
+    /// robot has yet to perceive what changed, its last action's effects among them), a
+    /// body that ended with no change is judged once it has.
+    fn judge(
+        &self,
+        open: &mut Vec<Obligation>,
+        (robot, beliefs): (&State, &AtomSet),
+        failed: bool,
+        unsensed: bool,
+        out: &mut Vec<Violation>,
+    ) {
+        let pending = std::mem::take(open);
         if failed {
             return;
         }
-        for o in open {
-            let frame = st
-                .agent
+        for o in pending {
+            let frame = robot
                 .all_intentions()
                 .filter(|i| i.origin == o.origin)
                 .filter_map(|i| i.frames.get(o.depth as usize))
@@ -256,13 +457,14 @@ impl<'a> Explained<'a> {
                 .gamma
                 .iter()
                 .zip(&o.truth)
-                .any(|(l, t)| self.ex.literal_holds(&st.agent.beliefs, l) != *t);
+                .any(|(l, t)| self.ex.literal_holds(beliefs, l) != *t);
             let real = match (changed, at) {
                 // The step before the cursor ran (or waits for its sub-intention).
                 (true, Some(c)) if c.pos > o.from => c.pos - 1,
-                (true, _) | (false, None) => o.last,
-                (false, Some(_)) => {
-                    st.open.push(o);
+                (true, _) => o.last,
+                (false, None) if !unsensed => o.last,
+                (false, _) => {
+                    open.push(o);
                     continue;
                 }
             };
@@ -270,7 +472,7 @@ impl<'a> Explained<'a> {
                 continue;
             }
             let content: Vec<String> = o.steps.iter().map(|s| s.to_string()).collect();
-            let real_text = self.step_text(o.plan, o.block, real, st);
+            let real_text = self.step_text(o.plan, o.block, real, robot);
             let how = if changed {
                 format!("the context first changes at {real_text}")
             } else {
@@ -302,23 +504,58 @@ impl<'a> Explained<'a> {
         }
     }
 
+    /// The transition from `s` in which agent `agent` did `notes`, to `next`; `sensed`:
+    /// the robot's beliefs after the sense that begins its cycle, when this is a cycle of
+    /// the robot that began by perceiving or reading something.
     fn transition(
         &self,
-        s: &ExplainedState,
+        s: &ExplainedState<W::State>,
+        agent: u8,
         notes: Vec<Note>,
-        next: State,
-    ) -> (Step, ExplainedState) {
+        next: W::State,
+        sensed: Option<&AtomSet>,
+    ) -> (Step, ExplainedState<W::State>) {
         let mut st = ExplainedState {
-            agent: next,
-            ..s.clone()
+            state: next,
+            n: s.n.clone(),
+            prev: s.prev.clone(),
+            adoption: s.adoption.clone(),
+            marks: s.marks.clone(),
+            open: s.open.clone(),
+            emitted: s.emitted.clone(),
         };
-        let mut step = Step::default();
+        let mut step = Step {
+            agent,
+            ..Step::default()
+        };
+        if agent as usize != self.runs.robot() {
+            // Another agent's step (a cycle, or a request to it): the user sees none of
+            // it, and the robot's state does not change.
+            step.given = vec![None; notes.len()];
+            step.notes = notes;
+            return (step, st);
+        }
+        let before = self.runs.robot_state(&s.state);
+        // What the robot believes when its cycle acts: what it sensed at the start of it.
+        let believed = sensed.unwrap_or(&before.beliefs);
+        if let Some(b) = sensed {
+            // What changed since its last cycle (its last action's effects, what others
+            // did) counts for the step that was running then.
+            self.judge(
+                &mut st.open,
+                (before, b),
+                false,
+                false,
+                &mut step.violations,
+            );
+        }
         let mut failed = false;
         for note in &notes {
             let mut given = None;
             match note {
                 Note::Request { index } => {
-                    let obs = Observation::Request(self.sem.requests[*index as usize].clone());
+                    let goal = self.sem().requests[*index as usize].clone();
+                    let obs = Observation::Request(goal);
                     st.n.observe(st.prev.as_ref(), &obs);
                     st.prev = Some(obs);
                 }
@@ -336,11 +573,11 @@ impl<'a> Explained<'a> {
                     origin,
                     ..
                 } => {
-                    if self.sem.is_emission(term) {
+                    if self.sem().is_emission(term) {
                         st.emitted = Some(term.clone());
                     } else {
                         given = self.action(
-                            s,
+                            believed,
                             &mut st,
                             term,
                             stack,
@@ -356,11 +593,18 @@ impl<'a> Explained<'a> {
             }
             step.given.push(given);
         }
-        self.judge(&mut st, failed, &mut step.violations);
+        let robot = self.runs.robot_state(&st.state);
+        let unsensed = self.runs.to_sense(&st.state);
+        self.judge(
+            &mut st.open,
+            (robot, &robot.beliefs),
+            failed,
+            unsensed,
+            &mut step.violations,
+        );
         // Marks of frames that are gone (finished or failed) can never be executed.
-        let agent = &st.agent;
         st.marks.retain(|m| {
-            agent.all_intentions().any(|i| {
+            robot.all_intentions().any(|i| {
                 i.origin == m.origin
                     && i.frames
                         .get(m.depth as usize)
@@ -375,8 +619,8 @@ impl<'a> Explained<'a> {
     #[allow(clippy::too_many_arguments)]
     fn action(
         &self,
-        s: &ExplainedState,
-        st: &mut ExplainedState,
+        believed: &AtomSet,
+        st: &mut ExplainedState<W::State>,
         term: &Term,
         stack: &[crate::semantics::FrameView],
         plan: u32,
@@ -448,11 +692,11 @@ impl<'a> Explained<'a> {
         }
         let emitted = st.emitted.take();
         let explanation = if due {
-            self.ex.explain(&s.agent.beliefs, stack)
+            self.ex.explain(believed, stack)
         } else {
             None
         };
-        if self.sem.explains_itself() {
+        if self.sem().explains_itself() {
             self.conformance(
                 term,
                 &after,
@@ -467,7 +711,7 @@ impl<'a> Explained<'a> {
             .content
             .context
             .iter()
-            .map(|l| self.ex.literal_holds(&s.agent.beliefs, l))
+            .map(|l| self.ex.literal_holds(believed, l))
             .collect();
         let false_now: Vec<String> = e
             .content
@@ -604,31 +848,40 @@ pub fn reference_content(action: &Term, c: &crate::explain::Content) -> Carried 
     )
 }
 
-impl Model for Explained<'_> {
-    type State = ExplainedState;
+impl<W: Runs> Model for Explained<'_, W> {
+    type State = ExplainedState<W::State>;
     type Label = Step;
 
-    fn init_states(&self) -> Vec<ExplainedState> {
-        self.sem
-            .initial_states()
+    fn init_states(&self) -> Vec<Self::State> {
+        self.runs
+            .initial()
             .into_iter()
-            .map(|agent| self.start(agent))
+            .map(|state| self.start(state))
             .collect()
     }
 
-    fn next_states(&self, s: &ExplainedState) -> Vec<(Step, ExplainedState)> {
-        self.sem
-            .successors(&s.agent)
-            .into_iter()
-            .map(|t| self.transition(s, t.notes, t.next))
+    fn next_states(&self, s: &Self::State) -> Vec<(Step, Self::State)> {
+        let robot = self.runs.robot() as u8;
+        let succ = self.runs.successors(&s.state);
+        // A cycle of the robot, not a request to it.
+        let cycle =
+            |agent: u8, notes: &[Note]| agent == robot && !matches!(notes, [Note::Request { .. }]);
+        // Every cycle of the robot from `s` begins with the same sense.
+        let sensed = succ
+            .iter()
+            .any(|(a, notes, _)| cycle(*a, notes))
+            .then(|| self.runs.sensed(&s.state))
+            .flatten();
+        succ.into_iter()
+            .map(|(agent, notes, next)| {
+                let sensed = sensed.as_ref().filter(|_| cycle(agent, &notes));
+                self.transition(s, agent, notes, next, sensed)
+            })
             .collect()
     }
 
-    fn fingerprint(&self, s: &ExplainedState) -> u64 {
-        let Some(sym) = self.symmetry else {
-            return fingerprint(s);
-        };
-        sym.fingerprint_with(&s.agent, |r| {
+    fn fingerprint(&self, s: &Self::State) -> u64 {
+        let renamed = self.runs.fingerprint_with(&s.state, |r| {
             let obs = |o: &Observation| match o {
                 Observation::Request(t) => Observation::Request(r.term(t)),
                 Observation::Action(t) => Observation::Action(r.term(t)),
@@ -684,7 +937,8 @@ impl Model for Explained<'_> {
                 open,
                 s.emitted.as_ref().map(|t| r.term(t)),
             )
-        })
+        });
+        renamed.unwrap_or_else(|| fingerprint(s))
     }
 }
 
@@ -693,24 +947,24 @@ impl Model for Explained<'_> {
 pub type Shown = (u32, u32, u64);
 
 /// The first violation of each check at each place, with the transition that shows it.
-pub struct UserResult {
+pub struct UserResult<S = State> {
     /// The user.
     pub user: String,
     /// `(check, file, offset)` → where it shows and what it is.
     pub violations: BTreeMap<(&'static str, u32, u32), (Shown, Violation)>,
     /// The explored product graph.
-    pub graph: Graph<ExplainedState>,
+    pub graph: Graph<ExplainedState<S>>,
     /// Explanations given on the transitions explored.
     pub given: usize,
 }
 
 /// Explores the runs as `user` sees them and collects the violations.
-pub fn check_user(
-    model: &Explained,
+pub fn check_user<W: Runs>(
+    model: &Explained<W>,
     limits: Limits,
     opts: &Options,
     progress: impl FnMut(usize, u32, f64),
-) -> UserResult {
+) -> UserResult<W::State> {
     let mut violations = BTreeMap::new();
     let mut given = 0;
     let graph = explore_with(
@@ -740,23 +994,26 @@ pub fn check_user(
 /// The run to the violation `v`, shown by the `k`-th transition of state `src` of the
 /// product graph (to a state with fingerprint `fp`), with the explanations the user got in
 /// place. Under symmetry the run is a concrete one that reaches a renaming of the stored
-/// states, so the last transition is found by what it violates.
-pub fn counterexample(
+/// states, so the last transition is found by what it violates. Among several agents,
+/// every step names its agent (an explanation, the robot).
+pub fn counterexample<W: Runs>(
     project: &Project,
-    model: &Explained,
-    graph: &Graph<ExplainedState>,
+    model: &Explained<W>,
+    graph: &Graph<ExplainedState<W::State>>,
     (src, k, fp): Shown,
     v: &Violation,
 ) -> Counterexample {
-    let (sem, user) = (model.sem, model.user);
+    let user = model.user;
+    let agents = model.runs.agents();
+    let names = model.runs.names();
+    let name = |k: usize| names.map(|n| n[k].clone());
     let path = graph.path_to(src);
     let mut labels: Vec<Step> = Vec::new();
     let mut initial = Vec::new();
     if let Some(mut walk) = Walk::start(model, graph, path[0]) {
-        initial = walk
-            .state
-            .agent
-            .beliefs
+        initial = model
+            .runs
+            .world(&walk.state.state)
             .iter()
             .map(|a| project.atoms.display(a, &project.universe))
             .collect();
@@ -769,13 +1026,17 @@ pub fn counterexample(
                 .any(|w| w.check == v.check && w.span == v.span)
         }));
     }
-    let mut b = Builder::new(project, sem);
+    let mut builders: Vec<Builder> = agents
+        .iter()
+        .map(|sem| Builder::new(sem.project, sem))
+        .collect();
     let mut steps: Vec<TraceStep> = Vec::new();
     let mut requests = Vec::new();
     for l in labels {
+        let mover = l.agent as usize;
         for (note, given) in l.notes.into_iter().zip(l.given) {
             if let Note::Request { index } = &note {
-                requests.push(sem.requests[*index as usize].to_string());
+                requests.push(agents[mover].requests[*index as usize].to_string());
             }
             if let Some(g) = given {
                 steps.push(TraceStep {
@@ -786,12 +1047,16 @@ pub fn counterexample(
                     added: Vec::new(),
                     removed: Vec::new(),
                     explanation: Some(g.text),
-                    agent: None,
+                    agent: name(model.runs.robot()),
                 });
             }
+            let b = &mut builders[mover];
             let before = b.steps().len();
             b.push(vec![note]);
-            steps.extend(b.steps()[before..].iter().cloned());
+            for mut st in b.steps()[before..].iter().cloned() {
+                st.agent = name(mover);
+                steps.push(st);
+            }
         }
     }
     Counterexample {
@@ -802,10 +1067,10 @@ pub fn counterexample(
     }
 }
 
-/// The explanation properties for every user of the manifest: one finding per property and
-/// user when it holds (or is undecided), one per property, user and place when it fails.
-/// Nothing when the manifest has no `[explanation]` users. Also returns whether every
-/// user's search was complete.
+/// The explanation properties for every user of the manifest, on the runs of one agent:
+/// one finding per property and user when it holds (or is undecided), one per property,
+/// user and place when it fails. Nothing when the manifest has no `[explanation]` users.
+/// Also returns whether every user's search was complete.
 pub fn verify(
     project: &Project,
     sem: &Semantics,
@@ -813,10 +1078,46 @@ pub fn verify(
     limits: Limits,
     opts: &Options,
 ) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
+    verify_runs(project, Alone { sem, symmetry }, limits, opts)
+}
+
+/// The explanation properties on every interleaving of the agents of `projects` (those of
+/// `system`), for the users of the manifest, who watch the agent `[explanation] robot`
+/// names (the first when it names none, as in a project of one agent).
+pub fn verify_among(
+    projects: &[Project],
+    system: &System,
+    limits: Limits,
+    opts: &Options,
+) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
+    let robot = robot_of(projects);
+    verify_runs(&projects[robot], Among { system, robot }, limits, opts)
+}
+
+/// The index of the agent `[explanation] robot` names among `projects` (0 when none).
+pub fn robot_of(projects: &[Project]) -> usize {
+    projects[0]
+        .manifest
+        .explanation
+        .as_ref()
+        .and_then(|e| e.robot.as_ref())
+        .and_then(|r| projects.iter().position(|p| p.name == r.value))
+        .unwrap_or(0)
+}
+
+/// The explanation properties on `runs`, for the users of `project`'s manifest (the
+/// robot's project).
+fn verify_runs<W: Runs + Copy>(
+    project: &Project,
+    runs: W,
+    limits: Limits,
+    opts: &Options,
+) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
     let Some(section) = &project.manifest.explanation else {
         return Ok((Vec::new(), true));
     };
     let users = crate::explain::agent::users(project, None)?;
+    let sem = &runs.agents()[runs.robot()];
     let ex = Explainer::new(project, sem);
     let checks: &[&str] = if section.emitted_by.is_some() {
         &CHECKS
@@ -826,7 +1127,12 @@ pub fn verify(
     let mut out = Vec::new();
     let mut complete = true;
     for user in &users {
-        let model = Explained::new(sem, &ex, user, symmetry);
+        // Among several agents, the message says whom the user watches.
+        let who = match runs.names().filter(|n| n.len() > 1) {
+            Some(names) => format!("{}, watching {}", user.name, names[runs.robot()]),
+            None => user.name.clone(),
+        };
+        let model = Explained::watching(runs, &ex, user);
         let r = check_user(&model, limits, opts, |_, _, _| {});
         complete &= r.graph.complete();
         let states = r.graph.len();
@@ -843,7 +1149,7 @@ pub fn verify(
                     check: check.to_string(),
                     severity: Severity::Error,
                     status: Status::Fail,
-                    message: format!("for {}: {}", user.name, v.message),
+                    message: format!("for {who}: {}", v.message),
                     location: Some(loc),
                     counterexample: Some(counterexample(project, &model, &r.graph, *shown, v)),
                     span: Some(v.span),
@@ -858,16 +1164,15 @@ pub fn verify(
                 (
                     Status::Pass,
                     format!(
-                        "for {}: holds on every run ({states} states with the user's N, {} explanations given)",
-                        user.name, r.given
+                        "for {who}: holds on every run ({states} states with the user's N, {} explanations given)",
+                        r.given
                     ),
                 )
             } else {
                 (
                     Status::Unknown,
                     format!(
-                        "for {}: holds on the {states} states reached with the user's N, but the search was cut short",
-                        user.name
+                        "for {who}: holds on the {states} states reached with the user's N, but the search was cut short"
                     ),
                 )
             };

@@ -525,7 +525,6 @@ fn replay_explained(
     walked: &mut Vec<Walked>,
 ) -> Replayed {
     use crate::check::explanation::Explained;
-    use crate::check::model::Model;
     let no = |detail: &str| Replayed::missed(&f.id, detail);
     let Some(user_name) = f.id.split(':').nth(1) else {
         return no("the finding's id names no user");
@@ -535,9 +534,6 @@ fn replay_explained(
     };
     let ex = crate::explain::agent::Explainer::new(project, sem);
     let model = Explained::new(sem, &ex, &users[0], None);
-    let Some(mut state) = model.init_states().into_iter().find(|s| s.agent == agent) else {
-        return no("its initial state is no longer an initial state of the project");
-    };
     // Explanations are the checker's, not the agent's: follow the agent's steps only.
     let recorded: Vec<(&str, &str)> = c
         .steps
@@ -545,45 +541,118 @@ fn replay_explained(
         .filter(|s| s.kind != "explanation")
         .map(|s| (s.kind.as_str(), s.text.as_str()))
         .collect();
-    let place = f.location.as_ref().map(|l| (l.file.as_str(), l.line));
-    let mut builder = Builder::new(project, sem);
-    let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
-    let next = |s: &crate::check::explanation::ExplainedState| {
-        model
-            .next_states(s)
-            .into_iter()
-            .map(|(step, t)| (step.notes, t))
-            .collect::<Vec<_>>()
+    let shown = |step: &ExplainedStep| shown(project, sem, &step.notes);
+    replay_explained_in(
+        project,
+        &model,
+        f,
+        agent,
+        &recorded,
+        &shown,
+        |step, next| {
+            walked.push(Walked {
+                notes: step.notes.clone(),
+                state: next.state.clone(),
+            })
+        },
+    )
+}
+
+/// Replays an explanation finding of a project of several agents: the run as the
+/// finding's user, watching the robot, sees it, every step by its agent.
+fn replay_system_explained(
+    agents: &[Project],
+    system: &crate::semantics::System,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    start: crate::semantics::SystemState,
+) -> Replayed {
+    use crate::check::explanation::{robot_of, Among, Explained};
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    let Some(user_name) = f.id.split(':').nth(1) else {
+        return no("the finding's id names no user");
     };
-    let run = find_run(&state, &recorded, &next, &|n: &Vec<Note>| {
-        shown(project, sem, n)
-    });
+    let robot = robot_of(agents);
+    let project = &agents[robot];
+    let Ok(users) = crate::explain::agent::users(project, Some(user_name)) else {
+        return no("the project no longer has the finding's user");
+    };
+    let ex = crate::explain::agent::Explainer::new(project, &system.agents[robot]);
+    let model = Explained::watching(Among { system, robot }, &ex, &users[0]);
+    let kinds: Vec<String> = c
+        .steps
+        .iter()
+        .filter(|s| s.kind != "explanation")
+        .map(|s| format!("{}:{}", s.agent.as_deref().unwrap_or(""), s.kind))
+        .collect();
+    let recorded: Vec<(&str, &str)> = kinds
+        .iter()
+        .zip(c.steps.iter().filter(|s| s.kind != "explanation"))
+        .map(|(k, s)| (k.as_str(), s.text.as_str()))
+        .collect();
+    let shown = |step: &ExplainedStep| {
+        let k = step.agent as usize;
+        let name = &system.names()[k];
+        let mut b = Builder::new(&agents[k], &system.agents[k]);
+        b.push(step.notes.clone());
+        b.steps()
+            .iter()
+            .map(|s| (format!("{name}:{}", s.kind.name()), s.text.clone()))
+            .collect()
+    };
+    replay_explained_in(project, &model, f, start, &recorded, &shown, |_, _| {})
+}
+
+/// A transition of the runs as a user sees them.
+type ExplainedStep = crate::check::explanation::Step;
+
+/// Follows the recorded run (`recorded`, explanations left out) from `start` on `model`,
+/// then lets it run on, until a transition violates the finding's property at its place.
+/// `shown`: the steps a transition shows, as the report records them; `on_step`: each
+/// transition taken, with the state it leads to.
+fn replay_explained_in<W: crate::check::explanation::Runs>(
+    project: &Project,
+    model: &crate::check::explanation::Explained<W>,
+    f: &FindingIn,
+    start: W::State,
+    recorded: &[(&str, &str)],
+    shown: &dyn Fn(&ExplainedStep) -> Vec<(String, String)>,
+    mut on_step: impl FnMut(&ExplainedStep, &crate::check::explanation::ExplainedState<W::State>),
+) -> Replayed {
+    use crate::check::model::Model;
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    let Some(mut state) = model.init_states().into_iter().find(|s| s.state == start) else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    let place = f.location.as_ref().map(|l| (l.file.as_str(), l.line));
+    let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
+    let next = |s: &crate::check::explanation::ExplainedState<W::State>| model.next_states(s);
+    let run = find_run(&state, recorded, &next, shown);
+    // Steps shown so far.
+    let mut at = 0;
     for turn in 0..recorded.len() + 64 + run.as_ref().map_or(0, Vec::len) {
         let succ = model.next_states(&state);
         if succ.is_empty() {
             break;
         }
-        let at = builder.steps().len();
         let pick = match run.as_ref().and_then(|r| r.get(turn)) {
             Some(&k) => k,
-            None => succ
-                .iter()
-                .position(|(step, _)| {
-                    follows(
-                        project,
-                        sem,
-                        &step.notes,
-                        &recorded[at.min(recorded.len())..],
-                    )
-                })
-                .unwrap_or(0),
+            None => {
+                let rest = &recorded[at.min(recorded.len())..];
+                succ.iter()
+                    .position(|(step, _)| {
+                        let steps = shown(step);
+                        !steps.is_empty()
+                            && steps.iter().enumerate().all(|(i, (kind, text))| {
+                                rest.get(i).is_some_and(|(k, t)| kind == k && text == t)
+                            })
+                    })
+                    .unwrap_or(0)
+            }
         };
         let (step, next) = succ.into_iter().nth(pick).expect("a successor was picked");
-        builder.push(step.notes.clone());
-        walked.push(Walked {
-            notes: step.notes.clone(),
-            state: next.agent.clone(),
-        });
+        at += shown(&step).len();
+        on_step(&step, &next);
         let hit = step.violations.iter().any(|v| {
             let loc = project.map.location(v.span);
             v.check == f.check
@@ -593,7 +662,7 @@ fn replay_explained(
             return Replayed {
                 id: f.id.clone(),
                 reached: true,
-                detail: format!("reached after {} steps", builder.steps().len()),
+                detail: format!("reached after {at} steps"),
             };
         }
         state = next;
@@ -944,6 +1013,9 @@ fn replay_system_one(
     else {
         return no("its initial state is no longer an initial state of the project");
     };
+    if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
+        return replay_system_explained(agents, system, f, c, state);
+    }
     let check = Check::of(project, f, system.names());
     let kinds: Vec<String> = c
         .steps

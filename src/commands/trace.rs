@@ -51,7 +51,7 @@ fn build(project: &Project, sem: &Semantics, w: &Walk) -> Trace {
         .collect();
     let mut views: Vec<Option<ExplainedState>> = models
         .iter()
-        .map(|m| m.init_states().into_iter().find(|s| s.agent == w.initial))
+        .map(|m| m.init_states().into_iter().find(|s| s.state == w.initial))
         .collect();
     let expected = |views: &[Option<ExplainedState>]| -> Vec<ExpectedView> {
         users
@@ -80,7 +80,7 @@ fn build(project: &Project, sem: &Semantics, w: &Walk) -> Trace {
             *v = v.take().and_then(|s| {
                 m.next_states(&s)
                     .into_iter()
-                    .find(|(step, n)| step.notes == t.notes && n.agent == t.state)
+                    .find(|(step, n)| step.notes == t.notes && n.state == t.state)
                     .map(|(_, n)| n)
             });
         }

@@ -187,6 +187,40 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
             }
         }
     }
+    // The robot whose actions the users of `[explanation]` watch: an agent of the
+    // project, and named whenever there are several.
+    if let Some(ex) = &manifest.explanation {
+        let names = || -> String {
+            let names: Vec<String> = named.iter().map(|(n, _, _)| format!("`{n}`")).collect();
+            names.join(", ")
+        };
+        match &ex.robot {
+            Some(r) if !named.iter().any(|(n, _, _)| *n == r.value) => {
+                errors.push(
+                    Diagnostic::error("input", format!("no agent is named `{}`", r.value))
+                        .with_label(r.span, "the robot the users watch")
+                        .with_help(format!("the agents are {}", names())),
+                );
+                return fail(map, errors);
+            }
+            None if named.len() > 1 => {
+                errors.push(
+                    Diagnostic::error(
+                        "input",
+                        "`[explanation]` of a project of several agents must name the robot whose actions its users watch",
+                    )
+                    .with_label(ex.span, "no `robot` in this section")
+                    .with_help(format!(
+                        "add `robot = \"{}\"` (the agents are {})",
+                        named[0].0,
+                        names()
+                    )),
+                );
+                return fail(map, errors);
+            }
+            _ => {}
+        }
+    }
     // Each file is read once; instances share it.
     let mut loaded: Vec<(std::path::PathBuf, LoadedAgent)> = Vec::new();
     for (_, _, f) in &named {

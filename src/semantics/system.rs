@@ -182,14 +182,14 @@ impl<'p> System<'p> {
         out
     }
 
-    /// One reasoning cycle of agent `k` (enabled or not: an agent with nothing to do
-    /// has one outcome, which changes nothing), one successor per outcome.
-    pub fn cycle_of(&self, s: &SystemState, k: usize) -> Vec<(Step, SystemState)> {
+    /// The sense that begins a cycle of agent `k` (`TransitionSystem.sense`): perception
+    /// first (`Agent.buf`: what changed in the environment since its last sense), then one
+    /// message (`checkMail`). The agent after it, its mailbox left, and what it did.
+    fn sense(&self, s: &SystemState, k: usize) -> (State, Vec<Message>, Vec<Note>) {
         let sem = &self.agents[k];
         let mut agent = s.agents[k].clone();
         let mut mail = s.mail[k].clone();
         let mut before = Vec::new();
-        // Sense: perception first (`Agent.buf`), then one message.
         let env_before = sem.env_count(&agent.beliefs);
         let (mut added, mut removed) = (Vec::new(), Vec::new());
         for a in sem.env_atoms.iter() {
@@ -215,6 +215,24 @@ impl<'p> System<'p> {
             let m = mail.remove(0);
             before.extend(sem.receive(&mut agent, &m));
         }
+        (agent, mail, before)
+    }
+
+    /// Agent `k`'s beliefs after the sense that begins its next cycle in `s`, when that
+    /// sense perceives or reads something (the cycle's notes then begin with what it
+    /// did); `None` when it has nothing to perceive or read.
+    pub fn sensed(&self, s: &SystemState, k: usize) -> Option<AtomSet> {
+        if s.mail[k].is_empty() && !self.unperceived(s, k) {
+            return None;
+        }
+        Some(self.sense(s, k).0.beliefs)
+    }
+
+    /// One reasoning cycle of agent `k` (enabled or not: an agent with nothing to do
+    /// has one outcome, which changes nothing), one successor per outcome.
+    pub fn cycle_of(&self, s: &SystemState, k: usize) -> Vec<(Step, SystemState)> {
+        let sem = &self.agents[k];
+        let (agent, mail, before) = self.sense(s, k);
         let perceived = agent.beliefs.clone();
         let transitions = if agent.is_idle() {
             vec![Transition {

@@ -11,8 +11,8 @@
 //! goal that names another), each reported with its run renamed, as the full search would.
 //!
 //! The checks that follow runs for ever (`livelock`, `request-not-completed`, `eventually`)
-//! are [`liveness`]'s, on a search of every interleaving. Not yet for several agents,
-//! and refused where written: the explanation checks.
+//! are [`liveness`]'s, on a search of every interleaving. The explanation properties are
+//! [`super::explanation`]'s, on every interleaving as the users watching the robot see it.
 
 use super::explore::{explore_with, Graph, Limits, Options, Walk};
 use super::model::{beyond_of, Model};
@@ -242,16 +242,6 @@ pub fn verify_system(
                 .with_label(*span, "this formula"),
             );
         }
-    }
-    if project.manifest.explanation.is_some() {
-        errors.push(
-            Diagnostic::error(
-                "input",
-                "the explanation checks of a project of several agents are not supported yet",
-            )
-            .in_file(project.manifest.path.display().to_string())
-            .with_help("leave `[explanation]` out of this manifest"),
-        );
     }
     if !errors.is_empty() {
         return Err(errors);
@@ -626,6 +616,21 @@ pub fn verify_system(
             None => {}
         }
     }
+    // The explanation properties: one more search per user, of every interleaving (no
+    // reduction: the user sees every step of the robot), each state paired with what the
+    // user has seen of the robot.
+    let left = Limits {
+        timeout: limits
+            .timeout
+            .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
+        ..limits
+    };
+    let explore_opts = Options {
+        threads,
+        keep_edges: false,
+        ..Options::default()
+    };
+    all.extend(super::explanation::verify_among(projects, &system, left, &explore_opts)?.0);
     let mut v = Verification::of(&graph, project, all);
     if let Some((states, seconds)) = liveness_search {
         let st = &mut v.stats;

@@ -420,30 +420,34 @@ impl<'a> Cx<'a> {
             }
         }
         for (key, field) in [("from", &mut out.from), ("to", &mut out.to)] {
-            let Some(v) = t.get(key) else { continue };
-            let Some(name) = self.string(v, &format!("`requests.{key}`")) else {
-                continue;
-            };
-            let ok = name
-                .value
-                .chars()
-                .next()
-                .is_some_and(|c| c.is_ascii_lowercase())
-                && name
-                    .value
-                    .chars()
-                    .all(|c| c.is_ascii_alphanumeric() || c == '_');
-            if ok {
-                *field = Some(name);
-            } else {
-                self.err(
-                    v.span(),
-                    format!("`{}` is not an agent name", name.value),
-                    "expected a Jason atom such as `owner`",
-                );
+            if let Some(v) = t.get(key) {
+                *field = self.agent_name(v, &format!("`requests.{key}`"));
             }
         }
         out
+    }
+
+    /// A string that names an agent (a Jason atom), or an error at it.
+    fn agent_name(&mut self, v: &Spanned<DeValue>, what: &str) -> Option<Located<String>> {
+        let name = self.string(v, what)?;
+        let ok = name
+            .value
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_lowercase())
+            && name
+                .value
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if ok {
+            return Some(name);
+        }
+        self.err(
+            v.span(),
+            format!("`{}` is not an agent name", name.value),
+            "expected a Jason atom such as `owner`",
+        );
+        None
     }
 
     pub(super) fn invariants(&mut self, root: &DeTable) -> Vec<Invariant> {
@@ -561,9 +565,18 @@ impl<'a> Cx<'a> {
     }
 
     fn explanation(&mut self, root: &DeTable) -> Option<ExplanationSection> {
-        const KEYS: &[&str] = &["modifies", "emitted_by", "phrases", "users"];
+        const KEYS: &[&str] = &["robot", "modifies", "emitted_by", "phrases", "users"];
         let t = self.section(root, "explanation", KEYS)?;
         let mut out = ExplanationSection::default();
+        if let Some((k, _)) = entries(root)
+            .into_iter()
+            .find(|(k, _)| k.get_ref() == "explanation")
+        {
+            out.span = self.span(k.span());
+        }
+        if let Some(v) = t.get("robot") {
+            out.robot = self.agent_name(v, "`explanation.robot`");
+        }
         if let Some(v) = t.get("modifies") {
             match self.choice(v, "`explanation.modifies`", &["syntactic", "semantic"]) {
                 Some(0) => out.modifies = Modifies::Syntactic,

@@ -223,6 +223,11 @@ pub struct User {
 /// `[explanation]`. Optional as a whole: without it no explanation property is checked.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct ExplanationSection {
+    /// Where the manifest opens the section (its `explanation` key).
+    pub span: Span,
+    /// `robot`: the agent whose actions the users watch. Required in a project of several
+    /// agents; in a project of one, it may be left out, or must name that agent.
+    pub robot: Option<Located<String>>,
     /// `modifies`. Default [`Modifies::Syntactic`].
     pub modifies: Modifies,
     /// `emitted_by`: the action with which the agent explains itself. Default: none (no
