@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 mod common;
-use common::{bdi_check, steps, verify_json};
+use common::{agent_steps, bdi_check, steps, verify_json};
 
 const CHECKS: [&str; 5] = [
     "demand-exact",
@@ -347,23 +347,6 @@ fn two_robots_with(
         .replace("\"../two-robots/", &shared);
     std::fs::write(dir.join("bdi-check.toml"), edit(toml, manifest)).unwrap();
     dir.to_str().unwrap().to_string()
-}
-
-/// A counterexample's steps as `agent kind text`.
-fn agent_steps(f: &serde_json::Value) -> Vec<String> {
-    f["counterexample"]["steps"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|s| {
-            format!(
-                "{} {} {}",
-                s["agent"].as_str().unwrap_or("?"),
-                s["kind"].as_str().unwrap(),
-                s["text"].as_str().unwrap()
-            )
-        })
-        .collect()
 }
 
 /// The failing finding of `check` for `user` in the report of `project` (exit 1), whose

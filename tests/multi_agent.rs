@@ -3,7 +3,7 @@
 //! with runs whose steps name their agents; bad project files are located.
 
 mod common;
-use common::{bdi_check, temp_dir, verify_json};
+use common::{agent_steps, bdi_check, temp_dir, verify_json};
 
 fn failing<'a>(r: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json::Value> {
     r["findings"]
@@ -11,23 +11,6 @@ fn failing<'a>(r: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json::Val
         .unwrap()
         .iter()
         .filter(|f| f["check"] == check && f["status"] == "fail")
-        .collect()
-}
-
-/// A counterexample's steps as `agent kind text`.
-fn agent_steps(f: &serde_json::Value) -> Vec<String> {
-    f["counterexample"]["steps"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|s| {
-            format!(
-                "{} {} {}",
-                s["agent"].as_str().unwrap(),
-                s["kind"].as_str().unwrap(),
-                s["text"].as_str().unwrap()
-            )
-        })
         .collect()
 }
 

@@ -67,6 +67,24 @@ pub fn report_json(args: &[&str], tag: &str) -> (i32, serde_json::Value, std::pa
     )
 }
 
+/// A counterexample's steps as `agent kind text` (`?` for a step that names no agent).
+#[allow(dead_code)] // not every test target reads runs of several agents
+pub fn agent_steps(f: &serde_json::Value) -> Vec<String> {
+    f["counterexample"]["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            format!(
+                "{} {} {}",
+                s["agent"].as_str().unwrap_or("?"),
+                s["kind"].as_str().unwrap(),
+                s["text"].as_str().unwrap()
+            )
+        })
+        .collect()
+}
+
 /// A finding's counterexample as `kind text` lines.
 #[allow(dead_code)] // not every test target reads counterexamples
 pub fn steps(f: &serde_json::Value) -> Vec<String> {

@@ -666,21 +666,9 @@ impl Instances {
 
     /// The canonical member of `s`'s class and its fingerprint (`None`: `s` itself).
     pub fn canonical(&self, s: &SystemState) -> (u64, Option<SystemState>) {
-        let candidates = self.candidates(s);
-        if let [p] = candidates.as_slice() {
-            if p.iter().enumerate().all(|(i, &x)| x as usize == i) {
-                return (fingerprint(s), None);
-            }
-        }
-        let (fp, c) = candidates
-            .iter()
-            .map(|p| {
-                let c = self.apply(s, p);
-                (fingerprint(&c), c)
-            })
-            .min_by_key(|(fp, _)| *fp)
-            .expect("at least one candidate");
-        (fp, Some(c))
+        let (fp, p) = self.canonical_renaming(s);
+        let identity = p.iter().enumerate().all(|(i, &x)| x as usize == i);
+        (fp, (!identity).then(|| self.apply(s, &p)))
     }
 
     /// The fingerprint of `s`'s canonical member and the renaming that takes `s` to it
@@ -701,7 +689,7 @@ impl Instances {
 
     /// The fingerprint `s` is stored under: its canonical member's.
     pub fn fingerprint(&self, s: &SystemState) -> u64 {
-        self.canonical(s).0
+        self.canonical_renaming(s).0
     }
 
     /// Whether the system treats the instances alike at `s`: for each generator `g` of
