@@ -8,7 +8,8 @@
 //! bdi-check's rendering ([`crate::syntax::source::KQML_PLANS`], the file
 //! [`FileId::KQML`]) has Jason's triggers, labels, contexts and number of steps; where
 //! Jason's plans use namespaces and the `kqml::` rules, it calls internal actions of
-//! bdi-check's own (`.kqml_answer`, `.kqml_answers`, `.kqml_untell`, `.kqml_error`), which
+//! bdi-check's own (`.kqml_answer`, `.kqml_answers`, `.kqml_untell`, `.kqml_error`,
+//! `.kqml_tell_how`, `.kqml_untell_how`, `.kqml_relevant_plans`), which
 //! the reasoning cycle implements and an agent's own code cannot call.
 
 use super::from_ast::Converter;
@@ -24,6 +25,9 @@ pub const OWN_ACTIONS: &[&str] = &[
     ".kqml_answers",
     ".kqml_untell",
     ".kqml_error",
+    ".kqml_tell_how",
+    ".kqml_untell_how",
+    ".kqml_relevant_plans",
 ];
 
 /// The plans, in Jason's order, each numbered from 0 (an agent's library gives them the
@@ -102,13 +106,19 @@ mod tests {
                 "kqmlReceivedAskOne1c",
                 "kqmlReceivedAskOne2",
                 "kqmlReceivedAskAll2",
+                "kqmlReceivedTellHow",
+                "kqmlReceivedUnTellHow",
+                "kqmlReceivedAskHow",
                 "kqmlError"
             ]
         );
         let steps: Vec<usize> = plans.iter().map(|p| p.body.len()).collect();
-        assert_eq!(steps, [1, 1, 1, 4, 1, 2, 1]);
+        assert_eq!(steps, [1, 1, 1, 4, 1, 2, 2, 1, 3, 1]);
         let atomic: Vec<bool> = plans.iter().map(|p| p.atomic).collect();
-        assert_eq!(atomic, [true, true, false, false, false, false, false]);
+        assert_eq!(
+            atomic,
+            [true, true, false, false, false, false, false, false, false, false]
+        );
         assert!(plans.iter().all(|p| p.span.file == FileId::KQML));
     }
 }

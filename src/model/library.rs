@@ -11,13 +11,16 @@
 //! variable or a string, a variable the added plan shares with the plan that adds it (Jason
 //! gives the added plan its value at run time), a label or source that is not an atom.
 
+use super::from_ast::Converter;
+use super::know_how::KnowHow;
 use super::plans::{compile_plan, BodyStep, Formula, Plan, Step};
 use super::term::Term;
 use crate::syntax::ast::{
-    self, ClearSpans, Expr, ExprKind, Item, ListExpr, Literal, PlanTermKind, StepKind,
+    self, ClearSpans, Expr, ExprKind, Item, ListExpr, Literal, PlanTermKind, StepKind, TriggerKind,
+    TriggerOp,
 };
 use crate::syntax::{Diagnostic, LoadedAgent, Span};
-use std::collections::{BTreeSet, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashSet};
 
 /// A change of the plan library made by one body step.
 #[derive(Clone, Debug, PartialEq)]
@@ -63,6 +66,14 @@ pub struct LibraryChanges {
     /// The added plans some step adds at the beginning (the others always go after the
     /// agent's own plans).
     pub at_begin: BTreeSet<u32>,
+    /// The plans other agents may tell this one (`tellHow`, or the answer of its
+    /// `askHow`), by the key their messages carry (see [`super::know_how`]).
+    pub told: BTreeMap<String, u32>,
+    /// The triggers other agents may ask this one the plans of (`askHow`), by key: the
+    /// trigger's operator, kind and literal.
+    pub asked: BTreeMap<String, (TriggerOp, TriggerKind, Term)>,
+    /// The keys of the agent's own plans an `askHow` may answer with, by plan.
+    pub answers: BTreeMap<u32, String>,
 }
 
 impl LibraryChanges {
@@ -82,6 +93,11 @@ pub(super) struct Collector {
     removed: BTreeSet<String>,
     at_begin: BTreeSet<u32>,
     used: bool,
+    told: BTreeMap<String, u32>,
+    asked: BTreeMap<String, (TriggerOp, TriggerKind, Term)>,
+    answers: BTreeMap<u32, String>,
+    /// The added plans that answer an `askHow`: their variables are anonymous.
+    anonymous: BTreeSet<u32>,
 }
 
 /// A label of Jason's own making (`PlanLibrary.getUniqueLabel`): a plan it labels cannot be
@@ -124,6 +140,10 @@ impl Collector {
             removed: BTreeSet::new(),
             at_begin: BTreeSet::new(),
             used: false,
+            told: BTreeMap::new(),
+            asked: BTreeMap::new(),
+            answers: BTreeMap::new(),
+            anonymous: BTreeSet::new(),
         }
     }
 
@@ -362,6 +382,50 @@ impl Collector {
         })
     }
 
+    /// What other agents may tell, untell and ask this library (see [`super::know_how`]):
+    /// the told plans compiled as added plans, every agent a source they may have.
+    pub(super) fn know_how(&mut self, kh: &KnowHow) -> Result<(), Diagnostic> {
+        if kh.is_empty() && kh.answers.is_empty() {
+            return Ok(());
+        }
+        self.used = true;
+        for name in &kh.agents {
+            if !self.sources.contains(name) {
+                self.sources.push(name.clone());
+            }
+        }
+        if self.sources.len() > 64 {
+            let span = kh.told.first().map_or(Span::default(), |t| t.plan.span);
+            return Err(refuse(
+                span,
+                "more than 64 plan sources (agents) are not modelled",
+                "told here",
+            ));
+        }
+        for t in &kh.told {
+            let i = self.plan_term(&t.plan, t.plan.span)?;
+            if t.answer {
+                self.anonymous.insert(i);
+            }
+            self.told.insert(t.key.clone(), i);
+        }
+        self.removed.extend(kh.untold.iter().cloned());
+        for a in &kh.asked {
+            let ExprKind::Literal(l) = &a.trigger.literal.kind else {
+                continue;
+            };
+            let literal = Converter::for_plans()
+                .literal(l)
+                .map_err(super::plans::convert_error)?;
+            self.asked
+                .insert(a.key.clone(), (a.trigger.op, a.trigger.kind, literal));
+        }
+        for (i, key) in &kh.answers {
+            self.answers.insert(*i as u32, key.clone());
+        }
+        Ok(())
+    }
+
     /// `plan` was just compiled, and the added plans from `first` on were met inside it:
     /// none of them may share a variable with it (Jason's `Plan.capply` gives an added plan
     /// the adding plan's bindings when the step runs).
@@ -456,7 +520,11 @@ impl Collector {
         }
         let shapes: Vec<Shape> = syntax
             .enumerate()
-            .map(|(i, p)| Shape::of(p, i >= plans.len()))
+            .map(|(i, p)| {
+                let mut shape = Shape::of(p, i >= plans.len());
+                shape.unnamed |= self.anonymous.contains(&(i as u32));
+                shape
+            })
             .collect();
         let n = plans.len();
         // A plan with an unnamed variable (`_`, `_X`) equals only itself: each occurrence
@@ -465,7 +533,9 @@ impl Collector {
             .map(|d| {
                 (0..shapes.len())
                     .filter(|&p| {
-                        p == d
+                        // An `askHow`'s answer is a new copy each time
+                        // (`Plan.makeVarsAnnon`): not even equal to the last one.
+                        p == d && !self.anonymous.contains(&(d as u32))
                             || !shapes[d].unnamed
                                 && !shapes[p].unnamed
                                 && shapes[d].equals(&shapes[p])
@@ -486,6 +556,9 @@ impl Collector {
                 equal,
                 removed: self.removed,
                 at_begin: self.at_begin,
+                told: self.told,
+                asked: self.asked,
+                answers: self.answers,
             }),
         ))
     }

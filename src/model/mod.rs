@@ -21,6 +21,7 @@ pub mod from_ast;
 pub mod ground;
 pub mod initial;
 pub mod internal;
+pub mod know_how;
 pub mod kqml;
 pub mod library;
 pub mod plans;

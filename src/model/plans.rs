@@ -9,6 +9,7 @@
 //! users cannot write such functors unquoted, so they never clash with a literal.
 
 use super::from_ast::{ConvertError, Converter};
+use super::know_how::KnowHow;
 use super::library::{changes_library, Collector, LibraryChange, LibraryChanges};
 use super::term::Term;
 use crate::syntax::ast::{
@@ -207,7 +208,13 @@ impl PlanLibrary {
     /// [`super::library`]). Constructs the model checker does not model (forks, goal
     /// conditions, sub-plans, plans added that are not written in the step) are refused with
     /// a located error.
-    pub fn compile(agent: &LoadedAgent) -> Result<PlanLibrary, Vec<Diagnostic>> {
+    ///
+    /// `know_how` is what other agents may tell, untell and ask it
+    /// ([`super::know_how::collect`]; empty for an agent alone).
+    pub fn compile(
+        agent: &LoadedAgent,
+        know_how: &KnowHow,
+    ) -> Result<PlanLibrary, Vec<Diagnostic>> {
         let mut lib = PlanLibrary::default();
         let mut errors = Vec::new();
         let items = agent.items();
@@ -242,6 +249,9 @@ impl PlanLibrary {
                 _ => {}
             }
         }
+        if let Err(d) = added.know_how(know_how) {
+            errors.push(d);
+        }
         errors.extend(added.refusals(agent, &lib.plans));
         if !errors.is_empty() {
             return Err(errors);
@@ -249,6 +259,33 @@ impl PlanLibrary {
         let (more, changes) = added.finish(agent, &lib.plans)?;
         lib.plans.extend(more);
         lib.changes = changes;
+        // An `askHow` is answered with the plans the receiver holds then: they must be
+        // fixed, as the asker's library holds each answer compiled.
+        for a in &know_how.asked {
+            let changing = (0..lib.plans.len()).find(|&i| {
+                lib.may_change(i) && {
+                    let p = &lib.plans[i];
+                    p.trigger.op == a.trigger.op
+                        && p.trigger.kind == a.trigger.kind
+                        && matches!(&a.trigger.literal.kind, ExprKind::Literal(l)
+                            if p.trigger.literal.functor() == Some(l.functor.as_str())
+                                && p.trigger.literal.arity() == l.args.len())
+                }
+            });
+            if let Some(i) = changing {
+                errors.push(
+                    Diagnostic::error(
+                        "input",
+                        "`askHow` of plans the receiver may add or remove at run time is not modelled",
+                    )
+                    .with_label(a.span, "asks for them")
+                    .with_secondary(lib.plans[i].span, "may be added or removed"),
+                );
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
         Ok(lib)
     }
 
@@ -267,6 +304,20 @@ impl PlanLibrary {
                     .as_ref()
                     .is_some_and(|l| c.removed.contains(l))
         })
+    }
+
+    /// Whether plans `i` and `j` can never be in the library at once: Jason's
+    /// `PlanLibrary` holds one plan per label (adding a second throws), and a plan equal to
+    /// one it holds is not added again (the held one gets the source).
+    pub fn never_together(&self, i: usize, j: usize) -> bool {
+        let Some(c) = &self.changes else {
+            return false;
+        };
+        let same_label =
+            self.plans[i].label.is_some() && self.plans[i].label == self.plans[j].label;
+        let equal =
+            |a: usize, b: usize| c.is_added(a) && c.equal[a - c.initial].contains(&(b as u32));
+        (c.is_added(i) || c.is_added(j)) && (same_label || equal(i, j) || equal(j, i))
     }
 
     /// Whether some step adds plan `i` at the beginning of the library (before the agent's
@@ -400,6 +451,51 @@ pub(crate) fn is_atomic_label(label: &ast::Label) -> bool {
                 && l.namespace.is_none())
         })
     })
+}
+
+/// A `.send` or `.broadcast` of `tellHow`, `untellHow` or `askHow`: its content as the
+/// message carries it, the keys of the plans or of the trigger (see
+/// [`super::know_how`]), or the labels.
+fn know_how_send(c: &mut Converter, l: &ast::Literal, span: Span) -> Result<Term, Diagnostic> {
+    use super::know_how::{asked_trigger, told_plans, trigger_key, untold_labels};
+    let (performative, _, content) =
+        super::know_how::know_how_message(l).expect("a know-how message");
+    let content = match performative {
+        "tellHow" => {
+            let keys: Vec<Term> = told_plans(content)?
+                .iter()
+                .map(|(key, _)| Term::string(key))
+                .collect();
+            match content.kind {
+                ExprKind::List(_) => Term::list(keys),
+                _ => keys.into_iter().next().expect("one plan"),
+            }
+        }
+        "untellHow" => {
+            let labels: Vec<Term> = untold_labels(content)?
+                .iter()
+                .map(|l| Term::atom(l))
+                .collect();
+            match content.kind {
+                ExprKind::List(_) => Term::list(labels),
+                _ => labels.into_iter().next().expect("one label"),
+            }
+        }
+        _ => Term::string(&trigger_key(&asked_trigger(content)?)),
+    };
+    let at = if l.functor == ".send" { 2 } else { 1 };
+    let mut args = Vec::with_capacity(l.args.len());
+    for (i, a) in l.args.iter().enumerate() {
+        args.push(if i == at {
+            content.clone()
+        } else {
+            c.term(a).map_err(convert_error)?
+        });
+    }
+    if l.annots.is_some() || l.namespace.is_some() {
+        return Err(unsupported(span, "annotated `.send` steps"));
+    }
+    Ok(Term::structure(&l.functor, args))
 }
 
 /// A term, or an arithmetic expression kept as an operator structure.
@@ -566,6 +662,12 @@ fn steps(
                 kind: ExprKind::Literal(l),
                 ..
             }) if l.functor == ".wait" => wait(c, l)?,
+            StepKind::Action(Expr {
+                kind: ExprKind::Literal(l),
+                span,
+            }) if super::know_how::know_how_message(l).is_some() => {
+                BodyStep::Internal(know_how_send(c, l, *span)?)
+            }
             StepKind::Action(e) => {
                 let t = lit(c, e)?;
                 match &e.kind {

@@ -244,6 +244,19 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
         Ok(u) => u,
         Err(d) => return fail(map, d),
     };
+    // What the agents may tell, untell and ask each other's plans (`tellHow`, ...).
+    let files: Vec<&LoadedAgent> = loaded.iter().map(|(_, a)| a).collect();
+    let agents: Vec<(String, usize)> = named
+        .iter()
+        .map(|(n, _, f)| {
+            let file = loaded.iter().position(|(p, _)| *p == f.path).unwrap_or(0);
+            (n.clone(), file)
+        })
+        .collect();
+    let know_how = match super::know_how::collect(&files, &agents) {
+        Ok(k) => k,
+        Err(d) => return fail(map, d),
+    };
     let all_items: Vec<&Item> = loaded.iter().flat_map(|(_, a)| a.items()).collect();
     let vocabulary = match vocabulary::check_items(&all_items, &domain, &manifest, &universe, &map)
     {
@@ -251,8 +264,8 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
         Err(d) => return fail(map, d),
     };
     let mut libraries = Vec::new();
-    for (_, a) in &loaded {
-        match PlanLibrary::compile(a) {
+    for ((_, a), kh) in loaded.iter().zip(&know_how) {
+        match PlanLibrary::compile(a, kh) {
             Ok(p) => libraries.push(p),
             Err(d) => errors.extend(d),
         }

@@ -206,17 +206,26 @@ pub enum Performative {
     AskOne,
     /// `askAll q`: the receiver answers with the list of every belief that unifies.
     AskAll,
+    /// `tellHow p`: the receiver adds the plans, with the sender as their source.
+    TellHow,
+    /// `untellHow l`: the sender is no longer a source of the receiver's plans labelled so.
+    UntellHow,
+    /// `askHow t`: the receiver tells back its plans relevant for the trigger.
+    AskHow,
 }
 
 impl Performative {
     /// Every performative bdi-check delivers.
-    pub const ALL: [Performative; 6] = [
+    pub const ALL: [Performative; 9] = [
         Performative::Achieve,
         Performative::Tell,
         Performative::Untell,
         Performative::Unachieve,
         Performative::AskOne,
         Performative::AskAll,
+        Performative::TellHow,
+        Performative::UntellHow,
+        Performative::AskHow,
     ];
 
     /// Its name, as a `.send` writes it.
@@ -228,6 +237,9 @@ impl Performative {
             Performative::Unachieve => "unachieve",
             Performative::AskOne => "askOne",
             Performative::AskAll => "askAll",
+            Performative::TellHow => "tellHow",
+            Performative::UntellHow => "untellHow",
+            Performative::AskHow => "askHow",
         }
     }
 

@@ -311,6 +311,7 @@ impl Semantics<'_> {
                 BodyStep::Constraint(..) => "constraint_failed",
                 // A JasonException's default error (`JasonException.defaultError`).
                 BodyStep::Library { .. } => "internal_action",
+                BodyStep::Internal(t) if t.functor() == Some(".kqml_tell_how") => "internal_action",
                 BodyStep::AddBel(_) | BodyStep::DelBel(_) | BodyStep::DelAddBel(_) => {
                     "belief_revision_failed"
                 }
@@ -655,6 +656,58 @@ impl Semantics<'_> {
                                 },
                             );
                         }
+                    }
+                    f @ (".kqml_tell_how" | ".kqml_untell_how") => {
+                        // `.add_plan(Content, Sender)` and `.remove_plan(Content, Sender)`
+                        // of Jason's plans for messages: the plans are compiled (see
+                        // `model::know_how`), the content names them.
+                        let change = match self.know_how_change(f, &term) {
+                            Ok(c) => c,
+                            Err(reason) => {
+                                notes.push(Note::Beyond {
+                                    text,
+                                    plan,
+                                    span: step.span,
+                                    reason,
+                                });
+                                return Flow::Gone;
+                            }
+                        };
+                        notes.push(Note::Internal {
+                            text: text.clone(),
+                            plan,
+                            origin,
+                        });
+                        if let Err(why) = self.change_library(s, &change) {
+                            let int = std::mem::replace(int, empty_intention(origin));
+                            return fail(self, s, int, &text, why, notes);
+                        }
+                        self.normalize(frame);
+                        return Flow::Continue;
+                    }
+                    ".kqml_relevant_plans" => {
+                        // `.relevant_plans(Trigger, Plans)`, each plan as its key.
+                        let plans = match self.relevant_keys(s, &term.args()[0]) {
+                            Ok(p) => p,
+                            Err(reason) => {
+                                notes.push(Note::Beyond {
+                                    text,
+                                    plan,
+                                    span: step.span,
+                                    reason,
+                                });
+                                return Flow::Gone;
+                            }
+                        };
+                        let mut u = frame.subst.clone();
+                        if !unify(&term.args()[1], &plans, &mut u) {
+                            no_answer!(text);
+                        }
+                        frame.subst = u;
+                        let text = frame.subst.apply(t).to_string();
+                        notes.push(Note::Internal { text, plan, origin });
+                        self.normalize(frame);
+                        return Flow::Continue;
                     }
                     ".kqml_error" => {
                         notes.push(Note::Printed(

@@ -29,10 +29,21 @@ impl Semantics<'_> {
         reason: &str,
         notes: &mut Vec<Note>,
     ) {
-        let fail = ev
-            .intention
-            .as_ref()
-            .and_then(|int| self.find_event_for_failure(s.library.as_deref(), int, &ev.trigger));
+        let lib = s.library.as_deref();
+        let fail = match &ev.intention {
+            Some(int) => self.find_event_for_failure(lib, int, &ev.trigger),
+            // `TransitionSystem.findEventForFailure` of an external goal (`EmptyInt`): `-!g`
+            // when the library has a candidate plan for it.
+            None => {
+                let del = EventTrigger {
+                    op: TriggerOp::Del,
+                    kind: ev.trigger.kind,
+                    literal: ev.trigger.literal.clone(),
+                };
+                (ev.trigger.kind != TriggerKind::Belief && !self.relevant_in(lib, &del).is_empty())
+                    .then_some(del)
+            }
+        };
         let error = if self
             .relevant_in(s.library.as_deref(), &ev.trigger)
             .is_empty()
@@ -42,11 +53,11 @@ impl Semantics<'_> {
             "no_applicable"
         };
         match (fail, ev.intention) {
-            (Some(fail), Some(int)) => self.post_event(
+            (Some(fail), int) => self.post_event(
                 s,
                 Event {
                     trigger: with_error(fail, (error, &[]), self.line_of(ev.posted_at)),
-                    intention: Some(int),
+                    intention: int,
                     origin: ev.origin,
                     posted_at: ev.posted_at,
                 },

@@ -124,6 +124,104 @@ impl Semantics<'_> {
         result
     }
 
+    /// The change `.kqml_tell_how(Content, Sender)` or `.kqml_untell_how(Content, Sender)`
+    /// (`term`, evaluated) makes: Jason's `.add_plan(Content, Sender)` of the plans the
+    /// content's keys name, or `.remove_plan(Content, Sender)` of its labels.
+    pub(super) fn know_how_change(&self, f: &str, term: &Term) -> Result<LibraryChange, String> {
+        let [content, sender] = term.args() else {
+            unreachable!("the kqml plans give two arguments")
+        };
+        let ch = self.project.plans.changes.as_ref();
+        let name = sender.functor().unwrap_or_default();
+        let source = ch
+            .and_then(|c| c.sources.iter().position(|n| n == name))
+            .ok_or_else(|| format!("`{sender}` is not an agent that may tell this one plans"))?
+            as u32;
+        let items = match content.list_elements() {
+            Some((elems, None)) => elems,
+            Some(_) => return Err(format!("the content `{content}` is not a list")),
+            None => vec![content.clone()],
+        };
+        if f == ".kqml_untell_how" {
+            let labels = items
+                .iter()
+                .map(|t| match t {
+                    Term::Atom(l) => Ok(l.to_string()),
+                    Term::Str(l) if l.starts_with('@') => Ok(l[1..].to_string()),
+                    _ => Err(format!("`{t}` is not a plan's label")),
+                })
+                .collect::<Result<_, _>>()?;
+            return Ok(LibraryChange::Remove { labels, source });
+        }
+        let plans = items
+            .iter()
+            .map(|t| match t {
+                Term::Str(key) => ch.and_then(|c| c.told.get(&**key)).copied().ok_or_else(|| {
+                    format!("the plan {t} was not compiled for this agent (it is told in a way bdi-check does not follow)")
+                }),
+                _ => Err(format!("`{t}` is not a plan")),
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(LibraryChange::Add {
+            plans,
+            source,
+            begin: false,
+        })
+    }
+
+    /// `.relevant_plans(Trigger, Plans)` for the trigger an `askHow` names by its key: the
+    /// plans of the library of `s` whose trigger unifies with it (a `source(_)` added when
+    /// it has none), in the library's order, each as its key.
+    pub(super) fn relevant_keys(&self, s: &State, key: &Term) -> Result<Term, String> {
+        let ch = self.project.plans.changes.as_ref();
+        let asked = match key {
+            Term::Str(k) => ch.and_then(|c| c.asked.get(&**k)),
+            _ => None,
+        };
+        let Some((op, kind, literal)) = asked else {
+            return Err(format!("the trigger {key} was not compiled for this agent"));
+        };
+        // Apart from the plans' variables (`Plan.makeVarsAnnon` of the event's copy).
+        let literal = literal.rename_apart(crate::model::term::MESSAGE_GENERATION);
+        let literal = if literal
+            .annots()
+            .iter()
+            .any(|a| a.functor() == Some("source"))
+        {
+            literal
+        } else {
+            let var = Term::var("Src").rename_apart(crate::model::term::MESSAGE_GENERATION + 1);
+            let source = Term::structure("source", vec![var]);
+            literal.add_annots([source]).unwrap_or(literal)
+        };
+        let trigger = EventTrigger {
+            op: *op,
+            kind: *kind,
+            literal,
+        };
+        let mut keys = Vec::new();
+        for &p in self.relevant_in(s.library.as_deref(), &trigger).iter() {
+            if self.is_kqml_plan(p) {
+                continue;
+            }
+            let mut u = crate::model::Substitution::new();
+            if !crate::model::unify(&self.plan(p).trigger.literal, &trigger.literal, &mut u) {
+                continue;
+            }
+            let answer = ch.and_then(|c| c.answers.get(&p));
+            match answer {
+                Some(k) => keys.push(Term::string(k)),
+                None => {
+                    return Err(format!(
+                        "the plan {} answers an `askHow` bdi-check did not compile",
+                        self.plan(p).name()
+                    ))
+                }
+            }
+        }
+        Ok(Term::list(keys))
+    }
+
     /// The agent's own plans as Jason loads them, each with its label's sources.
     fn own_library(&self) -> Vec<InLibrary> {
         let sources = self

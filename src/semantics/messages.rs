@@ -93,7 +93,9 @@ impl Semantics<'_> {
                     timed = true;
                 }
             }
-            (Performative::Tell | Performative::Untell, [id]) if matches!(id, Term::Atom(_)) => {
+            (Performative::Tell | Performative::Untell | Performative::TellHow, [id])
+                if matches!(id, Term::Atom(_)) =>
+            {
                 reply_to = ask_of(id);
             }
             _ => {
@@ -102,6 +104,20 @@ impl Semantics<'_> {
                     performative.name()
                 ))
             }
+        }
+        if matches!(
+            performative,
+            Performative::TellHow | Performative::UntellHow | Performative::AskHow
+        ) {
+            // The content is what `model::know_how` made of the text: keys and labels.
+            return Ok(Send {
+                receiver,
+                performative,
+                content: content.clone(),
+                answer,
+                reply_to,
+                timed,
+            });
         }
         let sync_reply = reply_to.is_some();
         if content.is_list() && !sync_reply {

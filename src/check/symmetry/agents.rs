@@ -306,6 +306,20 @@ impl Instances {
                 }
             })
         };
+        // A told plan's source names its sender, which a renaming would have to follow.
+        let told = system.agents.iter().any(|a| {
+            a.project
+                .plans
+                .changes
+                .as_ref()
+                .is_some_and(|c| !c.told.is_empty())
+        });
+        if told && !g.is_empty() {
+            return Some(
+                "the agents tell each other plans (`tellHow`, `askHow`), whose sources name them"
+                    .into(),
+            );
+        }
         // The agents' objects, if they are objects: all of one type, or none.
         let types: HashSet<Option<_>> = g
             .iter()

@@ -103,6 +103,12 @@ impl Checker<'_> {
                             // What a message tells, untells or asks is a belief of its
                             // receiver (and an answer, of its sender); what it asks to
                             // achieve or drop, a goal.
+                            if ilf == "tellHow" {
+                                let told = crate::model::know_how::told_plans(content);
+                                for (_, p) in told.iter().flatten() {
+                                    self.declare_plan(p, true);
+                                }
+                            }
                             if let ExprKind::Literal(c) = &content.kind {
                                 match ilf {
                                     "tell" | "untell" | "askOne" | "askAll"

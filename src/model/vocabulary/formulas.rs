@@ -449,9 +449,30 @@ impl Checker<'_> {
                     }
                 }
             }
-            "tellHow" | "untellHow" | "askHow" | "signal" => self.unsupported(
+            // The told plans are clauses of their own; the labels and triggers are read
+            // with the messages (`model::know_how`).
+            "tellHow" if extra <= 1 => match crate::model::know_how::told_plans(content) {
+                Ok(plans) => plans.iter().for_each(|(_, p)| self.plan(p, true)),
+                Err(d) => self.diags.push(d),
+            },
+            "untellHow" if extra == 0 => {
+                if let Err(d) = crate::model::know_how::untold_labels(content) {
+                    self.diags.push(d);
+                }
+            }
+            "askHow" if extra <= 1 => {
+                if let Err(d) = crate::model::know_how::asked_trigger(content) {
+                    self.diags.push(d);
+                }
+            }
+            "tellHow" | "untellHow" | "askHow" => self.unsupported(
+                l.span,
+                &format!("`.send` of `{performative}` with these arguments"),
+                "extra arguments",
+            ),
+            "signal" => self.unsupported(
                 ilf.span,
-                &format!("the performative `{performative}` (bdi-check models achieve, tell, untell, unachieve, askOne and askAll)"),
+                "the performative `signal` (bdi-check models achieve, tell, untell, unachieve, askOne, askAll, tellHow, untellHow and askHow)",
                 "performative",
             ),
             other => self.diags.push(

@@ -87,7 +87,7 @@ impl Linter<'_> {
             for &j in &g.plans[k + 1..] {
                 let both = matches!(alive.get(&i), Some(Alive::Yes(_)))
                     && matches!(alive.get(&j), Some(Alive::Yes(_)));
-                if both && !shadowed.contains(&j) {
+                if both && !shadowed.contains(&j) && !lib.never_together(i, j) {
                     self.overlap(g, i, j, base);
                 }
             }

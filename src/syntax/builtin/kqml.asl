@@ -43,6 +43,26 @@
    <- .kqml_answers(Content, Answers);
       .send(Sender, tell, Answers, MsgId).
 
+// tellHow: the told plans join the library, with the sender as their source. A plan
+// travels as its key (see src/model/know_how.rs), which `.kqml_tell_how` maps to the
+// plan compiled at load time.
+@kqmlReceivedTellHow
++!kqml_received(Sender, tellHow, Content, _)
+   <- .remove_source_annot(Content, ContentAn);
+      .kqml_tell_how(ContentAn, Sender).
+
+// untellHow: the sender is no longer a source of the plans with these labels.
+@kqmlReceivedUnTellHow
++!kqml_received(Sender, untellHow, Content, _)
+   <- .kqml_untell_how(Content, Sender).
+
+// askHow: the plans relevant for the trigger, told back.
+@kqmlReceivedAskHow
++!kqml_received(Sender, askHow, Content, MsgId)
+   <- .kqml_relevant_plans(Content, ListOfPlans);
+      .remove_source_annot(ListOfPlans, ListOfPlansAn);
+      .send(Sender, tellHow, ListOfPlansAn, MsgId).
+
 // Any other failure: printed, and nobody is answered.
 @kqmlError
 -!kqml_received(_, _, _, _)[error(Error)]
