@@ -79,7 +79,7 @@ fn successors() {
     let dir = project(3, false);
     let p = load_project(&dir).expect("the project loads");
     let sem = Semantics::new(&p).expect("the semantics");
-    let mut frontier = sem.init_states();
+    let mut frontier: Vec<_> = sem.init_states().collect();
     let mut states = Vec::new();
     while states.len() < 20_000 && !frontier.is_empty() {
         let mut next = Vec::new();

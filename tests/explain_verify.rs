@@ -433,7 +433,7 @@ fn a_user_sees_the_requests_to_the_robot_and_its_actions_and_nothing_of_the_othe
                 &ex,
                 &user,
             );
-            let mut queue = model.init_states();
+            let mut queue: Vec<_> = model.init_states().collect();
             let mut seen: std::collections::HashSet<u64> = queue.iter().map(fingerprint).collect();
             let (mut others_acted, mut explained) = (0, 0);
             while let Some(s) = queue.pop() {

@@ -1385,7 +1385,7 @@ fn differential(path: &str) {
     );
     // Every state lint shows is one brute force finds for that finding, and an initial state
     // whenever one exists.
-    let initial: HashSet<AtomSet> = p.initial.states.iter().cloned().collect();
+    let initial: HashSet<AtomSet> = p.initial.states().iter().cloned().collect();
     for f in fs.iter().filter(|f| f.finding.status == Status::Fail) {
         let at = f.finding.location.as_ref().unwrap().to_string();
         let key = (f.finding.check.clone(), at.clone());

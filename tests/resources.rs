@@ -71,17 +71,17 @@ fn ends(what: &str, (code, err): (Option<i32>, String), want: Option<i32>, says:
 }
 
 #[test]
-fn many_varying_atoms_are_refused_where_they_are_named() {
+fn many_varying_atoms_are_searched_within_bounds() {
     // 40 objects and a 3-ary predicate: 64,000 varying atoms (once a stack overflow);
-    // 28 objects: 21,952 (once 20 GB of memory before any answer).
+    // 28 objects: 21,952 (once 20 GB of memory before any answer). The initial states are
+    // made as the search takes them, and the memory bound (within `ulimit -v`) stops it.
     for n in [40, 28] {
         let p = project(&format!("vary-{n}"), "+!go <- act(o1).\n", n, 3, true);
-        let toml = format!("{p}/bdi-check.toml:9:10");
         ends(
             &format!("{n} objects"),
             limited(&["verify", &p]),
-            Some(2),
-            &toml,
+            Some(3),
+            "the search is incomplete",
         );
     }
 }

@@ -472,3 +472,38 @@ fn merge_in_human_lists_the_failing_findings() {
     assert!(String::from_utf8_lossy(&out.stdout)
         .contains("<testsuite name=\"bdi-check verify specs/paper\""));
 }
+
+#[test]
+fn a_huge_initial_space_is_a_bound_and_lint_never_enumerates_it() {
+    // More initial states than `[bounds] max_states`: the search starts from the first
+    // ones, and says it is incomplete (exit 3), never that the input is malformed.
+    let too_many = Path::new("tests/initial/too-many");
+    let (r, code) = verify_json(too_many, &[]);
+    assert_eq!(code, 3, "{r:#}");
+    assert_eq!(r["verdict"], "incomplete", "{r:#}");
+    assert_eq!(r["stats"]["complete"], false, "{r:#}");
+    assert_eq!(r["stats"]["initial_states"], 10, "{r:#}");
+    let o = bdi_check(&["verify", "tests/initial/too-many"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("the search is incomplete: the state bound"),
+        "{out}"
+    );
+    let o = bdi_check(&["parse", "tests/initial/too-many/bdi-check.toml"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("more than 10 initial states"), "{out}");
+    // 64,000 varying atoms: lint reads `[initial]` symbolically and never lists a state.
+    let memory = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/initial/memory");
+    let p = bdi_check::model::project::load_project(&memory).expect("it loads");
+    let findings = bdi_check::smt::lint::lint(&p, &Default::default());
+    assert!(findings.iter().all(|f| f.finding.check != "input"));
+    assert!(!p.initial.is_enumerated());
+    let o = bdi_check(&["lint", memory.to_str().unwrap()]);
+    assert_ne!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+}

@@ -87,7 +87,13 @@ pub trait Runs: Sync {
     fn world<'s>(&self, s: &'s Self::State) -> &'s AtomSet;
 
     /// Every initial state.
-    fn initial(&self) -> Vec<Self::State>;
+    fn initial(&self) -> Box<dyn Iterator<Item = Self::State> + '_>;
+
+    /// Whether [`Runs::initial`] gives every initial state (among several agents, at most
+    /// the project's bound of them are held).
+    fn initial_complete(&self) -> bool {
+        true
+    }
 
     /// Every successor of `s`, in a fixed order: the agent that moved (for a request, the
     /// agent it goes to), what it did, and the state after.
@@ -151,8 +157,8 @@ impl Runs for Alone<'_> {
         &s.beliefs
     }
 
-    fn initial(&self) -> Vec<State> {
-        self.sem.initial_states()
+    fn initial(&self) -> Box<dyn Iterator<Item = State> + '_> {
+        Box::new(self.sem.initial_iter())
     }
 
     fn successors(&self, s: &State) -> Vec<(u8, Vec<Note>, State)> {
@@ -202,8 +208,12 @@ impl Runs for Among<'_> {
         &s.world
     }
 
-    fn initial(&self) -> Vec<SystemState> {
-        self.system.initial_states()
+    fn initial(&self) -> Box<dyn Iterator<Item = SystemState> + '_> {
+        Box::new(self.system.initial_states().into_iter())
+    }
+
+    fn initial_complete(&self) -> bool {
+        self.system.agents[0].project.initial.complete()
     }
 
     fn successors(&self, s: &SystemState) -> Vec<(u8, Vec<Note>, SystemState)> {
@@ -852,12 +862,12 @@ impl<W: Runs> Model for Explained<'_, W> {
     type State = ExplainedState<W::State>;
     type Label = Step;
 
-    fn init_states(&self) -> Vec<Self::State> {
-        self.runs
-            .initial()
-            .into_iter()
-            .map(|state| self.start(state))
-            .collect()
+    fn init_complete(&self) -> bool {
+        self.runs.initial_complete()
+    }
+
+    fn init_states(&self) -> Box<dyn Iterator<Item = Self::State> + '_> {
+        Box::new(self.runs.initial().map(|state| self.start(state)))
     }
 
     fn next_states(&self, s: &Self::State) -> Vec<(Step, Self::State)> {
@@ -1126,6 +1136,7 @@ fn verify_runs<W: Runs + Copy>(
     };
     let mut out = Vec::new();
     let mut complete = true;
+    let started = std::time::Instant::now();
     for user in &users {
         // Among several agents, the message says whom the user watches.
         let who = match runs.names().filter(|n| n.len() > 1) {
@@ -1133,7 +1144,15 @@ fn verify_runs<W: Runs + Copy>(
             None => user.name.clone(),
         };
         let model = Explained::watching(runs, &ex, user);
-        let r = check_user(&model, limits, opts, |_, _, _| {});
+        // `--timeout` bounds the whole run: each user's search has what the earlier ones
+        // left.
+        let left = Limits {
+            timeout: limits
+                .timeout
+                .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
+            ..limits
+        };
+        let r = check_user(&model, left, opts, |_, _, _| {});
         complete &= r.graph.complete();
         let states = r.graph.len();
         for check in checks {

@@ -44,6 +44,9 @@ pub enum Bound {
     Beyond,
     /// Random runs were followed (`simulate`): some states reached were not expanded.
     Sampled,
+    /// The project has more initial states than its bound allows: the search started from
+    /// the first ones only.
+    Initial,
 }
 
 /// Limits of one search.
@@ -427,7 +430,25 @@ pub fn default_max_memory() -> Option<u64> {
     {
         limit = limit.min(cg / 10 * 9);
     }
+    // `ulimit -v` bounds the address space, which runs ahead of what is resident
+    // (allocator arenas, thread stacks): six tenths of it.
+    if let Some(virt) = address_space_limit() {
+        limit = limit.min(virt / 10 * 6);
+    }
     Some(limit)
+}
+
+/// The process's soft limit on its address space (`RLIMIT_AS`), if it has one.
+fn address_space_limit() -> Option<u64> {
+    let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
+    let line = limits
+        .lines()
+        .find(|l| l.starts_with("Max address space"))?;
+    line["Max address space".len()..]
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
 }
 
 /// The level-synchronous search; `expander` gives frontier states their summaries and
@@ -462,7 +483,27 @@ fn search<M: Model, T>(
     let mut frontier: Vec<(u32, M::State)> = Vec::new();
     // Canonical fingerprint -> whether this shard explores it.
     let mut seen: std::collections::HashMap<u64, bool> = std::collections::HashMap::new();
-    for s in model.init_states() {
+    for (taken, s) in model.init_states().enumerate() {
+        // The initial states are made as they are taken: a bound stops taking them.
+        if g.bound.is_some() {
+            break;
+        }
+        if taken % 1024 == 1023 {
+            if limits
+                .timeout
+                .is_some_and(|t| start.elapsed().as_secs_f64() > t)
+            {
+                g.bound = Some(Bound::Time);
+                break;
+            }
+            if let (Some(m), Some(rss)) = (opts.max_memory, resident_memory()) {
+                g.peak_memory = g.peak_memory.max(rss);
+                if rss > m {
+                    g.bound = Some(Bound::Memory);
+                    break;
+                }
+            }
+        }
         let fp = model.fingerprint(&s);
         let nth = seen.len() as u32;
         // Shards split the distinct initial states round-robin.
@@ -470,17 +511,18 @@ fn search<M: Model, T>(
             opts.shard
                 .is_none_or(|(k, n)| nth % n.max(1) == k.saturating_sub(1))
         });
-        if !mine || g.bound.is_some() {
+        if !mine {
             continue;
         }
-        g.initial_covered += 1;
         if g.store.find(fp).is_some() {
+            g.initial_covered += 1;
             continue;
         }
         if g.store.len() as u64 >= limits.max_states {
             g.bound = Some(Bound::States);
             continue;
         }
+        g.initial_covered += 1;
         match g.store.insert(fp, None) {
             Ok((i, true)) => frontier.push((i, s)),
             Ok(_) => {}
@@ -488,8 +530,12 @@ fn search<M: Model, T>(
         }
     }
     g.initial = g.store.len();
+    if !model.init_complete() {
+        g.bound.get_or_insert(Bound::Initial);
+    }
     let mut depth = 0u32;
-    let mut stopped = false;
+    // A stop while the initial states were taken: those taken are only summarized.
+    let mut stopped = matches!(g.bound, Some(Bound::Time | Bound::Memory));
     let mut rng = opts.sample.map(|s| super::sample::SplitMix64::new(s.seed));
     while let Some(&(first, _)) = frontier.first() {
         if depth > 0 {
@@ -833,8 +879,8 @@ mod tests {
     impl Model for Counter {
         type State = u32;
         type Label = u32;
-        fn init_states(&self) -> Vec<u32> {
-            vec![0]
+        fn init_states(&self) -> Box<dyn Iterator<Item = u32> + '_> {
+            Box::new(std::iter::once(0))
         }
         fn next_states(&self, s: &u32) -> Vec<(u32, u32)> {
             vec![(1, (s + 1) % self.0), (2, (s + 2) % self.0)]
@@ -875,8 +921,8 @@ mod tests {
     impl Model for Ignoring {
         type State = (u32, u32);
         type Label = char;
-        fn init_states(&self) -> Vec<(u32, u32)> {
-            vec![(0, 0)]
+        fn init_states(&self) -> Box<dyn Iterator<Item = (u32, u32)> + '_> {
+            Box::new(std::iter::once((0, 0)))
         }
         fn next_states(&self, s: &(u32, u32)) -> Vec<(char, (u32, u32))> {
             let mut v = vec![('a', ((s.0 + 1) % 3, s.1))];
@@ -1013,8 +1059,8 @@ mod tests {
     impl Model for Faulty {
         type State = u32;
         type Label = ();
-        fn init_states(&self) -> Vec<u32> {
-            vec![0]
+        fn init_states(&self) -> Box<dyn Iterator<Item = u32> + '_> {
+            Box::new(std::iter::once(0))
         }
         fn next_states(&self, s: &u32) -> Vec<((), u32)> {
             assert_ne!(*s, self.0, "the faulty state");

@@ -142,6 +142,7 @@ pub fn verify_with(
     progress: impl FnMut(usize, u32, f64),
     lint: &[Finding],
 ) -> Result<Verification, Vec<Diagnostic>> {
+    let started = std::time::Instant::now();
     let sem = Semantics::new(project)?;
     let mut errors = Vec::new();
     let props: Vec<Prop> = project
@@ -287,15 +288,15 @@ pub fn verify_with(
         shard: opts.shard,
         sample: opts.sample,
     };
+    // `--timeout` bounds the whole run: the explanation searches have what is left.
+    let left = Limits {
+        timeout: limits
+            .timeout
+            .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
+        ..limits
+    };
     findings.extend(
-        explanation::verify(
-            project,
-            &sem,
-            agent.symmetry.as_ref(),
-            limits,
-            &explore_opts,
-        )?
-        .0,
+        explanation::verify(project, &sem, agent.symmetry.as_ref(), left, &explore_opts)?.0,
     );
     Ok(Verification {
         symmetric_types,

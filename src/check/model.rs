@@ -20,11 +20,18 @@ pub trait Model {
     /// What a transition did (for the agent: the notes of a reasoning cycle).
     type Label;
 
-    /// Every initial state.
-    fn init_states(&self) -> Vec<Self::State>;
+    /// Every initial state, made as the search takes them (it stops taking them at its
+    /// bounds).
+    fn init_states(&self) -> Box<dyn Iterator<Item = Self::State> + '_>;
 
     /// Every successor of `s`, in a fixed order, each with what the transition did.
     fn next_states(&self, s: &Self::State) -> Vec<(Self::Label, Self::State)>;
+
+    /// Whether [`Model::init_states`] gives every initial state: a project with more than
+    /// its bound allows gives the first ones, and the search is then incomplete.
+    fn init_complete(&self) -> bool {
+        true
+    }
 
     /// The fingerprint states are stored under: states with one fingerprint are explored
     /// once. By default the state's own hash; under symmetry, its canonical member's.
@@ -82,8 +89,8 @@ impl Model for Semantics<'_> {
     type State = State;
     type Label = Vec<Note>;
 
-    fn init_states(&self) -> Vec<State> {
-        self.initial_states()
+    fn init_states(&self) -> Box<dyn Iterator<Item = State> + '_> {
+        Box::new(self.initial_iter())
     }
 
     fn next_states(&self, s: &State) -> Vec<(Vec<Note>, State)> {
@@ -111,8 +118,8 @@ impl Model for Agent<'_> {
     type State = State;
     type Label = Vec<Note>;
 
-    fn init_states(&self) -> Vec<State> {
-        self.sem.initial_states()
+    fn init_states(&self) -> Box<dyn Iterator<Item = State> + '_> {
+        Box::new(self.sem.initial_iter())
     }
 
     fn next_states(&self, s: &State) -> Vec<(Vec<Note>, State)> {
@@ -160,8 +167,8 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
     type State = Packed<'c>;
     type Label = Notes<'c>;
 
-    fn init_states(&self) -> Vec<Packed<'c>> {
-        self.compiled.initial_states()
+    fn init_states(&self) -> Box<dyn Iterator<Item = Packed<'c>> + '_> {
+        Box::new(self.compiled.initial_iter())
     }
 
     fn next_states(&self, s: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {

@@ -295,7 +295,7 @@ pub fn catalogue(project: &Path, only: Option<&str>) -> Result<Catalogue, LoadFa
         frontier = next;
     }
     let mut entries: Vec<Entry> = Vec::new();
-    for beliefs in &p.initial.states {
+    for beliefs in p.initial.states() {
         for seq in &sequences {
             let (trace, given) = execute(&p, &sem, beliefs, seq, &users);
             for g in given {

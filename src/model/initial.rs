@@ -27,86 +27,116 @@ pub fn enumerate(
     constraints: &[Cond],
     limit: usize,
 ) -> Result<Vec<AtomSet>, TooMany> {
-    let free: Vec<AtomId> = vary
-        .iter()
-        .copied()
-        .filter(|a| !base.contains(*a))
-        .collect();
-    // Every atom but the free ones is known from the start: facts true, the rest false.
-    let mut known = AtomSet::empty(len);
-    for i in 0..len as u32 {
-        known.insert(AtomId(i));
-    }
-    for a in &free {
-        known.remove(*a);
-    }
-    let mut values = base.clone();
-    let mut out = Vec::new();
-    let mut search = Search {
-        free: &free,
-        constraints,
-        limit,
-        out: &mut out,
-    };
-    if search.go(&mut values, &mut known) {
-        out.sort();
-        Ok(out)
-    } else {
-        Err(TooMany { found: out.len() })
+    match first(len, base, vary, constraints, limit) {
+        (states, true) => Ok(states),
+        (states, false) => Err(TooMany {
+            found: states.len(),
+        }),
     }
 }
 
-struct Search<'a> {
-    free: &'a [AtomId],
-    constraints: &'a [Cond],
+/// The first `limit` initial states in the enumeration's order (the same on every run),
+/// sorted, and whether they are all of them (see [`enumerate`]).
+pub fn first(
+    len: usize,
+    base: &AtomSet,
+    vary: &[AtomId],
+    constraints: &[Cond],
     limit: usize,
-    out: &'a mut Vec<AtomSet>,
+) -> (Vec<AtomSet>, bool) {
+    let mut it = Enumeration::new(len, base, vary, constraints.to_vec());
+    let mut out: Vec<AtomSet> = it.by_ref().take(limit).collect();
+    let all = it.next().is_none();
+    out.sort();
+    (out, all)
 }
 
-impl Search<'_> {
-    /// Returns false when the limit was hit. Depth-first with an explicit stack (one entry
-    /// per decided atom, holding the value tried), so that tens of thousands of varying
-    /// atoms do not overflow the thread's stack.
-    fn go(&mut self, values: &mut AtomSet, known: &mut AtomSet) -> bool {
-        let mut tried: Vec<bool> = Vec::new();
+/// The initial states one at a time, in the enumeration's order (depth first, each varying
+/// atom false before true): a search takes them as it needs them, so that a project with
+/// more than it can hold is searched from the first ones, with no list of them all.
+#[derive(Clone, Debug)]
+pub struct Enumeration {
+    free: Vec<AtomId>,
+    constraints: Vec<Cond>,
+    values: AtomSet,
+    known: AtomSet,
+    /// Per decided atom, the value tried.
+    tried: Vec<bool>,
+    done: bool,
+}
+
+impl Enumeration {
+    /// The enumeration of [`enumerate`]'s states.
+    pub fn new(len: usize, base: &AtomSet, vary: &[AtomId], constraints: Vec<Cond>) -> Self {
+        let free: Vec<AtomId> = vary
+            .iter()
+            .copied()
+            .filter(|a| !base.contains(*a))
+            .collect();
+        let mut known = AtomSet::empty(len);
+        for i in 0..len as u32 {
+            known.insert(AtomId(i));
+        }
+        for a in &free {
+            known.remove(*a);
+        }
+        Enumeration {
+            free,
+            constraints,
+            values: base.clone(),
+            known,
+            tried: Vec::new(),
+            done: false,
+        }
+    }
+
+    /// Back to the deepest atom still to be tried true; `false` when there is none.
+    fn backtrack(&mut self) -> bool {
         loop {
-            let i = tried.len();
+            let Some(d) = self.tried.len().checked_sub(1) else {
+                return false;
+            };
+            let a = self.free[d];
+            if !self.tried[d] {
+                self.tried[d] = true;
+                self.values.set(a, true);
+                return true;
+            }
+            self.tried.pop();
+            self.values.remove(a);
+            self.known.remove(a);
+        }
+    }
+}
+
+impl Iterator for Enumeration {
+    type Item = AtomSet;
+
+    /// Depth-first with an explicit stack, so that tens of thousands of varying atoms do
+    /// not overflow the thread's stack; a branch is cut as soon as a constraint is false.
+    fn next(&mut self) -> Option<AtomSet> {
+        while !self.done {
+            let i = self.tried.len();
             let cut = self
                 .constraints
                 .iter()
-                .any(|c| c.eval3(values, known) == Some(false));
+                .any(|c| c.eval3(&self.values, &self.known) == Some(false));
             if !cut && i < self.free.len() {
                 let a = self.free[i];
-                known.insert(a);
-                values.set(a, false);
-                tried.push(false);
+                self.known.insert(a);
+                self.values.set(a, false);
+                self.tried.push(false);
                 continue;
             }
-            if !cut {
-                // Everything is known: the three-valued verdicts are the real ones.
-                if self.constraints.iter().all(|c| c.eval(values)) {
-                    if self.out.len() >= self.limit {
-                        return false;
-                    }
-                    self.out.push(values.clone());
-                }
-            }
-            // Backtrack to the deepest atom still to be tried true.
-            loop {
-                let Some(d) = tried.len().checked_sub(1) else {
-                    return true;
-                };
-                let a = self.free[d];
-                if !tried[d] {
-                    tried[d] = true;
-                    values.set(a, true);
-                    break;
-                }
-                tried.pop();
-                values.remove(a);
-                known.remove(a);
+            // Everything is known: the three-valued verdicts are the real ones.
+            let found = (!cut && self.constraints.iter().all(|c| c.eval(&self.values)))
+                .then(|| self.values.clone());
+            self.done = !self.backtrack();
+            if found.is_some() {
+                return found;
             }
         }
+        None
     }
 }
 

@@ -23,6 +23,7 @@
 //! plans that are not fixed (unlabelled, whose labels Jason numbers at run time, or that the
 //! receiver may add or remove).
 
+use super::library::{atom, string_label};
 use crate::syntax::ast::{
     self, Body, Expr, ExprKind, Item, ListExpr, Literal, PlanTermKind, StepKind,
 };
@@ -157,20 +158,8 @@ pub fn told_plans(content: &Expr) -> Result<Vec<(String, ast::Plan)>, Diagnostic
 pub fn untold_labels(content: &Expr) -> Result<Vec<String>, Diagnostic> {
     let one = |e: &Expr| -> Result<String, Diagnostic> {
         let name = match &e.kind {
-            ExprKind::Literal(l)
-                if l.args.is_empty()
-                    && l.annots.is_none()
-                    && !l.negated
-                    && l.namespace.is_none()
-                    && !l.is_internal_action() =>
-            {
-                Some(l.functor.as_str())
-            }
-            ExprKind::Str(s) => s.strip_prefix('@').filter(|n| {
-                n.starts_with(|c: char| c.is_ascii_lowercase())
-                    && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-            }),
-            _ => None,
+            ExprKind::Str(s) => string_label(s),
+            _ => atom(e),
         };
         name.map(str::to_string).ok_or_else(|| {
             refuse(

@@ -114,8 +114,16 @@ fn refuse(span: Span, msg: impl Into<String>, label: &str) -> Diagnostic {
         .with_help("write the plans and labels in the step itself: `.add_plan({ @l +!g <- a })`, `.remove_plan(l)`")
 }
 
+/// The label a string names (`"@l"`, `remove_plan.fixLabel`), if it names one.
+pub(super) fn string_label(s: &str) -> Option<&str> {
+    s.strip_prefix('@').filter(|n| {
+        n.starts_with(|c: char| c.is_ascii_lowercase())
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    })
+}
+
 /// An atom with nothing around it: the only label and source bdi-check reads.
-fn atom(e: &Expr) -> Option<&str> {
+pub(super) fn atom(e: &Expr) -> Option<&str> {
     match &e.kind {
         ExprKind::Literal(l)
             if l.args.is_empty()
@@ -311,10 +319,7 @@ impl Collector {
     /// A label of `.remove_plan`: an atom, `"@l"` (`remove_plan.fixLabel`), or a plan term's.
     fn label(&self, e: &Expr) -> Result<String, Diagnostic> {
         let name = match &e.kind {
-            ExprKind::Str(s) => s.strip_prefix('@').filter(|n| {
-                n.starts_with(|c: char| c.is_ascii_lowercase())
-                    && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-            }),
+            ExprKind::Str(s) => string_label(s),
             ExprKind::PlanTerm(t) => match &t.kind {
                 PlanTermKind::Plan(p) => p.label.as_ref().and_then(|l| l.name.as_deref()),
                 _ => None,

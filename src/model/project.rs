@@ -5,7 +5,7 @@ use super::atoms::{AtomId, AtomSet, AtomTable};
 use super::cond::Cond;
 use super::formula;
 use super::ground::GroundActions;
-use super::initial::{self, TooMany};
+use super::initial;
 use super::plans::PlanLibrary;
 use super::universe::Universe;
 use super::vocabulary::{self, Vocabulary};
@@ -14,7 +14,7 @@ use crate::syntax::manifest::{load_manifest, Manifest};
 use crate::syntax::pddl::{parse_domain, Domain};
 use crate::syntax::{Diagnostic, LoadedAgent, SourceMap, Span};
 use std::path::Path;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// The initial states of a project and what they were built from.
 #[derive(Clone, Debug)]
@@ -26,8 +26,99 @@ pub struct InitialStates {
     pub vary: Vec<AtomId>,
     /// The agent's initial beliefs, in source order (part of `facts`).
     pub agent_beliefs: Vec<AtomId>,
-    /// Every initial state, sorted.
-    pub states: Vec<AtomSet>,
+    /// What every initial state satisfies: the manifest's constraints and the invariants
+    /// over the environment.
+    pub conditions: Vec<Cond>,
+    /// Most initial states held (`[bounds] max_states`, and 1 GiB of them).
+    pub limit: usize,
+    /// How many atoms a state has.
+    atoms: usize,
+    /// The states, enumerated when first asked for (lint never needs them), shared by
+    /// the agents of a project; whether they are all.
+    enumerated: Arc<OnceLock<(Vec<AtomSet>, bool)>>,
+}
+
+impl InitialStates {
+    /// The initial states of `atoms` atoms: `facts` true, `vary` either way, every other
+    /// atom false, `conditions` holding; at most `limit` of them are held.
+    pub fn new(
+        atoms: usize,
+        facts: AtomSet,
+        vary: Vec<AtomId>,
+        agent_beliefs: Vec<AtomId>,
+        conditions: Vec<Cond>,
+        limit: usize,
+    ) -> InitialStates {
+        InitialStates {
+            facts,
+            vary,
+            agent_beliefs,
+            conditions,
+            limit,
+            atoms,
+            enumerated: Arc::default(),
+        }
+    }
+
+    /// The same states with other initial beliefs of the agent (instances of a project
+    /// share the enumeration).
+    fn with_beliefs(&self, agent_beliefs: Vec<AtomId>) -> InitialStates {
+        InitialStates {
+            agent_beliefs,
+            ..self.clone()
+        }
+    }
+
+    fn enumerated(&self) -> &(Vec<AtomSet>, bool) {
+        self.enumerated.get_or_init(|| {
+            initial::first(
+                self.atoms,
+                &self.facts,
+                &self.vary,
+                &self.conditions,
+                self.limit,
+            )
+        })
+    }
+
+    /// Every initial state, sorted: the first [`InitialStates::limit`] of them when there
+    /// are more ([`InitialStates::complete`] says).
+    pub fn states(&self) -> &[AtomSet] {
+        &self.enumerated().0
+    }
+
+    /// Whether [`InitialStates::states`] holds every initial state.
+    pub fn complete(&self) -> bool {
+        self.enumerated().1
+    }
+
+    /// The initial states in the order a search takes them, made as it takes them: those
+    /// of [`InitialStates::states`] when they are few (at most [`SORTED`]), else the
+    /// enumeration's, with no bound (the search's own bounds stop it).
+    pub fn iter(&self) -> Box<dyn Iterator<Item = AtomSet> + '_> {
+        if let Some((states, true)) = self.enumerated.get() {
+            return Box::new(states.iter().cloned());
+        }
+        let mut it =
+            initial::Enumeration::new(self.atoms, &self.facts, &self.vary, self.conditions.clone());
+        let head: Vec<AtomSet> = it.by_ref().take(SORTED).collect();
+        match it.next() {
+            None if head.len() <= self.limit => {
+                let (states, _) = self.enumerated.get_or_init(|| {
+                    let mut head = head;
+                    head.sort();
+                    (head, true)
+                });
+                Box::new(states.iter().cloned())
+            }
+            more => Box::new(head.into_iter().chain(more).chain(it)),
+        }
+    }
+
+    /// Whether the states have been enumerated yet (the static checks never ask).
+    pub fn is_enumerated(&self) -> bool {
+        self.enumerated.get().is_some()
+    }
 }
 
 /// A loaded, checked and grounded project.
@@ -441,24 +532,11 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
     let limit = usize::try_from(manifest.bounds.max_states)
         .unwrap_or(usize::MAX)
         .min(by_memory);
-    let states = match initial::enumerate(atoms.len(), &facts, &vary, &all, limit) {
-        Ok(s) => s,
-        Err(TooMany { found }) => {
-            let why = if found == by_memory {
-                format!(" (each takes {state_bytes} bytes: more would not fit in 1 GiB): vary fewer predicates or constrain them")
-            } else {
-                ": raise `[bounds] max_states` or constrain `[initial]`".to_string()
-            };
-            let mut d =
-                Diagnostic::error("input", format!("more than {found} initial states{why}"))
-                    .in_file(manifest.path.display().to_string());
-            if let Some(v) = manifest.initial.vary.first() {
-                d = d.with_label(v.span, "the atoms of these predicates vary");
-            }
-            return fail(map, vec![d]);
-        }
-    };
-    if states.is_empty() {
+    // The states themselves are enumerated when a search needs them; that there is one is
+    // known now (a search of the first one stops at once, or finds none).
+    let (one, _) = initial::first(atoms.len(), &facts, &vary, &all, 1);
+    let states = InitialStates::new(atoms.len(), facts, vary, Vec::new(), all, limit);
+    if one.is_empty() {
         let d = Diagnostic::error(
             "input",
             "no initial state satisfies the facts, the constraints and the invariants",
@@ -489,16 +567,15 @@ fn load_agents(path: &Path) -> Result<Vec<Project>, LoadError> {
             actions: actions.clone(),
             constraints: constraints.clone(),
             invariants: invariants.clone(),
-            initial: InitialStates {
-                facts: facts.clone(),
-                vary: vary.clone(),
-                agent_beliefs: initial_beliefs[k].clone(),
-                states: states.clone(),
-            },
+            initial: states.with_beliefs(initial_beliefs[k].clone()),
         });
     }
     Ok(out)
 }
+
+/// Most initial states a search takes sorted, as [`InitialStates::states`] lists them;
+/// past that many, it takes them in the order they are enumerated.
+pub const SORTED: usize = 100_000;
 
 /// Most agents one project runs.
 pub const MAX_AGENTS: usize = 64;

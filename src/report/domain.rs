@@ -171,8 +171,11 @@ pub struct TypeObjects {
 /// The initial states of a project.
 #[derive(Clone, Debug, Serialize)]
 pub struct InitialOutline {
-    /// How many.
+    /// How many (of those enumerated: see `complete`).
     pub count: usize,
+    /// Whether `count` is all of them: enumeration stops at `[bounds] max_states` (and at
+    /// 1 GiB of states).
+    pub complete: bool,
     /// Atoms true in all of them.
     pub facts: Vec<String>,
     /// Atoms that may start either way.
@@ -223,12 +226,13 @@ pub fn project_outline(file: &str, p: &Project) -> ProjectOutline {
                 .collect(),
         },
         initial: InitialOutline {
-            count: p.initial.states.len(),
+            count: p.initial.states().len(),
+            complete: p.initial.complete(),
             facts: p.initial.facts.iter().map(show).collect(),
             vary: p.initial.vary.iter().map(|a| show(*a)).collect(),
             states: p
                 .initial
-                .states
+                .states()
                 .iter()
                 .map(|s| s.iter().map(show).collect())
                 .collect(),
@@ -274,7 +278,7 @@ const SHOWN_STATES: usize = 10;
 /// Human text for a project outline.
 pub fn render_project(o: &ProjectOutline) -> String {
     let mut out = format!(
-        "{}: {} objects, {} ground atoms, {} ground actions, {} initial states\n",
+        "{}: {} objects, {} ground atoms, {} ground actions, {}{} initial states\n",
         o.file,
         o.objects
             .iter()
@@ -282,6 +286,7 @@ pub fn render_project(o: &ProjectOutline) -> String {
             .map_or(0, |t| t.objects.len()),
         o.atoms.len(),
         o.actions.len(),
+        if o.initial.complete { "" } else { "more than " },
         o.initial.count
     );
     out.push_str("  objects\n");
@@ -293,7 +298,8 @@ pub fn render_project(o: &ProjectOutline) -> String {
     out.push_str(&format!("  ground actions ({})\n", o.actions.len()));
     out.push_str(&wrap(&o.actions, "    "));
     out.push_str(&format!(
-        "  initial states ({}): every assignment of {} varying atoms that satisfies the constraints and invariants\n",
+        "  initial states ({}{}): every assignment of {} varying atoms that satisfies the constraints and invariants\n",
+        if o.initial.complete { "" } else { "the first " },
         o.initial.count,
         o.initial.vary.len()
     ));

@@ -236,6 +236,7 @@ fn render_stats(s: &Stats, bound: Option<Bound>) -> String {
             Bound::Time => "the time limit (`--timeout`) was reached",
             Bound::Memory => "the memory bound (nine tenths of the memory available) was reached",
             Bound::Beyond => "a run leaves the finite model (the warning above says where and why: a belief with a number outside `[bounds] numbers` or a free variable, or a step bdi-check refuses at run time); widen `[bounds] numbers` if it is a number",
+            Bound::Initial => "the project has more initial states than `[bounds] max_states` (or 1 GiB of them) allows: the search started from the first ones only; constrain `[initial]`, vary fewer atoms, or raise `[bounds] max_states`",
             Bound::Sampled => "only random runs were followed (`simulate --runs`); run `verify` to explore every state",
         };
         out.push_str(&format!("the search is incomplete: {why}\n"));

@@ -496,6 +496,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
             .collect()
     }
 
+    /// The initial states made one at a time (see [`Semantics::initial_iter`]).
+    pub fn initial_iter(&self) -> impl Iterator<Item = Packed<'_>> + '_ {
+        self.sem.initial_iter().map(|s| self.pack(&s))
+    }
+
     /// How much the tables hold.
     pub fn sizes(&self) -> Sizes {
         Sizes {

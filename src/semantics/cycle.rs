@@ -543,10 +543,16 @@ impl<'p> Semantics<'p> {
     pub fn initial_states(&self) -> Vec<State> {
         self.project
             .initial
-            .states
+            .states()
             .iter()
             .map(|b| self.initial_state(b))
             .collect()
+    }
+
+    /// [`Semantics::initial_states`] made one at a time, as a search takes them (from
+    /// [`crate::model::project::InitialStates::iter`]: with no bound on how many).
+    pub fn initial_iter(&self) -> impl Iterator<Item = State> + '_ {
+        self.project.initial.iter().map(|b| self.initial_state(&b))
     }
 
     /// The state a run starts in when the environment is `beliefs`. Events are queued

@@ -113,7 +113,7 @@ impl<'p> System<'p> {
     pub fn initial_states(&self) -> Vec<SystemState> {
         let p = self.agents[0].project;
         p.initial
-            .states
+            .states()
             .iter()
             .map(|w| SystemState {
                 world: w.clone(),

@@ -363,8 +363,8 @@ impl Instances {
             }
         }
         let initial: HashSet<&crate::model::atoms::AtomSet> =
-            project.initial.states.iter().collect();
-        let open = project.initial.states.iter().any(|w| {
+            project.initial.states().iter().collect();
+        let open = project.initial.states().iter().any(|w| {
             gens.iter().any(|p| {
                 let mut img = crate::model::atoms::AtomSet::empty(self.atom_count);
                 w.iter().for_each(|a| img.insert(self.atom_image(a, p)));

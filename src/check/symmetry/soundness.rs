@@ -176,15 +176,34 @@ impl Symmetry {
         // The initial states: a set closed under renaming (facts and constraints that name
         // no object are; this catches the rest).
         if out.is_empty() {
-            let init: HashSet<&AtomSet> = project.initial.states.iter().collect();
-            let open = project.initial.states.iter().find(|s| {
-                gens.iter().any(|g| {
-                    let mut img = AtomSet::empty(self.atom_count);
-                    s.iter().for_each(|a| img.insert(self.atom_image(a, g)));
-                    !init.contains(&img)
-                })
-            });
-            if open.is_some() {
+            // Symmetric as written (the facts and the varying atoms closed under renaming,
+            // every condition the same renamed): then so is the set, with no state listed.
+            let init = &project.initial;
+            let closed = |atoms: &[AtomId], has: &dyn Fn(AtomId) -> bool| {
+                atoms
+                    .iter()
+                    .all(|&a| gens.iter().all(|g| has(self.atom_image(a, g))))
+            };
+            let facts: Vec<AtomId> = init.facts.iter().collect();
+            let vary: HashSet<AtomId> = init.vary.iter().copied().collect();
+            let written = closed(&facts, &|a| init.facts.contains(a))
+                && closed(&init.vary, &|a| vary.contains(&a))
+                && init.conditions.iter().all(|c| {
+                    let base = self.normal(c, &self.identity());
+                    gens.iter().all(|g| self.normal(c, g) == base)
+                });
+            let open = !written && {
+                let states: HashSet<&AtomSet> = init.states().iter().collect();
+                !init.complete()
+                    || init.states().iter().any(|s| {
+                        gens.iter().any(|g| {
+                            let mut img = AtomSet::empty(self.atom_count);
+                            s.iter().for_each(|a| img.insert(self.atom_image(a, g)));
+                            !states.contains(&img)
+                        })
+                    })
+            };
+            if open {
                 let span = m
                     .initial
                     .facts

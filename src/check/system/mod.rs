@@ -42,8 +42,12 @@ impl Model for System<'_> {
     type State = SystemState;
     type Label = Step;
 
-    fn init_states(&self) -> Vec<SystemState> {
-        self.initial_states()
+    fn init_states(&self) -> Box<dyn Iterator<Item = SystemState> + '_> {
+        Box::new(self.initial_states().into_iter())
+    }
+
+    fn init_complete(&self) -> bool {
+        self.agents[0].project.initial.complete()
     }
 
     fn next_states(&self, s: &SystemState) -> Vec<(Step, SystemState)> {
@@ -95,8 +99,12 @@ impl Model for Interleavings<'_, '_> {
     type State = SystemState;
     type Label = Move;
 
-    fn init_states(&self) -> Vec<SystemState> {
-        self.system.initial_states()
+    fn init_states(&self) -> Box<dyn Iterator<Item = SystemState> + '_> {
+        Box::new(self.system.initial_states().into_iter())
+    }
+
+    fn init_complete(&self) -> bool {
+        self.system.agents[0].project.initial.complete()
     }
 
     fn next_states(&self, s: &SystemState) -> Vec<(Move, SystemState)> {
