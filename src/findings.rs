@@ -291,6 +291,22 @@ pub struct Stats {
     /// `states_per_second` too).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub liveness_states: Option<usize>,
+    /// The run's phases in order (`lint`, `search`, `explanation:USER` per user), each
+    /// with its wall-clock time; `seconds` is the whole run's, loading included.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub phases: Vec<Phase>,
+}
+
+/// One phase of a run and its wall-clock time.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+pub struct Phase {
+    /// `lint`, `search` (the agents' states), or `explanation:USER`.
+    pub name: String,
+    /// Its wall-clock time.
+    pub seconds: f64,
+    /// The states it explored, for a search.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub states: Option<usize>,
 }
 
 /// The report every project command writes (SPEC §3).

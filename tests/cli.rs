@@ -539,3 +539,34 @@ fn the_catalogues_scenarios_paste_into_a_scenario_file() {
     assert_eq!(q.lines().count(), 1, "{q}");
     assert!(q.contains("distinct explanations"), "{q}");
 }
+
+#[test]
+fn the_reported_time_is_the_whole_runs_with_one_figure_per_phase() {
+    let o = bdi_check(&["verify", "specs/kitchen", "--format", "json"]);
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let stats = &r["stats"];
+    let phases = stats["phases"].as_array().expect("phases");
+    let names: Vec<&str> = phases.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        [
+            "lint",
+            "search",
+            "explanation:newcomer",
+            "explanation:owner"
+        ]
+    );
+    assert_eq!(phases[1]["states"], stats["states"]);
+    assert!(phases[2]["states"].as_u64().unwrap() > 0);
+    // Each phase is part of the run: together they take no longer than it.
+    let sum: f64 = phases.iter().map(|p| p["seconds"].as_f64().unwrap()).sum();
+    assert!(stats["seconds"].as_f64().unwrap() >= sum, "{stats:#}");
+    let o = bdi_check(&["verify", "specs/kitchen", "-v", "--color", "never"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.lines().any(|l| l.starts_with("phases: lint ")
+            && l.contains("search ")
+            && l.contains("explanation:owner ")),
+        "{out}"
+    );
+}

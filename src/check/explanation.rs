@@ -42,7 +42,7 @@ use super::symmetry::{Renaming, Symmetry};
 use super::trace::Builder;
 use crate::explain::agent::{Explainer, User};
 use crate::explain::{Content, ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
-use crate::findings::{Counterexample, Finding, Status, StepKindTag, TraceStep};
+use crate::findings::{Counterexample, Finding, Phase, Status, StepKindTag, TraceStep};
 use crate::model::atoms::AtomSet;
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
@@ -1087,7 +1087,7 @@ pub fn verify(
     symmetry: Option<&Symmetry>,
     limits: Limits,
     opts: &Options,
-) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
+) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     verify_runs(project, Alone { sem, symmetry }, limits, opts)
 }
 
@@ -1099,7 +1099,7 @@ pub fn verify_among(
     system: &System,
     limits: Limits,
     opts: &Options,
-) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
+) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     let robot = robot_of(projects);
     verify_runs(&projects[robot], Among { system, robot }, limits, opts)
 }
@@ -1122,9 +1122,9 @@ fn verify_runs<W: Runs + Copy>(
     runs: W,
     limits: Limits,
     opts: &Options,
-) -> Result<(Vec<Finding>, bool), Vec<Diagnostic>> {
+) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     let Some(section) = &project.manifest.explanation else {
-        return Ok((Vec::new(), true));
+        return Ok((Vec::new(), true, Vec::new()));
     };
     let users = crate::explain::agent::users(project, None)?;
     let sem = &runs.agents()[runs.robot()];
@@ -1136,6 +1136,7 @@ fn verify_runs<W: Runs + Copy>(
     };
     let mut out = Vec::new();
     let mut complete = true;
+    let mut phases = Vec::new();
     let started = std::time::Instant::now();
     for user in &users {
         // Among several agents, the message says whom the user watches.
@@ -1155,6 +1156,11 @@ fn verify_runs<W: Runs + Copy>(
         let r = check_user(&model, left, opts, |_, _, _| {});
         complete &= r.graph.complete();
         let states = r.graph.len();
+        phases.push(Phase {
+            name: format!("explanation:{}", user.name),
+            seconds: r.graph.seconds,
+            states: Some(states),
+        });
         for check in checks {
             let mut failed = false;
             for ((c, _, _), (shown, v)) in &r.violations {
@@ -1209,5 +1215,5 @@ fn verify_runs<W: Runs + Copy>(
             });
         }
     }
-    Ok((out, complete))
+    Ok((out, complete, phases))
 }

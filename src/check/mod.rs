@@ -295,14 +295,16 @@ pub fn verify_with(
             .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
         ..limits
     };
-    findings.extend(
-        explanation::verify(project, &sem, agent.symmetry.as_ref(), left, &explore_opts)?.0,
-    );
-    Ok(Verification {
+    let (explained, _, phases) =
+        explanation::verify(project, &sem, agent.symmetry.as_ref(), left, &explore_opts)?;
+    findings.extend(explained);
+    let mut v = Verification {
         symmetric_types,
         symmetry_caveat: not_equivariant,
         ..Verification::of(&graph, project, findings)
-    })
+    };
+    v.stats.phases.extend(phases);
+    Ok(v)
 }
 
 impl Verification {
@@ -329,6 +331,11 @@ impl Verification {
                 },
                 complete: graph.complete(),
                 liveness_states: None,
+                phases: vec![crate::findings::Phase {
+                    name: "search".into(),
+                    seconds,
+                    states: Some(graph.len()),
+                }],
             },
             bound: graph.bound,
             beyond: graph.beyond.as_ref().map(|(span, why)| {

@@ -101,7 +101,7 @@ pub fn limits(project: &Project, bounds: &Bounds) -> Limits {
 fn lint_within(
     mut lim: Limits,
     lint: impl FnOnce(&crate::smt::LintOptions) -> Vec<crate::smt::LintFinding>,
-) -> (Vec<Finding>, Limits) {
+) -> (Vec<Finding>, Limits, f64) {
     let started = std::time::Instant::now();
     let deadline = lim
         .timeout
@@ -112,10 +112,32 @@ fn lint_within(
         ..Default::default()
     };
     let findings = lint(&opts).into_iter().map(|l| l.finding).collect();
-    lim.timeout = lim
-        .timeout
-        .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
-    (findings, lim)
+    let seconds = started.elapsed().as_secs_f64();
+    lim.timeout = lim.timeout.map(|t| (t - seconds).max(0.0));
+    (findings, lim, seconds)
+}
+
+/// The whole run's time in the statistics (loading and every phase), with lint's phase
+/// first: the verdict line and `stats.seconds` say what the user waited for.
+fn whole_run(mut run: VerifyRun, started: std::time::Instant, lint: f64) -> VerifyRun {
+    if let Some(st) = &mut run.report.stats {
+        st.phases.insert(
+            0,
+            crate::findings::Phase {
+                name: "lint".into(),
+                seconds: lint,
+                states: None,
+            },
+        );
+        st.seconds = started.elapsed().as_secs_f64();
+        let states = st.states + st.liveness_states.unwrap_or(0);
+        st.states_per_second = if st.seconds > 0.0 {
+            states as f64 / st.seconds
+        } else {
+            0.0
+        };
+    }
+    run
 }
 
 /// Loads, lints and verifies a project.
@@ -125,13 +147,14 @@ pub fn run(
     opts: &VerifyOptions,
     progress: impl FnMut(usize, u32, f64),
 ) -> VerifyRun {
+    let started = std::time::Instant::now();
     let name = path.display().to_string();
     let mut projects = match load_system(path) {
         Ok(p) => p,
         Err(e) => return input_failure(name, e.map, e.diagnostics),
     };
     if projects.len() > 1 {
-        return run_system(name, projects, bounds, opts, progress);
+        return run_system(name, projects, bounds, opts, progress, started);
     }
     let project = projects.remove(0);
     let bad = super::allow::check(&project);
@@ -139,10 +162,11 @@ pub fn run(
         return input_failure(name, project.map, bad);
     }
     // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
-    let (lint, lim) = lint_within(limits(&project, bounds), |o| crate::smt::lint(&project, o));
+    let (lint, lim, linted) =
+        lint_within(limits(&project, bounds), |o| crate::smt::lint(&project, o));
     match verify_with(&project, lim, opts, progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
-        Ok(v) => report_of(name, project, v, opts),
+        Ok(v) => whole_run(report_of(name, project, v, opts), started, linted),
     }
 }
 
@@ -155,6 +179,7 @@ fn run_system(
     bounds: &Bounds,
     opts: &VerifyOptions,
     progress: impl FnMut(usize, u32, f64),
+    started: std::time::Instant,
 ) -> VerifyRun {
     let mut bad = super::allow::check(&projects[0]);
     if opts.shard.is_some() {
@@ -170,7 +195,7 @@ fn run_system(
         let map = projects.into_iter().next().expect("an agent").map;
         return input_failure(name, map, bad);
     }
-    let (lint, lim) = lint_within(limits(&projects[0], bounds), |o| {
+    let (lint, lim, linted) = lint_within(limits(&projects[0], bounds), |o| {
         super::lint::lint_agents(&projects, o)
     });
     let mut progress = progress;
@@ -201,7 +226,7 @@ fn run_system(
         }
         Ok(v) => {
             let project = projects.into_iter().next().expect("an agent");
-            report_of(name, project, v, opts)
+            whole_run(report_of(name, project, v, opts), started, linted)
         }
     }
 }

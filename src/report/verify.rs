@@ -68,7 +68,7 @@ pub fn render_human(run: &VerifyRun, detail: Detail, color: bool) -> String {
             for w in &r.warnings {
                 out.push_str(&format!("warning: {w}\n"));
             }
-            out.push_str(&render_stats(s, run.bound));
+            out.push_str(&render_stats(s, run.bound, detail == Detail::Verbose));
         }
     }
     out.push_str(&paint_verdict(&summary(r), r.verdict, color));
@@ -213,7 +213,7 @@ pub fn render_step(n: usize, s: &TraceStep) -> String {
     line
 }
 
-fn render_stats(s: &Stats, bound: Option<Bound>) -> String {
+fn render_stats(s: &Stats, bound: Option<Bound>, verbose: bool) -> String {
     let mut out = format!(
         "explored {} states ({} initial), {} transitions, depth {}, in {:.2}s ({:.0} states/s); fingerprint collision probability {:.1e}\n",
         s.states,
@@ -224,6 +224,17 @@ fn render_stats(s: &Stats, bound: Option<Bound>) -> String {
         s.states_per_second,
         collision_probability(s.states)
     );
+    if verbose && !s.phases.is_empty() {
+        let phases: Vec<String> = s
+            .phases
+            .iter()
+            .map(|p| match p.states {
+                Some(n) => format!("{} {:.2}s ({n} states)", p.name, p.seconds),
+                None => format!("{} {:.2}s", p.name, p.seconds),
+            })
+            .collect();
+        out.push_str(&format!("phases: {}\n", phases.join(", ")));
+    }
     if let Some(n) = s.liveness_states {
         out.push_str(&format!(
             "the checks of runs that go on for ever searched every interleaving again: {n} states\n"

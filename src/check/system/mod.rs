@@ -638,7 +638,9 @@ pub fn verify_system(
         keep_edges: false,
         ..Options::default()
     };
-    all.extend(super::explanation::verify_among(projects, &system, left, &explore_opts)?.0);
+    let (explained, _, phases) =
+        super::explanation::verify_among(projects, &system, left, &explore_opts)?;
+    all.extend(explained);
     let mut v = Verification::of(&graph, project, all);
     if let Some((states, seconds)) = liveness_search {
         let st = &mut v.stats;
@@ -647,7 +649,13 @@ pub fn verify_system(
         if st.seconds > 0.0 {
             st.states_per_second = (st.states + states) as f64 / st.seconds;
         }
+        st.phases.push(crate::findings::Phase {
+            name: "liveness".into(),
+            seconds,
+            states: Some(states),
+        });
     }
+    v.stats.phases.extend(phases);
     if let Some(i) = &instances {
         v.symmetric_types = i.describe();
         v.warnings.extend(i.refused.iter().cloned());
