@@ -1812,6 +1812,16 @@ fn plans_told_untold_and_asked_go_through_jasons_plans_for_messages() {
     );
     let library = state.agents[0].library.as_ref().expect("a's plans changed");
     assert_eq!(library.len(), 3, "a's own +!g and the two told plans");
+    // A plan told by a plan the sender adds is told too.
+    let d = two_agents(
+        "tell-how-added",
+        "!g.
++!g <- .add_plan({+!later <- .send(b, tellHow, \"+!x <- .print(x).\")}); !later; .wait(100); .send(b, achieve, x).
+",
+        "\n",
+    );
+    let (printed, _) = round_robin(&d, 30);
+    assert_eq!(printed, ["b: x"]);
 }
 
 #[test]

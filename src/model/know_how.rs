@@ -268,9 +268,42 @@ fn anonymous_vars(text: &str) -> String {
     out
 }
 
-/// The `.send` and `.broadcast` steps of a body, nested bodies included.
+/// The plans of the plan terms an expression holds (`.add_plan`'s first argument).
+fn plan_terms<'a>(e: &'a Expr, out: &mut Vec<&'a ast::Plan>) {
+    match &e.kind {
+        ExprKind::PlanTerm(t) => {
+            if let PlanTermKind::Plan(p) = &t.kind {
+                out.push(p);
+            }
+        }
+        ExprKind::List(l) => l.elems.iter().for_each(|x| plan_terms(x, out)),
+        _ => {}
+    }
+}
+
+/// The `.send` and `.broadcast` steps of a body, nested bodies and the plans it adds
+/// included.
 fn messages<'a>(b: &'a Body, out: &mut Vec<&'a Literal>) {
     for s in &b.steps {
+        let mut added = Vec::new();
+        match &s.kind {
+            StepKind::Action(Expr {
+                kind: ExprKind::Literal(l),
+                ..
+            }) if l.functor == ".add_plan" => {
+                l.args
+                    .iter()
+                    .take(1)
+                    .for_each(|a| plan_terms(a, &mut added));
+            }
+            StepKind::AddBel(e) | StepKind::AddBelEnd(e) => plan_terms(e, &mut added),
+            _ => {}
+        }
+        for p in added {
+            if let Some(b) = &p.body {
+                messages(b, out);
+            }
+        }
         match &s.kind {
             StepKind::Action(Expr {
                 kind: ExprKind::Literal(l),

@@ -355,6 +355,23 @@ impl Semantics<'_> {
                 return fail(self, s, int, &$text, "it has no answer".into(), notes);
             }};
         }
+        // A step bdi-check does not follow at run time: noted, and the run stops there.
+        macro_rules! or_beyond {
+            ($r:expr, $text:expr) => {
+                match $r {
+                    Ok(v) => v,
+                    Err(reason) => {
+                        notes.push(Note::Beyond {
+                            text: $text,
+                            plan,
+                            span: step.span,
+                            reason,
+                        });
+                        return Flow::Gone;
+                    }
+                }
+            };
+        }
         match &step.kind {
             BodyStep::Action(t) if self.is_emission(t) => {
                 // The agent's own explanation: said, not done; the world does not change.
@@ -661,18 +678,7 @@ impl Semantics<'_> {
                         // `.add_plan(Content, Sender)` and `.remove_plan(Content, Sender)`
                         // of Jason's plans for messages: the plans are compiled (see
                         // `model::know_how`), the content names them.
-                        let change = match self.know_how_change(f, &term) {
-                            Ok(c) => c,
-                            Err(reason) => {
-                                notes.push(Note::Beyond {
-                                    text,
-                                    plan,
-                                    span: step.span,
-                                    reason,
-                                });
-                                return Flow::Gone;
-                            }
-                        };
+                        let change = or_beyond!(self.know_how_change(f, &term), text);
                         notes.push(Note::Internal {
                             text: text.clone(),
                             plan,
@@ -687,18 +693,7 @@ impl Semantics<'_> {
                     }
                     ".kqml_relevant_plans" => {
                         // `.relevant_plans(Trigger, Plans)`, each plan as its key.
-                        let plans = match self.relevant_keys(s, &term.args()[0]) {
-                            Ok(p) => p,
-                            Err(reason) => {
-                                notes.push(Note::Beyond {
-                                    text,
-                                    plan,
-                                    span: step.span,
-                                    reason,
-                                });
-                                return Flow::Gone;
-                            }
-                        };
+                        let plans = or_beyond!(self.relevant_keys(s, &term.args()[0]), text);
                         let mut u = frame.subst.clone();
                         if !unify(&term.args()[1], &plans, &mut u) {
                             no_answer!(text);
