@@ -224,13 +224,13 @@ pub fn verify_with(
     // Every stored state is also checked for equivariance: reduction is only exact if
     // renaming a state renames its successors (see Symmetry::equivariance_violation);
     // where it does not, the report says so.
-    let (graph, not_equivariant) = match &compiled {
+    let (graph, not_equivariant, unchecked) = match &compiled {
         Some(c) => {
             let model = CompiledAgent {
                 compiled: c,
                 symmetry: agent.symmetry.as_ref(),
             };
-            let (g, unequal) = search_agent(
+            let (g, unequal, unchecked) = search_agent(
                 &model,
                 &sem,
                 &conditions,
@@ -239,7 +239,7 @@ pub fn verify_with(
                 (&mut facts, &eventually, &mut failures),
                 progress,
             );
-            (g.cast(), unequal)
+            (g.cast(), unequal, unchecked)
         }
         None => search_agent(
             &agent,
@@ -304,6 +304,9 @@ pub fn verify_with(
         ..Verification::of(&graph, project, findings)
     };
     v.stats.phases.extend(phases);
+    if unchecked {
+        v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
+    }
     Ok(v)
 }
 

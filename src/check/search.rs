@@ -120,7 +120,8 @@ impl Facts {
 
 /// The agent's search (on the reference or the compiled model: they have the same
 /// fingerprints), recording each state's facts and each transition's failures. Returns
-/// the graph and the first equivariance violation `equivariance` reports.
+/// the graph, the first equivariance violation `equivariance` reports, and whether a
+/// complete search left states unchecked (stored after `--timeout` passed).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn search_agent<M>(
     model: &M,
@@ -130,18 +131,33 @@ pub(super) fn search_agent<M>(
     (limits, opts): (Limits, &Options),
     (facts, eventually, failures): (&mut Facts, &[usize], &mut Failures),
     progress: impl FnMut(usize, u32, f64),
-) -> (Graph, Option<String>)
+) -> (Graph, Option<String>, bool)
 where
     M: Model + Sync,
     M::State: AgentState + Send + Sync,
     M::Label: CycleNotes + Send,
 {
     let mut not_equivariant = None;
+    // Past `--timeout` the search stops, and the states it still stores are not checked
+    // for equivariance (the check costs more than the state): a search that completes
+    // all the same says the check was not made everywhere.
+    let deadline = limits
+        .timeout
+        .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
+        .and_then(|d| std::time::Instant::now().checked_add(d));
+    let unchecked = std::sync::atomic::AtomicBool::new(false);
     let graph = explore_with(
         model,
         limits,
         opts,
-        |s| (conditions.summarize(sem, s), equivariance(s)),
+        |s| {
+            let late = deadline.is_some_and(|d| std::time::Instant::now() > d);
+            if late {
+                unchecked.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+            let unequal = if late { None } else { equivariance(s) };
+            (conditions.summarize(sem, s), unequal)
+        },
         |i, (sum, unequal)| {
             if not_equivariant.is_none() {
                 not_equivariant = unequal;
@@ -151,5 +167,6 @@ where
         |src, k, label: &M::Label, fp| failures.record(src, k, fp, label.notes()),
         progress,
     );
-    (graph.cast(), not_equivariant)
+    let unchecked = unchecked.into_inner() && graph.complete();
+    (graph.cast(), not_equivariant, unchecked)
 }
