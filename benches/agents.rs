@@ -104,7 +104,7 @@ fn one(name: &str, dir: &Path, symmetry: bool, partial_order: bool) {
             partial_order,
             ..Default::default()
         },
-        |_, _, _| {},
+        |_, _, _, _| {},
     );
     let seconds = started.elapsed().as_secs_f64();
     let Some(stats) = run.report.stats.as_ref() else {

@@ -160,7 +160,7 @@ fn row(cups: usize, symmetry: bool, explain: bool) {
         ..VerifyOptions::default()
     };
     let start = Instant::now();
-    let v = verify_with(&p, limits, &opts, |_, _, _| {}, &[]).expect("the kitchen verifies");
+    let v = verify_with(&p, limits, &opts, |_, _, _, _| {}, &[]).expect("the kitchen verifies");
     let total = start.elapsed().as_secs_f64();
     let failed = v
         .findings

@@ -182,7 +182,7 @@ impl Search {
             &opts,
             self.scenarios.as_deref(),
             &out.style(),
-            |n, d, t| bar.tick(n, d, t),
+            |phase, n, d, t| bar.tick(phase, n, d, t),
         );
         bar.finish();
         done
@@ -437,10 +437,11 @@ fn parse_shard(s: &str) -> Result<(u32, u32), String> {
     Ok((k, n))
 }
 
-/// A spinner on stderr with states, depth and states/s, shown once a run passes a second
-/// and only when stderr is a terminal.
+/// A spinner on stderr with the phase, its states, depth and states/s, shown once a run
+/// passes a second and only when stderr is a terminal.
 struct Progress {
     bar: Option<indicatif::ProgressBar>,
+    started: std::time::Instant,
 }
 
 impl Progress {
@@ -453,19 +454,27 @@ impl Progress {
             );
             b
         });
-        Progress { bar }
+        Progress {
+            bar,
+            started: std::time::Instant::now(),
+        }
     }
 
-    fn tick(&self, states: usize, depth: u32, seconds: f64) {
+    /// `phase` has reached `states` states and `depth` in `seconds`.
+    fn tick(&self, phase: &str, states: usize, depth: u32, seconds: f64) {
         if let Some(b) = &self.bar {
-            if seconds > 1.0 {
+            if self.started.elapsed().as_secs_f64() > 1.0 {
                 if b.is_hidden() {
                     b.set_draw_target(indicatif::ProgressDrawTarget::stderr());
                 }
-                b.set_message(format!(
-                    "{states} states, depth {depth}, {:.0} states/s",
-                    states as f64 / seconds
-                ));
+                b.set_message(if states == 0 {
+                    format!("{phase}...")
+                } else {
+                    format!(
+                        "{phase}: {states} states, depth {depth}, {:.0} states/s",
+                        states as f64 / seconds.max(1e-9)
+                    )
+                });
                 b.tick();
             }
         }

@@ -570,3 +570,28 @@ fn the_reported_time_is_the_whole_runs_with_one_figure_per_phase() {
         "{out}"
     );
 }
+
+#[test]
+fn the_progress_display_names_every_phase_in_turn() {
+    let mut seen: Vec<String> = Vec::new();
+    let run = bdi_check::commands::verify::run(
+        Path::new("specs/kitchen"),
+        &Default::default(),
+        &Default::default(),
+        |phase, _, _, _| {
+            if seen.last().map(String::as_str) != Some(phase) {
+                seen.push(phase.to_string());
+            }
+        },
+    );
+    assert!(run.report.stats.is_some());
+    assert_eq!(
+        seen,
+        [
+            "lint",
+            "search",
+            "explanation:newcomer",
+            "explanation:owner"
+        ]
+    );
+}

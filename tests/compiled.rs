@@ -204,7 +204,7 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
                     compiled,
                     ..VerifyOptions::default()
                 };
-                verify_with(&p, limits, &opts, |_, _, _| {}, &lint).expect("verify runs")
+                verify_with(&p, limits, &opts, |_, _, _, _| {}, &lint).expect("verify runs")
             };
             let (fast, slow) = (run(true), run(false));
             let at = format!("{} (symmetry {symmetry})", dir.display());

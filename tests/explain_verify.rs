@@ -718,9 +718,18 @@ fn one_agent_gets_the_same_explanation_findings_through_the_interleavings() {
         let projects = load_system(std::path::Path::new(dir)).unwrap();
         assert_eq!(projects.len(), 1, "{dir}");
         let sem = Semantics::new(&projects[0]).unwrap();
-        let (alone, complete, _) = verify(&projects[0], &sem, None, limits, &opts).unwrap();
+        let (alone, complete, _) = verify(
+            &projects[0],
+            &sem,
+            None,
+            limits,
+            &opts,
+            &mut |_, _, _, _| {},
+        )
+        .unwrap();
         let system = System::new(&projects).unwrap();
-        let (among, among_complete, _) = verify_among(&projects, &system, limits, &opts).unwrap();
+        let (among, among_complete, _) =
+            verify_among(&projects, &system, limits, &opts, &mut |_, _, _, _| {}).unwrap();
         assert!(complete && among_complete, "{dir}");
         // A pass counts the states and explanations of its own search.
         let view = |f: &bdi_check::findings::Finding| match f.status {

@@ -596,7 +596,7 @@ fn partial_order_reduction_finds_what_the_full_search_finds() {
                 partial_order,
                 ..VerifyOptions::default()
             };
-            verify_system(&projects, limits, &opts, |_, _, _| {}, Vec::new()).expect("verifies")
+            verify_system(&projects, limits, &opts, |_, _, _, _| {}, Vec::new()).expect("verifies")
         };
         let (reduced, full) = (run(true), run(false));
         let key = |v: &bdi_check::check::Verification| {
@@ -1440,7 +1440,7 @@ fn renaming_instances_renames_every_successor_and_keeps_the_canonical_form() {
             &projects,
             limits,
             &opts,
-            |_, _, _| {},
+            |_, _, _, _| {},
             Vec::new(),
         )
         .expect("verifies");

@@ -1087,8 +1087,9 @@ pub fn verify(
     symmetry: Option<&Symmetry>,
     limits: Limits,
     opts: &Options,
+    progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
-    verify_runs(project, Alone { sem, symmetry }, limits, opts)
+    verify_runs(project, Alone { sem, symmetry }, limits, opts, progress)
 }
 
 /// The explanation properties on every interleaving of the agents of `projects` (those of
@@ -1099,9 +1100,16 @@ pub fn verify_among(
     system: &System,
     limits: Limits,
     opts: &Options,
+    progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     let robot = robot_of(projects);
-    verify_runs(&projects[robot], Among { system, robot }, limits, opts)
+    verify_runs(
+        &projects[robot],
+        Among { system, robot },
+        limits,
+        opts,
+        progress,
+    )
 }
 
 /// The index of the agent `[explanation] robot` names among `projects` (0 when none).
@@ -1122,6 +1130,7 @@ fn verify_runs<W: Runs + Copy>(
     runs: W,
     limits: Limits,
     opts: &Options,
+    progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     let Some(section) = &project.manifest.explanation else {
         return Ok((Vec::new(), true, Vec::new()));
@@ -1153,11 +1162,12 @@ fn verify_runs<W: Runs + Copy>(
                 .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
             ..limits
         };
-        let r = check_user(&model, left, opts, |_, _, _| {});
+        let phase = format!("explanation:{}", user.name);
+        let r = check_user(&model, left, opts, |n, d, t| progress(&phase, n, d, t));
         complete &= r.graph.complete();
         let states = r.graph.len();
         phases.push(Phase {
-            name: format!("explanation:{}", user.name),
+            name: phase,
             seconds: r.graph.seconds,
             states: Some(states),
         });

@@ -489,10 +489,9 @@ fn search<M: Model, T>(
             break;
         }
         if taken % 1024 == 1023 {
-            if limits
-                .timeout
-                .is_some_and(|t| start.elapsed().as_secs_f64() > t)
-            {
+            let elapsed = start.elapsed().as_secs_f64();
+            progress(g.store.len(), 0, elapsed);
+            if limits.timeout.is_some_and(|t| elapsed > t) {
                 g.bound = Some(Bound::Time);
                 break;
             }

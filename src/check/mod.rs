@@ -125,9 +125,10 @@ impl Default for VerifyOptions {
 pub fn verify(
     project: &Project,
     limits: Limits,
-    progress: impl FnMut(usize, u32, f64),
+    mut progress: impl FnMut(usize, u32, f64),
     lint: &[Finding],
 ) -> Result<Verification, Vec<Diagnostic>> {
+    let progress = |_: &str, n, d, t| progress(n, d, t);
     verify_with(project, limits, &VerifyOptions::default(), progress, lint)
 }
 
@@ -139,7 +140,7 @@ pub fn verify_with(
     project: &Project,
     limits: Limits,
     opts: &VerifyOptions,
-    progress: impl FnMut(usize, u32, f64),
+    mut progress: impl FnMut(&str, usize, u32, f64),
     lint: &[Finding],
 ) -> Result<Verification, Vec<Diagnostic>> {
     let started = std::time::Instant::now();
@@ -237,7 +238,7 @@ pub fn verify_with(
                 |s| model.equivariance_violation(s),
                 (limits, &search),
                 (&mut facts, &eventually, &mut failures),
-                progress,
+                |n, d, t| progress("search", n, d, t),
             );
             (g.cast(), unequal, unchecked)
         }
@@ -253,7 +254,7 @@ pub fn verify_with(
             },
             (limits, &search),
             (&mut facts, &eventually, &mut failures),
-            progress,
+            |n, d, t| progress("search", n, d, t),
         ),
     };
     let Failures {
@@ -295,8 +296,14 @@ pub fn verify_with(
             .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
         ..limits
     };
-    let (explained, _, phases) =
-        explanation::verify(project, &sem, agent.symmetry.as_ref(), left, &explore_opts)?;
+    let (explained, _, phases) = explanation::verify(
+        project,
+        &sem,
+        agent.symmetry.as_ref(),
+        left,
+        &explore_opts,
+        &mut progress,
+    )?;
     findings.extend(explained);
     let mut v = Verification {
         symmetric_types,

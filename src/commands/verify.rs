@@ -28,15 +28,15 @@ pub struct Bounds {
 }
 
 /// `verify PROJECT`: the report, and one scenario file per counterexample into
-/// `scenarios` when given. `progress` is called now and then with states, depth and
-/// seconds.
+/// `scenarios` when given. `progress` is called now and then with the phase (`lint`,
+/// `search`, `liveness`, `explanation:USER`), its states, depth and seconds.
 pub fn command(
     project: &Path,
     bounds: &Bounds,
     opts: &VerifyOptions,
     scenarios: Option<&Path>,
     style: &Style,
-    progress: impl FnMut(usize, u32, f64),
+    progress: impl FnMut(&str, usize, u32, f64),
 ) -> Output {
     let mut run = run(project, bounds, opts, progress);
     if bounds.deny_warnings {
@@ -145,7 +145,7 @@ pub fn run(
     path: &Path,
     bounds: &Bounds,
     opts: &VerifyOptions,
-    progress: impl FnMut(usize, u32, f64),
+    progress: impl FnMut(&str, usize, u32, f64),
 ) -> VerifyRun {
     let started = std::time::Instant::now();
     let name = path.display().to_string();
@@ -162,9 +162,11 @@ pub fn run(
         return input_failure(name, project.map, bad);
     }
     // SPEC §2: verify runs lint first; its warnings are settled by the exploration.
+    let mut progress = progress;
+    progress("lint", 0, 0, 0.0);
     let (lint, lim, linted) =
         lint_within(limits(&project, bounds), |o| crate::smt::lint(&project, o));
-    match verify_with(&project, lim, opts, progress, &lint) {
+    match verify_with(&project, lim, opts, &mut progress, &lint) {
         Err(diagnostics) => input_failure(name, project.map, diagnostics),
         Ok(v) => whole_run(report_of(name, project, v, opts), started, linted),
     }
@@ -178,7 +180,7 @@ fn run_system(
     projects: Vec<Project>,
     bounds: &Bounds,
     opts: &VerifyOptions,
-    progress: impl FnMut(usize, u32, f64),
+    progress: impl FnMut(&str, usize, u32, f64),
     started: std::time::Instant,
 ) -> VerifyRun {
     let mut bad = super::allow::check(&projects[0]);
@@ -195,10 +197,11 @@ fn run_system(
         let map = projects.into_iter().next().expect("an agent").map;
         return input_failure(name, map, bad);
     }
+    let mut progress = progress;
+    progress("lint", 0, 0, 0.0);
     let (lint, lim, linted) = lint_within(limits(&projects[0], bounds), |o| {
         super::lint::lint_agents(&projects, o)
     });
-    let mut progress = progress;
     let mut result =
         crate::check::system::verify_system(&projects, lim, opts, &mut progress, lint.clone());
     // Partial-order reduction keeps every violation, not its shortest run: a violation

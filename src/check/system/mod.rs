@@ -179,7 +179,7 @@ pub fn verify_system(
     projects: &[Project],
     limits: Limits,
     options: &VerifyOptions,
-    mut progress: impl FnMut(usize, u32, f64),
+    mut progress: impl FnMut(&str, usize, u32, f64),
     lint: Vec<Finding>,
 ) -> Result<Verification, Vec<Diagnostic>> {
     let threads = options.threads;
@@ -378,7 +378,7 @@ pub fn verify_system(
                 }
             }
         },
-        &mut progress,
+        |n, d, t| progress("search", n, d, t),
     );
     let cx = Cx {
         projects,
@@ -492,7 +492,7 @@ pub fn verify_system(
                     .state(i, sum.busy, sum.pending, sum.holds)
             },
             |src, _, label, _| all_facts.borrow_mut().transition(src, label.mover()),
-            &mut progress,
+            |n, d, t| progress("liveness", n, d, t),
         );
         let cx = Cx {
             projects,
@@ -639,7 +639,7 @@ pub fn verify_system(
         ..Options::default()
     };
     let (explained, _, phases) =
-        super::explanation::verify_among(projects, &system, left, &explore_opts)?;
+        super::explanation::verify_among(projects, &system, left, &explore_opts, &mut progress)?;
     all.extend(explained);
     let mut v = Verification::of(&graph, project, all);
     if let Some((states, seconds)) = liveness_search {
