@@ -1884,3 +1884,34 @@ fn know_how_that_is_not_written_out_is_refused_where_written() {
         assert!(out.contains(what), "{name}: {out}");
     }
 }
+
+#[test]
+fn plans_that_can_never_be_in_the_library_together_are_no_overlap() {
+    // Two senders tell one plan (a string and a plan term, equal as Jason's `Plan.equals`
+    // sees them): the receiver holds it once, so lint must not call the two copies
+    // overlapping; a second plan under a label the library holds is never added either.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let d = root.join("tests/jason-mas/tell-how-sources");
+    let (_, r, _) = verify_json(d.to_str().unwrap(), "never-together");
+    let overlaps: Vec<_> = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["check"] == "plan-overlap" && f["status"] == "fail")
+        .collect();
+    assert!(overlaps.is_empty(), "{overlaps:#?}");
+    let d = two_agents(
+        "never-together-label",
+        "!g.\n+!g <- .send(b, tellHow, \"@h +!hi <- .print(one).\"); .send(b, tellHow, {@h +!hi <- .print(two)}).\n",
+        "\n",
+    );
+    let (_, r, _) = verify_json(d.to_str().unwrap(), "never-together-label");
+    assert!(
+        !r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|f| f["check"] == "plan-overlap" && f["status"] == "fail"),
+        "{r:#}"
+    );
+}
