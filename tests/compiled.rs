@@ -184,6 +184,7 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
         timeout: None,
     };
     let mut compared = 0;
+    let mut explained = false;
     for dir in projects() {
         if load_system(&dir).expect("the project loads").len() > 1 {
             continue;
@@ -213,10 +214,23 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
             assert_eq!(fast.stats.transitions, slow.stats.transitions, "{at}");
             assert_eq!(fast.memory.0, slow.memory.0, "{at}");
             assert_eq!(fast.symmetry_caveat, slow.symmetry_caveat, "{at}");
+            // The users' searches (explanation properties) run on either cycle too.
+            let phases = |v: &bdi_check::check::Verification| -> Vec<(String, Option<usize>)> {
+                v.stats
+                    .phases
+                    .iter()
+                    .map(|p| (p.name.clone(), p.states))
+                    .collect()
+            };
+            assert_eq!(phases(&fast), phases(&slow), "{at}");
+            explained |= phases(&fast)
+                .iter()
+                .any(|p| p.0.starts_with("explanation:"));
         }
         compared += 1;
     }
     assert!(compared >= 5, "projects compared: {compared}");
+    assert!(explained, "no project with explanation users was compared");
 }
 
 #[test]

@@ -679,7 +679,8 @@ fn the_fetchers_own_explanations_conform_on_every_interleaving() {
 }
 
 #[test]
-fn one_agent_gets_the_same_explanation_findings_through_the_interleavings() {
+fn one_agent_gets_the_same_explanation_findings_compiled_and_through_the_interleavings() {
+    // The checks on the compiled cycle give the reference cycle's findings, runs and all.
     // The checks of several agents, run on a project of one: the agent perceives its
     // actions' effects at its next sense there, not as it acts, and every finding (its
     // id, status, message and run) is the one the single-agent checks give.
@@ -712,6 +713,8 @@ fn one_agent_gets_the_same_explanation_findings_through_the_interleavings() {
         "specs/misleading-content/semantic.toml",
         "tests/verify/explain_untruthful",
         "tests/verify/explain_verbose",
+        "tests/verify/explain_shared_q",
+        "tests/verify/explain_shared_not_q",
         &silent,
         &vague,
     ] {
@@ -722,11 +725,27 @@ fn one_agent_gets_the_same_explanation_findings_through_the_interleavings() {
             &projects[0],
             &sem,
             None,
+            None,
             limits,
             &opts,
             &mut |_, _, _, _| {},
         )
         .unwrap();
+        // On the compiled cycle: the same findings, counterexamples and all.
+        let compiled = bdi_check::semantics::Compiled::new(&sem);
+        assert!(compiled.is_some(), "{dir}");
+        let (fast, fast_complete, _) = verify(
+            &projects[0],
+            &sem,
+            compiled.as_ref(),
+            None,
+            limits,
+            &opts,
+            &mut |_, _, _, _| {},
+        )
+        .unwrap();
+        assert!(fast_complete, "{dir}");
+        assert_eq!(fast, alone, "{dir}");
         let system = System::new(&projects).unwrap();
         let (among, among_complete, _) =
             verify_among(&projects, &system, limits, &opts, &mut |_, _, _, _| {}).unwrap();

@@ -35,23 +35,34 @@
 //! own cycles: an action's effects, and whatever other agents changed, come at the sense
 //! that begins the robot's next cycle, and count for the step of the robot's body that was
 //! running then (its intentions as they were before that cycle).
+//!
+//! One agent whose library is local runs on its compiled cycle ([`AloneCompiled`]), with
+//! the tables the agent's own search filled. The user's view is interned and hashed once,
+//! and what a transition's notes make of a view is computed once per view, notes (shared
+//! by the compiled cycle) and beliefs, where it reads them: most transitions of a user's
+//! search repeat one met on another state of the agent. A state of a user's search then
+//! costs about twice a state of the agent's (`docs/benchmarks.md`).
 
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
-use super::model::Model;
+use super::model::{CycleNotes, Model};
 use super::symmetry::{Renaming, Symmetry};
 use super::trace::Builder;
-use crate::explain::agent::{Explainer, User};
+use crate::explain::agent::{Explainer, Explanation, User};
 use crate::explain::{Content, ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
 use crate::findings::{Counterexample, Finding, Phase, Status, StepKindTag, TraceStep};
 use crate::model::atoms::AtomSet;
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
-use crate::semantics::{Note, Origin, Semantics, State, System, SystemState};
+use crate::semantics::{
+    Compiled, Intention, Note, Notes, Origin, Packed, Semantics, State, System, SystemState,
+};
 use crate::syntax::{Diagnostic, Severity, Span};
-use std::collections::BTreeMap;
+use smallvec::SmallVec;
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Debug;
 use std::hash::Hash;
+use std::sync::{Arc, Mutex, MutexGuard};
 
 /// Every explanation property, in report order.
 pub const CHECKS: [&str; 7] = [
@@ -70,6 +81,9 @@ pub trait Runs: Sync {
     /// A state of the runs.
     type State: Clone + Debug + Hash + Eq + Send + Sync;
 
+    /// What a transition did: the notes of the agent that moved.
+    type Notes: CycleNotes + Clone + Debug + Default + Send;
+
     /// Every agent's reasoning cycle, by index (one agent alone).
     fn agents(&self) -> &[Semantics<'_>];
 
@@ -80,8 +94,11 @@ pub trait Runs: Sync {
     /// agent), `None` for one agent.
     fn names(&self) -> Option<&[String]>;
 
-    /// The robot's state in `s`.
-    fn robot_state<'s>(&self, s: &'s Self::State) -> &'s State;
+    /// The robot's beliefs in `s`.
+    fn robot_beliefs<'s>(&self, s: &'s Self::State) -> &'s AtomSet;
+
+    /// Every intention of the robot in `s` (see [`State::all_intentions`]).
+    fn robot_intentions<'s>(&self, s: &'s Self::State) -> impl Iterator<Item = &'s Intention>;
 
     /// The environment in `s` (a run's initial state, as a counterexample lists it).
     fn world<'s>(&self, s: &'s Self::State) -> &'s AtomSet;
@@ -97,7 +114,7 @@ pub trait Runs: Sync {
 
     /// Every successor of `s`, in a fixed order: the agent that moved (for a request, the
     /// agent it goes to), what it did, and the state after.
-    fn successors(&self, s: &Self::State) -> Vec<(u8, Vec<Note>, Self::State)>;
+    fn successors(&self, s: &Self::State) -> Vec<(u8, Self::Notes, Self::State)>;
 
     /// The robot's beliefs after the sense that begins its next cycle in `s`, when that
     /// sense perceives or reads something. Among several agents the robot perceives the
@@ -111,6 +128,23 @@ pub trait Runs: Sync {
     /// (what [`Runs::sensed`] gives then): its beliefs are about to change.
     fn to_sense(&self, _s: &Self::State) -> bool {
         false
+    }
+
+    /// An identity of `notes` (equal for notes that are the same shared values), when the
+    /// runs share them: a user's view then moves through each such transition once.
+    fn notes_key(&self, _notes: &Self::Notes) -> Option<SmallVec<[usize; 4]>> {
+        None
+    }
+
+    /// An identity of the robot's beliefs in `s` (with [`Runs::notes_key`]).
+    fn beliefs_key(&self, _s: &Self::State) -> usize {
+        0
+    }
+
+    /// An identity of the robot's intentions in `s` (see [`State::all_intentions`]), when
+    /// the runs share them as [`Runs::notes_key`] shares notes.
+    fn intentions_key(&self, _s: &Self::State) -> Option<SmallVec<[usize; 8]>> {
+        None
     }
 
     /// Under symmetry reduction, the fingerprint of `s` up to renaming, with `extra`
@@ -136,6 +170,7 @@ pub struct Alone<'a> {
 
 impl Runs for Alone<'_> {
     type State = State;
+    type Notes = Vec<Note>;
 
     fn agents(&self) -> &[Semantics<'_>] {
         std::slice::from_ref(self.sem)
@@ -149,8 +184,12 @@ impl Runs for Alone<'_> {
         None
     }
 
-    fn robot_state<'s>(&self, s: &'s State) -> &'s State {
-        s
+    fn robot_beliefs<'s>(&self, s: &'s State) -> &'s AtomSet {
+        &s.beliefs
+    }
+
+    fn robot_intentions<'s>(&self, s: &'s State) -> impl Iterator<Item = &'s Intention> {
+        s.all_intentions()
     }
 
     fn world<'s>(&self, s: &'s State) -> &'s AtomSet {
@@ -187,6 +226,7 @@ pub struct Among<'a> {
 
 impl Runs for Among<'_> {
     type State = SystemState;
+    type Notes = Vec<Note>;
 
     fn agents(&self) -> &[Semantics<'_>] {
         &self.system.agents
@@ -200,8 +240,12 @@ impl Runs for Among<'_> {
         Some(self.system.names())
     }
 
-    fn robot_state<'s>(&self, s: &'s SystemState) -> &'s State {
-        &s.agents[self.robot]
+    fn robot_beliefs<'s>(&self, s: &'s SystemState) -> &'s AtomSet {
+        &s.agents[self.robot].beliefs
+    }
+
+    fn robot_intentions<'s>(&self, s: &'s SystemState) -> impl Iterator<Item = &'s Intention> {
+        s.agents[self.robot].all_intentions()
     }
 
     fn world<'s>(&self, s: &'s SystemState) -> &'s AtomSet {
@@ -233,11 +277,165 @@ impl Runs for Among<'_> {
     }
 }
 
+/// One agent's compiled reasoning cycle ([`Compiled`]): the runs of [`Alone`], with the
+/// same states (packed into shared parts), notes and fingerprints, each phase of the cycle
+/// computed once for all the states that share its parts.
+#[derive(Clone, Copy)]
+pub struct AloneCompiled<'c, 's, 'p> {
+    /// The agent's compiled cycle.
+    pub compiled: &'c Compiled<'s, 'p>,
+    /// Symmetry reduction over objects, if on.
+    pub symmetry: Option<&'c Symmetry>,
+}
+
+impl<'c> Runs for AloneCompiled<'c, '_, '_> {
+    type State = Packed<'c>;
+    type Notes = Notes<'c>;
+
+    fn agents(&self) -> &[Semantics<'_>] {
+        std::slice::from_ref(self.compiled.semantics())
+    }
+
+    fn robot(&self) -> usize {
+        0
+    }
+
+    fn names(&self) -> Option<&[String]> {
+        None
+    }
+
+    fn robot_beliefs<'s>(&self, s: &'s Packed<'c>) -> &'s AtomSet {
+        s.beliefs()
+    }
+
+    fn robot_intentions<'s>(&self, s: &'s Packed<'c>) -> impl Iterator<Item = &'s Intention> {
+        s.all_intentions()
+    }
+
+    fn world<'s>(&self, s: &'s Packed<'c>) -> &'s AtomSet {
+        s.beliefs()
+    }
+
+    fn initial(&self) -> Box<dyn Iterator<Item = Packed<'c>> + '_> {
+        Box::new(self.compiled.initial_iter())
+    }
+
+    fn successors(&self, s: &Packed<'c>) -> Vec<(u8, Notes<'c>, Packed<'c>)> {
+        self.compiled
+            .successors(s)
+            .into_iter()
+            .map(|(notes, next)| (0, notes, next))
+            .collect()
+    }
+
+    fn notes_key(&self, notes: &Notes<'c>) -> Option<SmallVec<[usize; 4]>> {
+        Some(notes.key())
+    }
+
+    fn beliefs_key(&self, s: &Packed<'c>) -> usize {
+        s.beliefs_key()
+    }
+
+    fn intentions_key(&self, s: &Packed<'c>) -> Option<SmallVec<[usize; 8]>> {
+        Some(s.intentions_key())
+    }
+
+    fn fingerprint_with<H: Hash>(
+        &self,
+        s: &Packed<'c>,
+        extra: impl Fn(&Renaming) -> H,
+    ) -> Option<u64> {
+        // Renaming works on whole states, as for the agent's compiled search.
+        self.symmetry
+            .map(|sym| sym.fingerprint_with(&self.compiled.unpack(s), extra))
+    }
+}
+
 /// The runs of an agent, or of several, as one user watching the robot sees them.
 pub struct Explained<'a, W = Alone<'a>> {
     runs: W,
     ex: &'a Explainer<'a>,
     user: &'a User,
+    tables: Tables,
+}
+
+/// Tables are split in this many shards, each behind its own lock.
+const SHARDS: usize = 32;
+
+/// The views met so far, each once, and what the notes of a transition made of a view
+/// (with the robot's beliefs), each once: most transitions of a user's search repeat one
+/// already met on another state of the agent.
+#[derive(Default)]
+struct Tables {
+    views: [Mutex<HashSet<Shared>>; SHARDS],
+    seen: Table<SeenKey, Seen>,
+    judged: Table<JudgedKey, (Shared, Vec<Violation>)>,
+    /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
+    /// explanation and the truth of its context.
+    explained: Table<(usize, usize), Option<Judgeable>>,
+}
+
+/// Algorithm 2's explanation, and the truth of each literal of its context when given.
+type Judgeable = (Explanation, Vec<bool>);
+
+/// A memo: values by key, in shards.
+type Table<K, V> = [Mutex<HashMap<K, Arc<V>>>; SHARDS];
+
+/// A view after a transition's notes (by address), whether they failed, whether the robot
+/// has yet to sense, and the robot's beliefs and intentions after it (by
+/// [`Runs::beliefs_key`] and [`Runs::intentions_key`]).
+#[derive(PartialEq, Eq, Hash)]
+struct JudgedKey(usize, bool, bool, usize, SmallVec<[usize; 8]>);
+
+/// The value of `key` in `table`, computed (without the lock: computing interns views)
+/// when it is new.
+fn memo<K: Hash + Eq, V>(table: &Table<K, V>, key: K, compute: impl FnOnce() -> V) -> Arc<V> {
+    let hash = fingerprint(&key);
+    if let Some(v) = shard(table, hash).get(&key) {
+        return v.clone();
+    }
+    let v = Arc::new(compute());
+    shard(table, hash).entry(key).or_insert(v).clone()
+}
+
+/// A view (by address: views are interned), the notes (by [`Runs::notes_key`]), the
+/// robot's beliefs (by [`Runs::beliefs_key`]).
+#[derive(PartialEq, Eq, Hash)]
+struct SeenKey(usize, SmallVec<[usize; 4]>, usize);
+
+/// What a transition's notes made of a view: the view after them, the explanations given
+/// at each, the violations, whether a failure was among them.
+struct Seen {
+    view: Shared,
+    given: Vec<Option<GivenExplanation>>,
+    violations: Vec<Violation>,
+    failed: bool,
+    /// Whether the robot's beliefs were read (an explanation was due): else it is the same
+    /// for every state.
+    reads_beliefs: bool,
+}
+
+fn shard<T>(table: &[Mutex<T>; SHARDS], hash: u64) -> MutexGuard<'_, T> {
+    // A panic in another search thread is re-raised by the explorer; a table it left is
+    // consistent (every insertion is a single call).
+    table[(hash >> 40) as usize % SHARDS]
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+}
+
+impl Tables {
+    /// The shared view equal to `view`.
+    fn intern(&self, view: View) -> Shared {
+        let new = Shared::new(view);
+        let mut views = shard(&self.views, new.0 .0);
+        match views.get(&new) {
+            Some(old) => old.clone(),
+            None => {
+                views.insert(new.clone());
+                new
+            }
+        }
+    }
 }
 
 /// A state of [`Explained`]: the runs' (the agent's, or the system's), and the user's view
@@ -246,6 +444,25 @@ pub struct Explained<'a, W = Alone<'a>> {
 pub struct ExplainedState<S = State> {
     /// The agent, or every agent.
     pub state: S,
+    /// The user's view, shared by the states that have it.
+    view: Shared,
+}
+
+impl<S> ExplainedState<S> {
+    /// The user's expected successors `N`, as Algorithm 1 has updated them on the run so far.
+    pub fn expected(&self) -> &ExpectedSuccessors {
+        &self.view.0 .1.n
+    }
+
+    /// What the user saw last, if anything.
+    pub fn last_observed(&self) -> Option<&Observation> {
+        self.view.0 .1.prev.as_ref()
+    }
+}
+
+/// The user's view of a run.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct View {
     /// `N` as Algorithm 1 updates it on the observed sequence.
     n: ExpectedSuccessors,
     /// The last observation, if any.
@@ -260,15 +477,28 @@ pub struct ExplainedState<S = State> {
     emitted: Option<Term>,
 }
 
-impl<S> ExplainedState<S> {
-    /// The user's expected successors `N`, as Algorithm 1 has updated them on the run so far.
-    pub fn expected(&self) -> &ExpectedSuccessors {
-        &self.n
-    }
+/// A [`View`] with its hash: most transitions leave the view as it was, and then the
+/// next state shares it (a pointer copy) and hashes it in one word.
+#[derive(Clone, Debug)]
+struct Shared(Arc<(u64, View)>);
 
-    /// What the user saw last, if anything.
-    pub fn last_observed(&self) -> Option<&Observation> {
-        self.prev.as_ref()
+impl Shared {
+    fn new(view: View) -> Shared {
+        Shared(Arc::new((fingerprint(&view), view)))
+    }
+}
+
+impl PartialEq for Shared {
+    fn eq(&self, o: &Shared) -> bool {
+        Arc::ptr_eq(&self.0, &o.0) || (self.0 .0 == o.0 .0 && self.0 .1 == o.0 .1)
+    }
+}
+
+impl Eq for Shared {}
+
+impl Hash for Shared {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        h.write_u64(self.0 .0);
     }
 }
 
@@ -314,8 +544,14 @@ pub struct GivenExplanation {
     pub after: Option<Observation>,
     /// What Algorithm 2 says.
     pub content: Content,
-    /// The sentence.
-    pub text: String,
+}
+
+impl GivenExplanation {
+    /// The sentence the user hears (made when asked: a search gives many explanations and
+    /// reports few).
+    pub fn text(&self, ex: &Explainer) -> String {
+        ex.sentence(&self.action, &self.content)
+    }
 }
 
 /// A property violated by a transition.
@@ -331,16 +567,24 @@ pub struct Violation {
 
 /// What one transition of [`Explained`] did.
 #[derive(Clone, Debug, Default)]
-pub struct Step {
+pub struct Step<N = Vec<Note>> {
     /// The agent that moved (its index among [`Runs::agents`]; for a request, the agent it
     /// goes to).
     pub agent: u8,
     /// The agent's notes.
-    pub notes: Vec<Note>,
-    /// For each note, the explanation given at it, if any.
+    pub notes: N,
+    /// For each note up to the last at which an explanation was given, the explanation
+    /// given at it, if any (empty when none was: read it with [`Step::given_at`]).
     pub given: Vec<Option<GivenExplanation>>,
     /// Properties violated.
     pub violations: Vec<Violation>,
+}
+
+impl<N> Step<N> {
+    /// The explanation given at the `i`-th note, if any.
+    pub fn given_at(&self, i: usize) -> Option<&GivenExplanation> {
+        self.given.get(i).and_then(Option::as_ref)
+    }
 }
 
 impl<'a> Explained<'a> {
@@ -361,7 +605,12 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// The runs `runs` as `user`, watching their robot, sees them, explained by `ex` (made
     /// for the robot).
     pub fn watching(runs: W, ex: &'a Explainer<'a>, user: &'a User) -> Explained<'a, W> {
-        Explained { runs, ex, user }
+        Explained {
+            runs,
+            ex,
+            user,
+            tables: Tables::default(),
+        }
     }
 
     /// The robot's reasoning cycle.
@@ -374,24 +623,27 @@ impl<'a, W: Runs> Explained<'a, W> {
     pub fn start(&self, state: W::State) -> ExplainedState<W::State> {
         ExplainedState {
             state,
-            n: self.user.expected.clone(),
-            prev: None,
-            adoption: self.user.expected.clone(),
-            marks: Vec::new(),
-            open: Vec::new(),
-            emitted: None,
+            view: self.tables.intern(View {
+                n: self.user.expected.clone(),
+                prev: None,
+                adoption: self.user.expected.clone(),
+                marks: Vec::new(),
+                open: Vec::new(),
+                emitted: None,
+            }),
         }
     }
 
     /// A step of the robot's plan `plan` as a message names it, its bindings read in the
     /// robot's state `robot`.
-    fn step_text(&self, plan: u32, block: u16, pos: u16, robot: &State) -> String {
+    fn step_text(&self, plan: u32, block: u16, pos: u16, robot: &W::State) -> String {
         let sem = self.sem();
         let Some(step) = sem.block(plan, block).get(pos as usize) else {
             return "the end of the body".into();
         };
-        let subst = robot
-            .all_intentions()
+        let subst = self
+            .runs
+            .robot_intentions(robot)
             .flat_map(|i| &i.frames)
             .find(|f| f.plan == plan)
             .map(|f| f.subst.clone())
@@ -409,7 +661,7 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// Algorithm 1 as the paper wrote it, at the adoption of `plan`.
     fn adopt(
         &self,
-        st: &mut ExplainedState<W::State>,
+        st: &mut View,
         plan: u32,
         origin: Origin,
         subst: &crate::model::Substitution,
@@ -447,7 +699,7 @@ impl<'a, W: Runs> Explained<'a, W> {
     fn judge(
         &self,
         open: &mut Vec<Obligation>,
-        (robot, beliefs): (&State, &AtomSet),
+        (robot, beliefs): (&W::State, &AtomSet),
         failed: bool,
         unsensed: bool,
         out: &mut Vec<Violation>,
@@ -457,8 +709,9 @@ impl<'a, W: Runs> Explained<'a, W> {
             return;
         }
         for o in pending {
-            let frame = robot
-                .all_intentions()
+            let frame = self
+                .runs
+                .robot_intentions(robot)
                 .filter(|i| i.origin == o.origin)
                 .filter_map(|i| i.frames.get(o.depth as usize))
                 .find(|f| f.plan == o.plan);
@@ -521,46 +774,145 @@ impl<'a, W: Runs> Explained<'a, W> {
         &self,
         s: &ExplainedState<W::State>,
         agent: u8,
-        notes: Vec<Note>,
+        notes: W::Notes,
         next: W::State,
         sensed: Option<&AtomSet>,
-    ) -> (Step, ExplainedState<W::State>) {
-        let mut st = ExplainedState {
-            state: next,
-            n: s.n.clone(),
-            prev: s.prev.clone(),
-            adoption: s.adoption.clone(),
-            marks: s.marks.clone(),
-            open: s.open.clone(),
-            emitted: s.emitted.clone(),
-        };
+    ) -> (Step<W::Notes>, ExplainedState<W::State>) {
         let mut step = Step {
             agent,
-            ..Step::default()
+            notes: W::Notes::default(),
+            given: Vec::new(),
+            violations: Vec::new(),
         };
-        if agent as usize != self.runs.robot() {
-            // Another agent's step (a cycle, or a request to it): the user sees none of
-            // it, and the robot's state does not change.
-            step.given = vec![None; notes.len()];
+        let view = &s.view.0 .1;
+        // Another agent's step (a cycle, or a request to it): the user sees none of it,
+        // and the robot's state does not change. A step of the robot that the user does
+        // not see (no request, no plan adopted, no action, no failure) and that leaves no
+        // explanation to judge and every mark in place leaves the view as it was.
+        let unseen = agent as usize != self.runs.robot()
+            || (sensed.is_none()
+                && view.open.is_empty()
+                && !notes.notes().any(|n| {
+                    matches!(
+                        n,
+                        Note::Request { .. }
+                            | Note::Plan { .. }
+                            | Note::Action { .. }
+                            | Note::ActionFailed { .. }
+                            | Note::GoalFailed { .. }
+                    )
+                })
+                && view.marks.iter().all(|m| self.alive(m, &next)));
+        if unseen {
             step.notes = notes;
-            return (step, st);
+            let view = s.view.clone();
+            return (step, ExplainedState { state: next, view });
         }
-        let before = self.runs.robot_state(&s.state);
+        let before = &s.state;
+        let seen = match (sensed, self.runs.notes_key(&notes)) {
+            (None, Some(key)) => {
+                let key = SeenKey(
+                    Arc::as_ptr(&s.view.0) as usize,
+                    key,
+                    self.runs.beliefs_key(before),
+                );
+                // Most notes do not read the beliefs (no explanation is due): one entry for
+                // every state then.
+                let beliefs = Some(key.2);
+                let seen = memo(&self.tables.seen, SeenKey(key.0, key.1.clone(), 0), || {
+                    self.see(view, before, &notes, None, beliefs)
+                });
+                if seen.reads_beliefs {
+                    memo(&self.tables.seen, key, || {
+                        self.see(view, before, &notes, None, beliefs)
+                    })
+                } else {
+                    seen
+                }
+            }
+            (sensed, _) => Arc::new(self.see(view, before, &notes, sensed, None)),
+        };
+        step.given.clone_from(&seen.given);
+        step.violations.clone_from(&seen.violations);
+        step.notes = notes;
+        let after = &seen.view.0 .1;
+        if after.open.is_empty() && after.marks.iter().all(|m| self.alive(m, &next)) {
+            let view = seen.view.clone();
+            return (step, ExplainedState { state: next, view });
+        }
+        let unsensed = self.runs.to_sense(&next);
+        let judged = match self.runs.intentions_key(&next) {
+            Some(key) => {
+                let key = JudgedKey(
+                    Arc::as_ptr(&seen.view.0) as usize,
+                    seen.failed,
+                    unsensed,
+                    self.runs.beliefs_key(&next),
+                    key,
+                );
+                memo(&self.tables.judged, key, || {
+                    self.after(&seen.view, &next, seen.failed, unsensed)
+                })
+            }
+            None => Arc::new(self.after(&seen.view, &next, seen.failed, unsensed)),
+        };
+        step.violations.extend(judged.1.iter().cloned());
+        let view = judged.0.clone();
+        (step, ExplainedState { state: next, view })
+    }
+
+    /// The view `view` after a transition to `next` (the robot's state): its open
+    /// explanations judged, its marks of frames gone dropped.
+    fn after(
+        &self,
+        view: &Shared,
+        next: &W::State,
+        failed: bool,
+        unsensed: bool,
+    ) -> (Shared, Vec<Violation>) {
+        let mut violations = Vec::new();
+        let mut st = view.0 .1.clone();
+        self.judge(
+            &mut st.open,
+            (next, self.runs.robot_beliefs(next)),
+            failed,
+            unsensed,
+            &mut violations,
+        );
+        // Marks of frames that are gone (finished or failed) can never be executed.
+        st.marks.retain(|m| self.alive(m, next));
+        let view = if st == view.0 .1 {
+            view.clone()
+        } else {
+            self.tables.intern(st)
+        };
+        (view, violations)
+    }
+
+    /// What the robot's `notes` make of the user's `view`, the robot's state before them
+    /// being `before` (`sensed`: its beliefs after the sense that began its cycle, when it
+    /// perceived or read something).
+    fn see(
+        &self,
+        view: &View,
+        before: &W::State,
+        notes: &W::Notes,
+        sensed: Option<&AtomSet>,
+        beliefs_key: Option<usize>,
+    ) -> Seen {
+        let mut st = view.clone();
+        let mut violations = Vec::new();
+        let mut given_at = Vec::new();
         // What the robot believes when its cycle acts: what it sensed at the start of it.
-        let believed = sensed.unwrap_or(&before.beliefs);
+        let believed = sensed.unwrap_or(self.runs.robot_beliefs(before));
         if let Some(b) = sensed {
             // What changed since its last cycle (its last action's effects, what others
             // did) counts for the step that was running then.
-            self.judge(
-                &mut st.open,
-                (before, b),
-                false,
-                false,
-                &mut step.violations,
-            );
+            self.judge(&mut st.open, (before, b), false, false, &mut violations);
         }
         let mut failed = false;
-        for note in &notes {
+        let mut reads_beliefs = sensed.is_some();
+        for (i, note) in notes.notes().enumerate() {
             let mut given = None;
             match note {
                 Note::Request { index } => {
@@ -586,51 +938,53 @@ impl<'a, W: Runs> Explained<'a, W> {
                     if self.sem().is_emission(term) {
                         st.emitted = Some(term.clone());
                     } else {
+                        // The note (shared) and the beliefs identify the explanation.
+                        let key = beliefs_key.map(|b| (note as *const Note as usize, b));
                         given = self.action(
-                            believed,
+                            (believed, &mut reads_beliefs, key),
                             &mut st,
                             term,
                             stack,
                             *plan,
                             *span,
                             *origin,
-                            &mut step.violations,
+                            &mut violations,
                         );
                     }
                 }
                 Note::ActionFailed { .. } | Note::GoalFailed { .. } => failed = true,
                 _ => {}
             }
-            step.given.push(given);
+            if given.is_some() {
+                given_at.resize(i, None);
+                given_at.push(given);
+            }
         }
-        let robot = self.runs.robot_state(&st.state);
-        let unsensed = self.runs.to_sense(&st.state);
-        self.judge(
-            &mut st.open,
-            (robot, &robot.beliefs),
+        Seen {
+            view: self.tables.intern(st),
+            given: given_at,
+            violations,
             failed,
-            unsensed,
-            &mut step.violations,
-        );
-        // Marks of frames that are gone (finished or failed) can never be executed.
-        st.marks.retain(|m| {
-            robot.all_intentions().any(|i| {
-                i.origin == m.origin
-                    && i.frames
-                        .get(m.depth as usize)
-                        .is_some_and(|f| f.plan == m.plan)
-            })
-        });
-        step.notes = notes;
-        (step, st)
+            reads_beliefs,
+        }
+    }
+
+    /// Whether the frame of the mark `m` is still on one of the robot's intentions in `s`.
+    fn alive(&self, m: &Mark, s: &W::State) -> bool {
+        self.runs.robot_intentions(s).any(|i| {
+            i.origin == m.origin
+                && i.frames
+                    .get(m.depth as usize)
+                    .is_some_and(|f| f.plan == m.plan)
+        })
     }
 
     /// An executed environment action: demand, adoption marks, content, conformance.
     #[allow(clippy::too_many_arguments)]
     fn action(
         &self,
-        believed: &AtomSet,
-        st: &mut ExplainedState<W::State>,
+        (believed, read, key): (&AtomSet, &mut bool, Option<(usize, usize)>),
+        st: &mut View,
         term: &Term,
         stack: &[crate::semantics::FrameView],
         plan: u32,
@@ -701,28 +1055,26 @@ impl<'a, W: Runs> Explained<'a, W> {
             });
         }
         let emitted = st.emitted.take();
-        let explanation = if due {
-            self.ex.explain(believed, stack)
-        } else {
-            None
-        };
+        *read |= due;
+        let explained = due.then(|| match key {
+            Some(key) => memo(&self.tables.explained, key, || {
+                self.explain(believed, stack)
+            }),
+            None => Arc::new(self.explain(believed, stack)),
+        });
+        let explanation = explained.as_deref().and_then(Option::as_ref);
         if self.sem().explains_itself() {
             self.conformance(
                 term,
                 &after,
                 emitted.as_ref(),
-                explanation.as_ref().map(|e| &e.content),
+                explanation.map(|(e, _)| &e.content),
                 span,
                 out,
             );
         }
-        let e = explanation?;
-        let truth: Vec<bool> = e
-            .content
-            .context
-            .iter()
-            .map(|l| self.ex.literal_holds(believed, l))
-            .collect();
+        let (e, truth) = explanation?;
+        let truth = truth.clone();
         let false_now: Vec<String> = e
             .content
             .context
@@ -747,7 +1099,6 @@ impl<'a, W: Runs> Explained<'a, W> {
             action: term.clone(),
             after: prev,
             content: e.content.clone(),
-            text: self.ex.sentence(term, &e.content),
         };
         st.open.push(Obligation {
             origin,
@@ -764,6 +1115,23 @@ impl<'a, W: Runs> Explained<'a, W> {
             steps: e.content.actions.clone(),
         });
         Some(given)
+    }
+
+    /// Algorithm 2's explanation of the action on top of `stack`, and the truth of each
+    /// literal of its `Γ` in `believed`.
+    fn explain(
+        &self,
+        believed: &AtomSet,
+        stack: &[crate::semantics::FrameView],
+    ) -> Option<Judgeable> {
+        let e = self.ex.explain(believed, stack)?;
+        let truth = e
+            .content
+            .context
+            .iter()
+            .map(|l| self.ex.literal_holds(believed, l))
+            .collect();
+        Some((e, truth))
     }
 
     /// The agent's own explanation against the reference (see [`emitted_content`]).
@@ -860,7 +1228,7 @@ pub fn reference_content(action: &Term, c: &crate::explain::Content) -> Carried 
 
 impl<W: Runs> Model for Explained<'_, W> {
     type State = ExplainedState<W::State>;
-    type Label = Step;
+    type Label = Step<W::Notes>;
 
     fn init_complete(&self) -> bool {
         self.runs.initial_complete()
@@ -870,12 +1238,14 @@ impl<W: Runs> Model for Explained<'_, W> {
         Box::new(self.runs.initial().map(|state| self.start(state)))
     }
 
-    fn next_states(&self, s: &Self::State) -> Vec<(Step, Self::State)> {
+    fn next_states(&self, s: &Self::State) -> Vec<(Step<W::Notes>, Self::State)> {
         let robot = self.runs.robot() as u8;
         let succ = self.runs.successors(&s.state);
         // A cycle of the robot, not a request to it.
-        let cycle =
-            |agent: u8, notes: &[Note]| agent == robot && !matches!(notes, [Note::Request { .. }]);
+        let cycle = |agent: u8, notes: &W::Notes| {
+            let mut it = notes.notes();
+            agent == robot && !matches!((it.next(), it.next()), (Some(Note::Request { .. }), None))
+        };
         // Every cycle of the robot from `s` begins with the same sense.
         let sensed = succ
             .iter()
@@ -891,6 +1261,7 @@ impl<W: Runs> Model for Explained<'_, W> {
     }
 
     fn fingerprint(&self, s: &Self::State) -> u64 {
+        let v = &s.view.0 .1;
         let renamed = self.runs.fingerprint_with(&s.state, |r| {
             let obs = |o: &Observation| match o {
                 Observation::Request(t) => Observation::Request(r.term(t)),
@@ -908,13 +1279,13 @@ impl<W: Runs> Model for Explained<'_, W> {
                 v.sort();
                 v
             };
-            let mut marks: Vec<(Origin, u16, u32, u16)> = s
+            let mut marks: Vec<(Origin, u16, u32, u16)> = v
                 .marks
                 .iter()
                 .map(|m| (r.origin(m.origin), m.depth, m.plan, m.pos))
                 .collect();
             marks.sort();
-            let open: Vec<Obligation> = s
+            let open: Vec<Obligation> = v
                 .open
                 .iter()
                 .map(|o| Obligation {
@@ -940,12 +1311,12 @@ impl<W: Runs> Model for Explained<'_, W> {
                 })
                 .collect();
             (
-                pairs(&s.n),
-                s.prev.as_ref().map(obs),
-                pairs(&s.adoption),
+                pairs(&v.n),
+                v.prev.as_ref().map(obs),
+                pairs(&v.adoption),
                 marks,
                 open,
-                s.emitted.as_ref().map(|t| r.term(t)),
+                v.emitted.as_ref().map(|t| r.term(t)),
             )
         });
         renamed.unwrap_or_else(|| fingerprint(s))
@@ -983,7 +1354,7 @@ pub fn check_user<W: Runs>(
         opts,
         |_| (),
         |_, ()| {},
-        |src, k, step: &Step, fp| {
+        |src, k, step: &Step<W::Notes>, fp| {
             given += step.given.iter().flatten().count();
             for v in &step.violations {
                 violations
@@ -1018,7 +1389,7 @@ pub fn counterexample<W: Runs>(
     let names = model.runs.names();
     let name = |k: usize| names.map(|n| n[k].clone());
     let path = graph.path_to(src);
-    let mut labels: Vec<Step> = Vec::new();
+    let mut labels: Vec<Step<W::Notes>> = Vec::new();
     let mut initial = Vec::new();
     if let Some(mut walk) = Walk::start(model, graph, path[0]) {
         initial = model
@@ -1030,7 +1401,7 @@ pub fn counterexample<W: Runs>(
         for &j in &path[1..] {
             labels.extend(walk.step_to(j));
         }
-        labels.extend(walk.step_by(k, fp, |l: &Step| {
+        labels.extend(walk.step_by(k, fp, |l: &Step<W::Notes>| {
             l.violations
                 .iter()
                 .any(|w| w.check == v.check && w.span == v.span)
@@ -1044,25 +1415,26 @@ pub fn counterexample<W: Runs>(
     let mut requests = Vec::new();
     for l in labels {
         let mover = l.agent as usize;
-        for (note, given) in l.notes.into_iter().zip(l.given) {
-            if let Note::Request { index } = &note {
+        for (i, note) in l.notes.notes().enumerate() {
+            if let Note::Request { index } = note {
                 requests.push(agents[mover].requests[*index as usize].to_string());
             }
-            if let Some(g) = given {
+            if let Some(g) = l.given_at(i) {
+                let text = g.text(model.ex);
                 steps.push(TraceStep {
                     kind: StepKindTag::Explanation,
-                    text: format!("to {}: {} {}", user.name, g.text, g.content),
+                    text: format!("to {}: {text} {}", user.name, g.content),
                     intention: None,
                     plan: None,
                     added: Vec::new(),
                     removed: Vec::new(),
-                    explanation: Some(g.text),
+                    explanation: Some(text),
                     agent: name(model.runs.robot()),
                 });
             }
             let b = &mut builders[mover];
             let before = b.steps().len();
-            b.push(vec![note]);
+            b.push(vec![note.clone()]);
             for mut st in b.steps()[before..].iter().cloned() {
                 st.agent = name(mover);
                 steps.push(st);
@@ -1081,15 +1453,27 @@ pub fn counterexample<W: Runs>(
 /// one finding per property and user when it holds (or is undecided), one per property,
 /// user and place when it fails. Nothing when the manifest has no `[explanation]` users.
 /// Also returns whether every user's search was complete.
+/// With `compiled` (the agent's compiled cycle, whose tables the agent's search filled),
+/// the users' searches run on it.
 pub fn verify(
     project: &Project,
     sem: &Semantics,
+    compiled: Option<&Compiled>,
     symmetry: Option<&Symmetry>,
     limits: Limits,
     opts: &Options,
     progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
-    verify_runs(project, Alone { sem, symmetry }, limits, opts, progress)
+    match compiled {
+        Some(compiled) => verify_runs(
+            project,
+            AloneCompiled { compiled, symmetry },
+            limits,
+            opts,
+            progress,
+        ),
+        None => verify_runs(project, Alone { sem, symmetry }, limits, opts, progress),
+    }
 }
 
 /// The explanation properties on every interleaving of the agents of `projects` (those of

@@ -44,14 +44,14 @@ mod settle;
 use crate::findings::{Finding, Stats, Status};
 use crate::model::formula;
 use crate::model::project::Project;
-use crate::semantics::{Compiled, Note, Semantics};
+use crate::semantics::{Compiled, Note, Packed, Semantics, State};
 use crate::syntax::{Diagnostic, Span};
 use checker::Checker;
 use explore::{Bound, Limits, Options};
 use failures::Failures;
 use model::{Agent, CompiledAgent};
 use safety::Prop;
-use search::{search_agent, Conditions, Facts};
+use search::{search_agent, Conditions, Facts, Plans};
 use settle::{settle_non_inductive, settle_undecided, settles};
 
 /// What `verify` found.
@@ -233,8 +233,7 @@ pub fn verify_with(
             };
             let (g, unequal, unchecked) = search_agent(
                 &model,
-                &sem,
-                &conditions,
+                (&conditions, |s: &Packed| c.applicable_plans(s).into()),
                 |s| model.equivariance_violation(s),
                 (limits, &search),
                 (&mut facts, &eventually, &mut failures),
@@ -244,8 +243,14 @@ pub fn verify_with(
         }
         None => search_agent(
             &agent,
-            &sem,
-            &conditions,
+            (&conditions, |s: &State| {
+                s.events.first().map_or_else(Plans::new, |ev| {
+                    sem.applicable(s, &ev.trigger, false)
+                        .into_iter()
+                        .map(|(plan, _)| plan)
+                        .collect()
+                })
+            }),
             |s| {
                 agent
                     .symmetry
@@ -299,6 +304,7 @@ pub fn verify_with(
     let (explained, _, phases) = explanation::verify(
         project,
         &sem,
+        compiled.as_ref(),
         agent.symmetry.as_ref(),
         left,
         &explore_opts,

@@ -9,8 +9,7 @@
 use super::explore::fingerprint;
 use super::symmetry::Symmetry;
 use crate::model::atoms::AtomSet;
-use crate::model::Substitution;
-use crate::semantics::{Compiled, Event, EventTrigger, Note, Notes, Packed, Semantics, State};
+use crate::semantics::{Compiled, Event, Note, Notes, Packed, Semantics, State};
 use std::hash::Hash;
 
 /// A transition system: initial states and, for each state, its labelled successors.
@@ -198,8 +197,6 @@ pub trait AgentState {
     fn pending_requests(&self) -> u64;
     /// Whether the agent has nothing to do.
     fn is_idle(&self) -> bool;
-    /// The applicable plans for `trigger` (see [`Semantics::applicable`]).
-    fn applicable(&self, sem: &Semantics, trigger: &EventTrigger) -> Vec<(u32, Substitution)>;
 }
 
 impl AgentState for State {
@@ -215,9 +212,6 @@ impl AgentState for State {
     fn is_idle(&self) -> bool {
         State::is_idle(self)
     }
-    fn applicable(&self, sem: &Semantics, trigger: &EventTrigger) -> Vec<(u32, Substitution)> {
-        sem.applicable(self, trigger, false)
-    }
 }
 
 impl AgentState for Packed<'_> {
@@ -232,24 +226,6 @@ impl AgentState for Packed<'_> {
     }
     fn is_idle(&self) -> bool {
         Packed::is_idle(self)
-    }
-    fn applicable(&self, sem: &Semantics, trigger: &EventTrigger) -> Vec<(u32, Substitution)> {
-        // Packed states exist for local libraries only, whose contexts read the beliefs
-        // alone.
-        let beliefs = State {
-            beliefs: self.beliefs().clone(),
-            order: self.order().to_vec(),
-            events: Vec::new(),
-            intentions: Vec::new(),
-            pending: None,
-            waiting: Vec::new(),
-            requested: 0,
-            library: None,
-            told: Vec::new(),
-            asked: 0,
-            atomic: false,
-        };
-        sem.applicable(&beliefs, trigger, false)
     }
 }
 

@@ -6,8 +6,10 @@ use super::explore::{explore_with, Graph, Limits, Options};
 use super::failures::Failures;
 use super::model::{AgentState, CycleNotes, Model};
 use crate::model::cond::Cond;
-use crate::semantics::Semantics;
 use std::collections::HashMap;
+
+/// Plans, by index.
+pub(super) type Plans = smallvec::SmallVec<[u32; 4]>;
 
 /// What the search records about one state, computed where the state is found.
 struct Summary {
@@ -30,7 +32,8 @@ impl Conditions<'_> {
         self.invariants.len() + self.props.len() + self.overlaps.len()
     }
 
-    fn summarize(&self, sem: &Semantics, s: &impl AgentState) -> Summary {
+    /// `applicable`: the plans applicable to the first event of a state.
+    fn summarize<S: AgentState>(&self, s: &S, applicable: &impl Fn(&S) -> Plans) -> Summary {
         let mut holds = smallvec::SmallVec::from_elem(0u64, self.len().div_ceil(64).max(1));
         let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
         let conds = self.invariants.iter().chain(&self.props);
@@ -40,15 +43,11 @@ impl Conditions<'_> {
             }
         }
         if !self.overlaps.is_empty() {
-            if let Some(ev) = s.first_event() {
-                let applicable = s.applicable(sem, &ev.trigger);
-                let base = self.invariants.len() + self.props.len();
-                for (k, (a, b)) in self.overlaps.iter().enumerate() {
-                    if applicable.iter().any(|(p, _)| p == a)
-                        && applicable.iter().any(|(p, _)| p == b)
-                    {
-                        set(base + k);
-                    }
+            let applicable = applicable(s);
+            let base = self.invariants.len() + self.props.len();
+            for (k, (a, b)) in self.overlaps.iter().enumerate() {
+                if applicable.contains(a) && applicable.contains(b) {
+                    set(base + k);
                 }
             }
         }
@@ -125,8 +124,7 @@ impl Facts {
 #[allow(clippy::too_many_arguments)]
 pub(super) fn search_agent<M>(
     model: &M,
-    sem: &Semantics,
-    conditions: &Conditions,
+    (conditions, applicable): (&Conditions, impl Fn(&M::State) -> Plans + Sync),
     equivariance: impl Fn(&M::State) -> Option<String> + Sync,
     (limits, opts): (Limits, &Options),
     (facts, eventually, failures): (&mut Facts, &[usize], &mut Failures),
@@ -156,7 +154,7 @@ where
                 unchecked.store(true, std::sync::atomic::Ordering::Relaxed);
             }
             let unequal = if late { None } else { equivariance(s) };
-            (conditions.summarize(sem, s), unequal)
+            (conditions.summarize(s, &applicable), unequal)
         },
         |i, (sum, unequal)| {
             if not_equivariant.is_none() {

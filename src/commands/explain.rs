@@ -208,15 +208,16 @@ fn execute(
         let t = &succ[k];
         for (i, note) in t.notes.iter().enumerate() {
             for (u, step) in users.iter().zip(&seen_by) {
-                let Some(g) = &step.given[i] else { continue };
+                let Some(g) = step.given_at(i) else { continue };
+                let text = g.text(&ex);
                 steps.push(TraceStep {
                     kind: StepKindTag::Explanation,
-                    text: format!("to {}: {}", u.name, g.text),
+                    text: format!("to {}: {text}", u.name),
                     intention: None,
                     plan: None,
                     added: Vec::new(),
                     removed: Vec::new(),
-                    explanation: Some(g.text.clone()),
+                    explanation: Some(text.clone()),
                     agent: None,
                 });
                 given.push(Given {
@@ -225,7 +226,7 @@ fn execute(
                     after: g.after.as_ref().map(|o| o.to_string()),
                     context: g.content.context.iter().map(|l| l.to_string()).collect(),
                     actions: g.content.actions.iter().map(|a| a.to_string()).collect(),
-                    text: g.text.clone(),
+                    text,
                 });
             }
             match note {

@@ -610,7 +610,7 @@ type ExplainedStep = crate::check::explanation::Step;
 /// then lets it run on, until a transition violates the finding's property at its place.
 /// `shown`: the steps a transition shows, as the report records them; `on_step`: each
 /// transition taken, with the state it leads to.
-fn replay_explained_in<W: crate::check::explanation::Runs>(
+fn replay_explained_in<W: crate::check::explanation::Runs<Notes = Vec<Note>>>(
     project: &Project,
     model: &crate::check::explanation::Explained<W>,
     f: &FindingIn,

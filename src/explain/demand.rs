@@ -25,6 +25,7 @@ use crate::syntax::ast::{ExprKind, Step, StepKind};
 use crate::syntax::parser::parse_step;
 use crate::syntax::FileId;
 use std::fmt;
+use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
 /// One element of an observed sequence: a user's request or an executed environment action.
@@ -171,11 +172,23 @@ impl fmt::Display for Pair {
 /// Cheap to clone (the patterns are shared; the learned pairs are a small sorted vector of
 /// shared terms) and `Eq + Hash + Ord`, so a model checker can keep it in its states: two
 /// relations are equal when they have the same patterns and have learned the same pairs.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct ExpectedSuccessors {
     initial: Arc<[Pair]>,
     /// Sorted, without duplicates; none of them matches a pattern of `initial` or another.
-    learned: Vec<Pair>,
+    /// Shared: a search copies `N` at every step and changes it at few.
+    learned: Arc<[Pair]>,
+    /// The hash of `learned`, made when it grows.
+    learned_hash: u64,
+}
+
+impl Hash for ExpectedSuccessors {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        // The learned pairs only, hashed when they grow: `initial` is the manifest's, one for
+        // every view of a user, and hashing it at every step of a search cost more than the
+        // rest.
+        h.write_u64(self.learned_hash);
+    }
 }
 
 impl Default for ExpectedSuccessors {
@@ -190,7 +203,8 @@ impl ExpectedSuccessors {
     pub fn new(initial: impl IntoIterator<Item = Pair>) -> ExpectedSuccessors {
         ExpectedSuccessors {
             initial: initial.into_iter().collect(),
-            learned: Vec::new(),
+            learned: Arc::new([]),
+            learned_hash: 0,
         }
     }
 
@@ -227,7 +241,12 @@ impl ExpectedSuccessors {
                     prev: prev.cloned(),
                     next: next.clone(),
                 };
-                self.learned.insert(at, pair);
+                let mut learned = self.learned.to_vec();
+                learned.insert(at, pair);
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                learned.hash(&mut h);
+                self.learned_hash = h.finish();
+                self.learned = learned.into();
                 true
             }
         }

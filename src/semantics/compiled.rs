@@ -297,6 +297,33 @@ impl Packed<'_> {
         &self.beliefs.value.0
     }
 
+    /// An identity of the beliefs and their order: equal for equal ones (belief bases are
+    /// interned).
+    pub fn beliefs_key(&self) -> usize {
+        self.beliefs as *const Part<Base> as usize
+    }
+
+    /// An identity of every intention (see [`Packed::all_intentions`]): equal for the same
+    /// intentions in the same places (intentions, events and pending actions are interned).
+    pub fn intentions_key(&self) -> SmallVec<[usize; 8]> {
+        let mut key: SmallVec<[usize; 8]> = self
+            .intentions
+            .iter()
+            .map(|i| *i as *const Part<Intention> as usize)
+            .collect();
+        key.push(
+            self.pending
+                .map_or(0, |p| p as *const Part<Pending> as usize),
+        );
+        key.extend(
+            self.events
+                .iter()
+                .filter(|e| e.value.intention.is_some())
+                .map(|e| *e as *const Part<Event> as usize),
+        );
+        key
+    }
+
     /// Their order (see [`State::order`]).
     pub fn order(&self) -> &[AtomId] {
         &self.beliefs.value.1
@@ -310,6 +337,20 @@ impl Packed<'_> {
     /// Whether the agent has nothing to do (see [`State::is_idle`]).
     pub fn is_idle(&self) -> bool {
         self.events.is_empty() && self.intentions.is_empty() && self.pending.is_none()
+    }
+
+    /// Every intention: running, waiting for its action's feedback, suspended in an event
+    /// (see [`State::all_intentions`]).
+    pub fn all_intentions(&self) -> impl Iterator<Item = &Intention> {
+        self.intentions
+            .iter()
+            .map(|i| &i.value)
+            .chain(self.pending.map(|p| &p.value.intention))
+            .chain(
+                self.events
+                    .iter()
+                    .filter_map(|e| e.value.intention.as_ref()),
+            )
     }
 
     /// The requests still being served (see [`State::pending_requests`]).
@@ -333,6 +374,15 @@ impl Notes<'_> {
     /// The notes in order.
     pub fn iter(&self) -> impl Iterator<Item = &Note> {
         self.0.iter().flat_map(|n| n.iter())
+    }
+
+    /// An identity of these notes: equal for notes that are the same shared values (each
+    /// phase's notes are kept once per memoized outcome).
+    pub fn key(&self) -> SmallVec<[usize; 4]> {
+        self.0
+            .iter()
+            .flat_map(|n| [n.as_ptr() as usize, n.len()])
+            .collect()
     }
 
     /// The notes as [`Semantics::successors`] gives them.
@@ -375,6 +425,8 @@ pub struct Compiled<'s, 'p> {
     deliberations: Memo<(Vec<Chosen>, bool)>,
     acts: Memo<Acted>,
     proc_acts: Memo<Acted>,
+    /// Per event and read beliefs: the plans applicable to it.
+    applicable: Memo<Box<[u32]>>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
 }
@@ -410,6 +462,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             deliberations: Memo::new(),
             acts: Memo::new(),
             proc_acts: Memo::new(),
+            applicable: Memo::new(),
             requests: Vec::new(),
         };
         c.requests = (0..sem.requests.len())
@@ -499,6 +552,30 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// The initial states made one at a time (see [`Semantics::initial_iter`]).
     pub fn initial_iter(&self) -> impl Iterator<Item = Packed<'_>> + '_ {
         self.sem.initial_iter().map(|s| self.pack(&s))
+    }
+
+    /// The plans applicable to the first event of `p` (see [`Semantics::applicable`]), none
+    /// when it has no event: computed once per event and the beliefs its plans' contexts
+    /// read, which is what the agent's search asks of every state when lint left plan
+    /// overlaps to confirm.
+    pub fn applicable_plans<'c>(&'c self, p: &Packed<'c>) -> &'c [u32] {
+        let Some(event) = p.events.first() else {
+            return &[];
+        };
+        let key = Key::new(event, &p.beliefs.value, 0);
+        // SAFETY: memoized outcomes are in this system's tables.
+        unsafe {
+            self.applicable
+                .get(key, || {
+                    let read = Self::alone(&p.beliefs.value, &event.reads, None);
+                    self.sem
+                        .applicable(&read, &event.value.trigger, false)
+                        .into_iter()
+                        .map(|(plan, _)| plan)
+                        .collect()
+                })
+                .get(self)
+        }
     }
 
     /// How much the tables hold.
