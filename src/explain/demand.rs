@@ -178,7 +178,7 @@ pub struct ExpectedSuccessors {
     /// Sorted, without duplicates; none of them matches a pattern of `initial` or another.
     /// Shared: a search copies `N` at every step and changes it at few.
     learned: Arc<[Pair]>,
-    /// The hash of `learned`, made when it grows.
+    /// The hash of `learned` (the sum of its pairs'), made as it grows.
     learned_hash: u64,
 }
 
@@ -241,11 +241,13 @@ impl ExpectedSuccessors {
                     prev: prev.cloned(),
                     next: next.clone(),
                 };
+                // The hash of a set: the sum of its pairs' hashes, so that adding a pair
+                // costs one hash, not one per pair learned so far.
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                pair.hash(&mut h);
+                self.learned_hash = self.learned_hash.wrapping_add(h.finish());
                 let mut learned = self.learned.to_vec();
                 learned.insert(at, pair);
-                let mut h = std::collections::hash_map::DefaultHasher::new();
-                learned.hash(&mut h);
-                self.learned_hash = h.finish();
                 self.learned = learned.into();
                 true
             }
