@@ -12,6 +12,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[path = "common/kitchen.rs"]
+mod kitchen;
+
 /// The generated store-cup library: a plan per door state and one for a stored cup.
 const STORE_ASL: &str = r#"// A store-cup library written apart from specs/kitchen.
 +!storeCup(C) : cupAt(C, P) & P \== dishwasher & holding(none) & dishwasherDoor(closed)
@@ -59,7 +62,7 @@ fn store(cups: usize, explain: bool) -> PathBuf {
 }
 
 /// `specs/kitchen` with `cups` cups (the reachable property naming every cup), with its
-/// users when `explain`.
+/// users when `explain` (as scale.rs).
 fn kitchen(cups: usize, explain: bool) -> PathBuf {
     let dir = std::env::temp_dir()
         .join("bdi-check-bench-libraries")
@@ -69,24 +72,7 @@ fn kitchen(cups: usize, explain: bool) -> PathBuf {
     for f in ["kitchen.asl", "kitchen.pddl"] {
         std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
     }
-    let text = std::fs::read_to_string(specs.join("bdi-check.toml")).expect("the manifest");
-    let names: Vec<String> = (1..=cups).map(|i| format!("\"cup{i}\"")).collect();
-    let mut out = String::new();
-    let mut skipping = false;
-    for line in text.lines() {
-        if line.starts_with('[') {
-            skipping = !explain && line.starts_with("[explanation");
-        }
-        if skipping {
-            continue;
-        }
-        if line.starts_with("cup = [") {
-            out.push_str(&format!("cup = [{}]\n", names.join(", ")));
-        } else {
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
+    let out = kitchen::manifest(cups, explain);
     std::fs::write(dir.join("bdi-check.toml"), out).expect("writable");
     dir
 }

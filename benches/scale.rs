@@ -22,41 +22,13 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
+#[path = "common/kitchen.rs"]
+mod kitchen;
+use kitchen::manifest;
+
 // The same allocator as the `bdi-check` binary, so that the numbers are the binary's.
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
-/// The kitchen manifest with `cups` cups; without the explanation users unless `explain`.
-fn manifest(cups: usize, explain: bool) -> String {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen/bdi-check.toml");
-    let text = std::fs::read_to_string(root).expect("specs/kitchen/bdi-check.toml");
-    let names: Vec<String> = (1..=cups).map(|i| format!("\"cup{i}\"")).collect();
-    let away: Vec<String> = (1..=cups)
-        .map(|i| format!("cupAt(cup{i}, cupboard)"))
-        .collect();
-    let mut out = String::new();
-    let mut skipping = false;
-    for line in text.lines() {
-        if line.starts_with('[') {
-            skipping = !explain && line.starts_with("[explanation");
-        }
-        if skipping {
-            continue;
-        }
-        if line.starts_with("cup = [") {
-            out.push_str(&format!("cup = [{}]\n", names.join(", ")));
-        } else if line.starts_with("reachable = \"robotAt(cupboard)") {
-            out.push_str(&format!(
-                "reachable = \"robotAt(cupboard) & {}\"\n",
-                away.join(" & ")
-            ));
-        } else {
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
-    out.replace("max_states = 5_000_000", "max_states = 200_000_000")
-}
 
 /// A temporary project folder with the kitchen's plans and domain and `cups` cups.
 fn project(cups: usize, explain: bool) -> PathBuf {

@@ -28,6 +28,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::Instant;
 
+#[path = "common/kitchen.rs"]
+mod kitchen;
+
 /// Requests per run: the manifest's `max`, which `benches/scale.rs` keeps for every cup
 /// count, so that bdi-check's search is that of its exact rows (`--no-symmetry`).
 const MAX_REQUESTS: usize = 2;
@@ -371,35 +374,9 @@ active proctype robot() {{
 
 /// The kitchen manifest with `cups` cups, without the explanation users (as scale.rs).
 fn manifest(cups: usize) -> String {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen/bdi-check.toml");
-    let text = std::fs::read_to_string(root).expect("specs/kitchen/bdi-check.toml");
-    let names: Vec<String> = (1..=cups).map(|i| format!("\"cup{i}\"")).collect();
-    let away: Vec<String> = (1..=cups)
-        .map(|i| format!("cupAt(cup{i}, cupboard)"))
-        .collect();
-    let mut out = String::new();
-    let mut skipping = false;
-    for line in text.lines() {
-        if line.starts_with('[') {
-            skipping = line.starts_with("[explanation");
-        }
-        if skipping {
-            continue;
-        }
-        if line.starts_with("cup = [") {
-            out.push_str(&format!("cup = [{}]\n", names.join(", ")));
-        } else if line.starts_with("reachable = \"robotAt(cupboard)") {
-            out.push_str(&format!(
-                "reachable = \"robotAt(cupboard) & {}\"\n",
-                away.join(" & ")
-            ));
-        } else {
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
+    let out = kitchen::manifest(cups, false);
     assert!(out.contains(&format!("max = {MAX_REQUESTS}\n")));
-    out.replace("max_states = 5_000_000", "max_states = 200_000_000")
+    out
 }
 
 /// A temporary folder for one row: the kitchen project with `cups` cups (with the seeded

@@ -1,0 +1,35 @@
+//! What the benches share: `specs/kitchen` with n cups.
+
+use std::path::Path;
+
+/// The kitchen manifest with `cups` cups; without the explanation users unless `explain`.
+pub fn manifest(cups: usize, explain: bool) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen/bdi-check.toml");
+    let text = std::fs::read_to_string(root).expect("specs/kitchen/bdi-check.toml");
+    let names: Vec<String> = (1..=cups).map(|i| format!("\"cup{i}\"")).collect();
+    let away: Vec<String> = (1..=cups)
+        .map(|i| format!("cupAt(cup{i}, cupboard)"))
+        .collect();
+    let mut out = String::new();
+    let mut skipping = false;
+    for line in text.lines() {
+        if line.starts_with('[') {
+            skipping = !explain && line.starts_with("[explanation");
+        }
+        if skipping {
+            continue;
+        }
+        if line.starts_with("cup = [") {
+            out.push_str(&format!("cup = [{}]\n", names.join(", ")));
+        } else if line.starts_with("reachable = \"robotAt(cupboard)") {
+            out.push_str(&format!(
+                "reachable = \"robotAt(cupboard) & {}\"\n",
+                away.join(" & ")
+            ));
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out.replace("max_states = 5_000_000", "max_states = 200_000_000")
+}
