@@ -151,14 +151,8 @@ impl<'c> CompiledAgent<'c, '_, '_> {
     /// The first renaming at which `s`'s successors are not its renaming's successors
     /// renamed, if any (see [`Symmetry::equivariance_violation`]); `None` without symmetry.
     pub fn equivariance_violation(&self, s: &Packed<'c>) -> Option<String> {
-        let c = self.compiled;
         self.symmetry?
-            .equivariance_violation_with(&c.unpack(s), |st| {
-                c.successors(&c.pack(st))
-                    .iter()
-                    .map(|(_, next)| c.unpack(next))
-                    .collect()
-            })
+            .equivariance_violation_compiled(self.compiled, s)
     }
 }
 

@@ -427,8 +427,27 @@ pub struct Compiled<'s, 'p> {
     proc_acts: Memo<Acted>,
     /// Per event and read beliefs: the plans applicable to it.
     applicable: Memo<Box<[u32]>>,
+    /// Per part and map (see [`Compiled::map`]): the part's image.
+    mapped_bases: Memo<Held<Part<Base>>>,
+    mapped_events: Memo<Held<Part<Event>>>,
+    mapped_intentions: Memo<Held<Part<Intention>>>,
+    mapped_pendings: Memo<Held<Part<Pending>>>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
+}
+
+/// A map of agent states that works part by part (see [`Compiled::map`]).
+pub trait PartMap {
+    /// The beliefs and their order.
+    fn base(&self, b: &Base) -> Base;
+    /// An event.
+    fn event(&self, e: &Event) -> Event;
+    /// An intention.
+    fn intention(&self, i: &Intention) -> Intention;
+    /// An intention that waits for its action's feedback.
+    fn pending(&self, p: &Pending) -> Pending;
+    /// The requests made (a bit each).
+    fn requested(&self, r: u64) -> u64;
 }
 
 /// How many distinct parts and memoized phases a compiled search holds.
@@ -463,6 +482,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
             acts: Memo::new(),
             proc_acts: Memo::new(),
             applicable: Memo::new(),
+            mapped_bases: Memo::new(),
+            mapped_events: Memo::new(),
+            mapped_intentions: Memo::new(),
+            mapped_pendings: Memo::new(),
             requests: Vec::new(),
         };
         c.requests = (0..sem.requests.len())
@@ -575,6 +598,56 @@ impl<'s, 'p> Compiled<'s, 'p> {
                         .collect()
                 })
                 .get(self)
+        }
+    }
+
+    /// The image of `p` under `f`, part by part: each distinct part is mapped once per map
+    /// (`id` names the map; one `id`, one map), so that mapping a state costs a lookup per
+    /// part. Renaming objects, for the symmetry reduction's equivariance check, is one.
+    pub fn map<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
+        let none: Base = (AtomSet::default(), Vec::new());
+        // The key of a part alone: no beliefs read, the map's id.
+        fn key<T>(part: &Part<T>, none: &Base, id: u64) -> Key {
+            Key::new(part, none, id)
+        }
+        // SAFETY: every `Held` here comes from this compiled system's tables.
+        unsafe {
+            Packed {
+                beliefs: self
+                    .mapped_bases
+                    .get(key(p.beliefs, &none, id), || {
+                        self.belief_set(f.base(&p.beliefs.value))
+                    })
+                    .get(self)
+                    .get(self),
+                events: p
+                    .events
+                    .iter()
+                    .map(|e| {
+                        self.mapped_events
+                            .get(key(e, &none, id), || self.event(f.event(&e.value)))
+                            .get(self)
+                            .get(self)
+                    })
+                    .collect(),
+                intentions: p
+                    .intentions
+                    .iter()
+                    .map(|i| {
+                        self.mapped_intentions
+                            .get(key(i, &none, id), || self.intention(f.intention(&i.value)))
+                            .get(self)
+                            .get(self)
+                    })
+                    .collect(),
+                pending: p.pending.map(|x| {
+                    self.mapped_pendings
+                        .get(key(x, &none, id), || self.pending(f.pending(&x.value)))
+                        .get(self)
+                        .get(self)
+                }),
+                requested: f.requested(p.requested),
+            }
         }
     }
 

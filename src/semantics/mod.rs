@@ -24,7 +24,7 @@ pub mod state;
 pub mod system;
 mod wait;
 
-pub use compiled::{Compiled, Notes, Packed};
+pub use compiled::{Compiled, Notes, Packed, PartMap};
 pub use cycle::{FrameView, Note, Semantics, Transition};
 pub use state::{Event, EventTrigger, Frame, InLibrary, Intention, Origin, State};
 pub use system::{Message, Step, System, SystemState};

@@ -5,11 +5,12 @@ use super::Symmetry;
 use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::term::Term;
 use crate::model::Substitution;
+use crate::semantics::compiled::Base;
 use crate::semantics::state::{
     ActionFailure, Cursor, CursorKind, Event, EventTrigger, Frame, Intention, Pending, Told,
     Waiting,
 };
-use crate::semantics::{Origin, State};
+use crate::semantics::{Origin, PartMap, State};
 use std::sync::Arc;
 
 /// One renaming of the symmetric objects, for the terms of data kept beside an agent state
@@ -233,21 +234,72 @@ pub fn rename_intention<R: Rename>(r: &R, i: &Intention) -> Intention {
     }
 }
 
+/// Beliefs and their order renamed: renamed atoms keep their age, and their predicate (so
+/// the groups stay as they are).
+fn rename_base<R: Rename>(r: &R, beliefs: &AtomSet, order: &[AtomId]) -> (AtomSet, Vec<AtomId>) {
+    let mut out = AtomSet::empty(r.atom_count());
+    for a in beliefs.iter() {
+        out.insert(r.atom(a));
+    }
+    (out, order.iter().map(|a| r.atom(*a)).collect())
+}
+
+/// The requests made (a bit each) renamed.
+fn rename_requests<R: Rename>(r: &R, requested: u64) -> u64 {
+    let mut out = 0u64;
+    for i in 0..64u8 {
+        if requested >> i & 1 == 1 {
+            out |= 1 << r.request(i);
+        }
+    }
+    out
+}
+
+/// An event renamed.
+fn rename_event<R: Rename>(r: &R, e: &Event) -> Event {
+    Event {
+        trigger: trigger(r, &e.trigger),
+        intention: e.intention.as_ref().map(|i| rename_intention(r, i)),
+        origin: origin(r, e.origin),
+        posted_at: e.posted_at,
+    }
+}
+
+/// An intention that waits for its action's feedback renamed.
+fn rename_pending<R: Rename>(r: &R, p: &Pending) -> Pending {
+    Pending {
+        intention: rename_intention(r, &p.intention),
+        failure: p.failure.as_ref().map(|f| ActionFailure {
+            action: term(r, &f.action),
+            ..f.clone()
+        }),
+    }
+}
+
+/// A renaming of objects acts on a compiled state part by part.
+impl PartMap for Renaming<'_> {
+    fn base(&self, b: &Base) -> Base {
+        rename_base(self, &b.0, &b.1)
+    }
+    fn event(&self, e: &Event) -> Event {
+        rename_event(self, e)
+    }
+    fn intention(&self, i: &Intention) -> Intention {
+        rename_intention(self, i)
+    }
+    fn pending(&self, p: &Pending) -> Pending {
+        rename_pending(self, p)
+    }
+    fn requested(&self, r: u64) -> u64 {
+        rename_requests(self, r)
+    }
+}
+
 /// An agent state renamed: its beliefs, the terms of its events, intentions and
 /// substitutions, its requests, and who told it what.
 pub fn rename_state<R: Rename>(r: &R, s: &State) -> State {
-    let mut beliefs = AtomSet::empty(r.atom_count());
-    for a in s.beliefs.iter() {
-        beliefs.insert(r.atom(a));
-    }
-    let mut requested = 0u64;
-    for i in 0..64u8 {
-        if s.requested >> i & 1 == 1 {
-            requested |= 1 << r.request(i);
-        }
-    }
-    // Renamed atoms keep their age, and their predicate (so the groups stay as they are).
-    let order: Vec<AtomId> = s.order.iter().map(|a| r.atom(*a)).collect();
+    let (beliefs, order) = rename_base(r, &s.beliefs, &s.order);
+    let requested = rename_requests(r, s.requested);
     let mut told: Vec<Told> = s
         .told
         .iter()
@@ -261,28 +313,13 @@ pub fn rename_state<R: Rename>(r: &R, s: &State) -> State {
     State {
         beliefs,
         order,
-        events: s
-            .events
-            .iter()
-            .map(|e| Event {
-                trigger: trigger(r, &e.trigger),
-                intention: e.intention.as_ref().map(|i| rename_intention(r, i)),
-                origin: origin(r, e.origin),
-                posted_at: e.posted_at,
-            })
-            .collect(),
+        events: s.events.iter().map(|e| rename_event(r, e)).collect(),
         intentions: s
             .intentions
             .iter()
             .map(|i| rename_intention(r, i))
             .collect(),
-        pending: s.pending.as_ref().map(|p| Pending {
-            intention: rename_intention(r, &p.intention),
-            failure: p.failure.as_ref().map(|f| ActionFailure {
-                action: term(r, &f.action),
-                ..f.clone()
-            }),
-        }),
+        pending: s.pending.as_ref().map(|p| rename_pending(r, p)),
         waiting: s
             .waiting
             .iter()

@@ -4,10 +4,11 @@
 //! where the reasoning cycle itself does not treat the objects alike (the report's caveat).
 
 use super::Symmetry;
+use crate::check::explore::fingerprint;
 use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::cond::{Cond, CountCmp};
 use crate::model::project::Project;
-use crate::semantics::{Semantics, State};
+use crate::semantics::{Compiled, Packed, Semantics, State};
 use crate::syntax::{Diagnostic, Span};
 use std::collections::HashSet;
 use std::sync::Arc;
@@ -32,14 +33,28 @@ impl Symmetry {
         s: &State,
         successors: impl Fn(&State) -> Vec<State>,
     ) -> Option<String> {
-        let classes = |st: &State| {
-            let mut v: Vec<u64> = successors(st).iter().map(|t| self.fingerprint(t)).collect();
+        let sorted = |mut v: Vec<u64>| {
             v.sort_unstable();
             v
         };
-        let here = classes(s);
+        let classes = |succ: &[State]| sorted(succ.iter().map(|t| self.fingerprint(t)).collect());
+        let succ = successors(s);
+        let mut here = None;
         self.generators().into_iter().find_map(|g| {
-            (classes(&self.apply(s, &g)) != here).then(|| {
+            let other = successors(&self.apply(s, &g));
+            // Equivariance itself, and far cheaper than canonical members: the successors
+            // of `g(s)` are those of `s` renamed by `g`. When they are not, they may still
+            // be renamings of them by other renamings: compare their classes.
+            let renamed = sorted(
+                succ.iter()
+                    .map(|t| fingerprint(&self.apply(t, &g)))
+                    .collect(),
+            );
+            if sorted(other.iter().map(fingerprint).collect()) == renamed {
+                return None;
+            }
+            let here = here.get_or_insert_with(|| classes(&succ));
+            (classes(&other) != *here).then(|| {
                 let moved: Vec<String> = g
                     .iter()
                     .enumerate()
@@ -48,6 +63,41 @@ impl Symmetry {
                     .collect();
                 moved.join(", ")
             })
+        })
+    }
+
+    /// [`Symmetry::equivariance_violation`] on the compiled reasoning cycle: the renamings
+    /// of `p` and of its successors are made part by part, each part once per generator
+    /// ([`Compiled::map`]), and compared by fingerprint; only where they differ is the
+    /// comparison by classes made, on whole states.
+    pub fn equivariance_violation_compiled<'c>(
+        &self,
+        c: &'c Compiled,
+        p: &Packed<'c>,
+    ) -> Option<String> {
+        let sorted = |mut v: Vec<u64>| {
+            v.sort_unstable();
+            v
+        };
+        let succ: Vec<Packed> = c.successors(p).into_iter().map(|(_, t)| t).collect();
+        let alike = self.generators().iter().enumerate().all(|(k, g)| {
+            let r = super::Renaming { sym: self, perm: g };
+            let other = c.successors(&c.map(p, k as u64, &r));
+            sorted(other.iter().map(|(_, t)| fingerprint(t)).collect())
+                == sorted(
+                    succ.iter()
+                        .map(|t| fingerprint(&c.map(t, k as u64, &r)))
+                        .collect(),
+                )
+        });
+        if alike {
+            return None;
+        }
+        self.equivariance_violation_with(&c.unpack(p), |st| {
+            c.successors(&c.pack(st))
+                .iter()
+                .map(|(_, next)| c.unpack(next))
+                .collect()
         })
     }
 
