@@ -345,9 +345,8 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
         s: &Packed<'c>,
         extra: impl Fn(&Renaming) -> H,
     ) -> Option<u64> {
-        // Renaming works on whole states, as for the agent's compiled search.
         self.symmetry
-            .map(|sym| sym.fingerprint_with(&self.compiled.unpack(s), extra))
+            .map(|sym| sym.fingerprint_with_compiled(self.compiled, s, extra))
     }
 }
 

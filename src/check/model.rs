@@ -174,8 +174,8 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
 
     fn fingerprint(&self, s: &Packed<'c>) -> u64 {
         match self.symmetry {
-            // Renaming works on whole states; the canonical member is the reference one's.
-            Some(sym) => sym.fingerprint(&self.compiled.unpack(s)),
+            // The canonical member is the reference one's, renamed part by part.
+            Some(sym) => sym.fingerprint_compiled(self.compiled, s),
             None => fingerprint(s),
         }
     }

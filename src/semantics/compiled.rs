@@ -427,6 +427,10 @@ pub struct Compiled<'s, 'p> {
     proc_acts: Memo<Acted>,
     /// Per event and read beliefs: the plans applicable to it.
     applicable: Memo<Box<[u32]>>,
+    /// Maps by name (see [`Compiled::map_id`]).
+    map_ids: std::sync::RwLock<HashMap<Box<[u16]>, u64>>,
+    /// Per requests made (a bit each) and map: their image.
+    mapped_requests: std::sync::RwLock<HashMap<(u64, u64), u64>>,
     /// Per part and map (see [`Compiled::map`]): the part's image.
     mapped_bases: Memo<Held<Part<Base>>>,
     mapped_events: Memo<Held<Part<Event>>>,
@@ -482,6 +486,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
             acts: Memo::new(),
             proc_acts: Memo::new(),
             applicable: Memo::new(),
+            map_ids: Default::default(),
+            mapped_requests: Default::default(),
             mapped_bases: Memo::new(),
             mapped_events: Memo::new(),
             mapped_intentions: Memo::new(),
@@ -601,8 +607,42 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
     }
 
+    /// The id, for [`Compiled::map`], of the map named `name` (a permutation of objects,
+    /// say): one per distinct name.
+    pub fn map_id(&self, name: &[u16]) -> u64 {
+        if let Some(id) = self
+            .map_ids
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(name)
+        {
+            return *id;
+        }
+        let mut ids = self.map_ids.write().unwrap_or_else(|e| e.into_inner());
+        let next = ids.len() as u64;
+        *ids.entry(name.into()).or_insert(next)
+    }
+
+    /// The image of the requests made `r` under the map `id`, `f`, computed once.
+    fn map_requests(&self, r: u64, id: u64, f: &impl PartMap) -> u64 {
+        let known = self
+            .mapped_requests
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(&(r, id))
+            .copied();
+        known.unwrap_or_else(|| {
+            let image = f.requested(r);
+            self.mapped_requests
+                .write()
+                .unwrap_or_else(|e| e.into_inner())
+                .insert((r, id), image);
+            image
+        })
+    }
+
     /// The image of `p` under `f`, part by part: each distinct part is mapped once per map
-    /// (`id` names the map; one `id`, one map), so that mapping a state costs a lookup per
+    /// (`id` names the map, see [`Compiled::map_id`]; one `id`, one map), so that mapping a state costs a lookup per
     /// part. Renaming objects, for the symmetry reduction's equivariance check, is one.
     pub fn map<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
         let none: Base = (AtomSet::default(), Vec::new());
@@ -646,7 +686,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
                         .get(self)
                         .get(self)
                 }),
-                requested: f.requested(p.requested),
+                requested: self.map_requests(p.requested, id, f),
             }
         }
     }

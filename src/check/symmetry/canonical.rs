@@ -7,7 +7,7 @@ use super::{Involves, Perm, Renaming, Symmetry};
 use crate::check::explore::fingerprint;
 use crate::model::Substitution;
 use crate::semantics::state::{CursorKind, Intention};
-use crate::semantics::{Origin, State};
+use crate::semantics::{Compiled, Origin, Packed, State};
 
 /// Most orders tried to break ties between objects that are not interchangeable; beyond
 /// it the sorted order is kept as it is (less reduction, still sound).
@@ -216,9 +216,46 @@ impl Symmetry {
             .expect("at least one candidate")
     }
 
+    /// [`Symmetry::fingerprint_with`] of a compiled state (the same number), its renamings
+    /// made part by part ([`Compiled::map`]).
+    pub fn fingerprint_with_compiled<'c, H: std::hash::Hash>(
+        &self,
+        c: &'c Compiled,
+        p: &Packed<'c>,
+        extra: impl Fn(&Renaming) -> H,
+    ) -> u64 {
+        self.candidates(&c.unpack(p))
+            .iter()
+            .map(|perm| {
+                let r = Renaming { sym: self, perm };
+                fingerprint(&(c.map(p, c.map_id(perm), &r), extra(&r)))
+            })
+            .min()
+            .expect("at least one candidate")
+    }
+
     /// The canonical fingerprint of `s`.
     pub fn fingerprint(&self, s: &State) -> u64 {
         self.canonical(s).0
+    }
+
+    /// [`Symmetry::fingerprint`] of a compiled state (the same number): the renamings are
+    /// made part by part, each distinct part once per renaming ([`Compiled::map`]).
+    pub fn fingerprint_compiled<'c>(&self, c: &'c Compiled, p: &Packed<'c>) -> u64 {
+        let candidates = self.candidates(&c.unpack(p));
+        if let [only] = candidates.as_slice() {
+            if only.iter().enumerate().all(|(i, &x)| x as usize == i) {
+                return fingerprint(p);
+            }
+        }
+        candidates
+            .iter()
+            .map(|perm| {
+                let r = Renaming { sym: self, perm };
+                fingerprint(&c.map(p, c.map_id(perm), &r))
+            })
+            .min()
+            .expect("at least one candidate")
     }
 }
 

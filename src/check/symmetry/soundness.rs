@@ -80,13 +80,14 @@ impl Symmetry {
             v
         };
         let succ: Vec<Packed> = c.successors(p).into_iter().map(|(_, t)| t).collect();
-        let alike = self.generators().iter().enumerate().all(|(k, g)| {
+        let alike = self.generators().iter().all(|g| {
             let r = super::Renaming { sym: self, perm: g };
-            let other = c.successors(&c.map(p, k as u64, &r));
+            let id = c.map_id(g);
+            let other = c.successors(&c.map(p, id, &r));
             sorted(other.iter().map(|(_, t)| fingerprint(t)).collect())
                 == sorted(
                     succ.iter()
-                        .map(|t| fingerprint(&c.map(t, k as u64, &r)))
+                        .map(|t| fingerprint(&c.map(t, id, &r)))
                         .collect(),
                 )
         });
