@@ -64,17 +64,7 @@ fn store(cups: usize, explain: bool) -> PathBuf {
 /// `specs/kitchen` with `cups` cups (the reachable property naming every cup), with its
 /// users when `explain` (as scale.rs).
 fn kitchen(cups: usize, explain: bool) -> PathBuf {
-    let dir = std::env::temp_dir()
-        .join("bdi-check-bench-libraries")
-        .join(format!("kitchen-{cups}-{explain}"));
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let specs = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
-    for f in ["kitchen.asl", "kitchen.pddl"] {
-        std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
-    }
-    let out = kitchen::manifest(cups, explain);
-    std::fs::write(dir.join("bdi-check.toml"), out).expect("writable");
-    dir
+    kitchen::project("libraries", cups, explain)
 }
 
 /// One `verify` of `dir`: its JSON.

@@ -18,13 +18,12 @@ use bdi_check::check::store::Store;
 use bdi_check::check::{verify_with, VerifyOptions};
 use bdi_check::model::project::load_project;
 use bdi_check::semantics::{Compiled, Semantics};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
 
 #[path = "common/kitchen.rs"]
 mod kitchen;
-use kitchen::manifest;
 
 // The same allocator as the `bdi-check` binary, so that the numbers are the binary's.
 #[global_allocator]
@@ -32,17 +31,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 /// A temporary project folder with the kitchen's plans and domain and `cups` cups.
 fn project(cups: usize, explain: bool) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "bdi-check-bench-scale-{cups}-{explain}-{}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let specs = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
-    for f in ["kitchen.asl", "kitchen.pddl"] {
-        std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
-    }
-    std::fs::write(dir.join("bdi-check.toml"), manifest(cups, explain)).expect("writable");
-    dir
+    kitchen::project("scale", cups, explain)
 }
 
 /// Successor generation: the first `n` states of the 3-cup kitchen, breadth first, each

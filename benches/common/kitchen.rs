@@ -1,6 +1,6 @@
 //! What the benches share: `specs/kitchen` with n cups.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The kitchen manifest with `cups` cups; without the explanation users unless `explain`.
 pub fn manifest(cups: usize, explain: bool) -> String {
@@ -32,4 +32,21 @@ pub fn manifest(cups: usize, explain: bool) -> String {
         }
     }
     out.replace("max_states = 5_000_000", "max_states = 200_000_000")
+}
+
+/// A fresh folder named after `bench` with the kitchen's plans and domain and [`manifest`]
+/// for `cups` cups.
+#[allow(dead_code)] // The spin bench writes its own folder (a seeded bug, the Promela model).
+pub fn project(bench: &str, cups: usize, explain: bool) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "bdi-check-bench-{bench}-{cups}-{explain}-{}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let specs = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+    for f in ["kitchen.asl", "kitchen.pddl"] {
+        std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
+    }
+    std::fs::write(dir.join("bdi-check.toml"), manifest(cups, explain)).expect("writable");
+    dir
 }

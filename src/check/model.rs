@@ -9,7 +9,7 @@
 use super::explore::fingerprint;
 use super::symmetry::Symmetry;
 use crate::model::atoms::AtomSet;
-use crate::semantics::{Compiled, Event, Note, Notes, Packed, Semantics, State};
+use crate::semantics::{Compiled, Note, Notes, Packed, Semantics, State};
 use std::hash::Hash;
 
 /// A transition system: initial states and, for each state, its labelled successors.
@@ -185,8 +185,6 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
 pub trait AgentState {
     /// The beliefs.
     fn beliefs(&self) -> &AtomSet;
-    /// The first event of the queue.
-    fn first_event(&self) -> Option<&Event>;
     /// The requests still being served.
     fn pending_requests(&self) -> u64;
     /// Whether the agent has nothing to do.
@@ -196,9 +194,6 @@ pub trait AgentState {
 impl AgentState for State {
     fn beliefs(&self) -> &AtomSet {
         &self.beliefs
-    }
-    fn first_event(&self) -> Option<&Event> {
-        self.events.first()
     }
     fn pending_requests(&self) -> u64 {
         State::pending_requests(self)
@@ -211,9 +206,6 @@ impl AgentState for State {
 impl AgentState for Packed<'_> {
     fn beliefs(&self) -> &AtomSet {
         Packed::beliefs(self)
-    }
-    fn first_event(&self) -> Option<&Event> {
-        Packed::first_event(self)
     }
     fn pending_requests(&self) -> u64 {
         Packed::pending_requests(self)

@@ -217,7 +217,7 @@ impl Symmetry {
     }
 
     /// [`Symmetry::fingerprint_with`] of a compiled state (the same number), its renamings
-    /// made part by part ([`Compiled::map`]).
+    /// made part by part, each distinct part once per renaming ([`Compiled::map`]).
     pub fn fingerprint_with_compiled<'c, H: std::hash::Hash>(
         &self,
         c: &'c Compiled,
@@ -228,7 +228,13 @@ impl Symmetry {
             .iter()
             .map(|perm| {
                 let r = Renaming { sym: self, perm };
-                fingerprint(&(c.map(p, c.map_id(perm), &r), extra(&r)))
+                let identity = perm.iter().enumerate().all(|(i, &x)| x as usize == i);
+                let renamed = if identity {
+                    p.clone()
+                } else {
+                    c.map(p, c.map_id(perm), &r)
+                };
+                fingerprint(&(renamed, extra(&r)))
             })
             .min()
             .expect("at least one candidate")
@@ -239,23 +245,10 @@ impl Symmetry {
         self.canonical(s).0
     }
 
-    /// [`Symmetry::fingerprint`] of a compiled state (the same number): the renamings are
-    /// made part by part, each distinct part once per renaming ([`Compiled::map`]).
+    /// [`Symmetry::fingerprint`] of a compiled state (the same number: a state hashes as
+    /// the pair of it and nothing).
     pub fn fingerprint_compiled<'c>(&self, c: &'c Compiled, p: &Packed<'c>) -> u64 {
-        let candidates = self.candidates(&c.unpack(p));
-        if let [only] = candidates.as_slice() {
-            if only.iter().enumerate().all(|(i, &x)| x as usize == i) {
-                return fingerprint(p);
-            }
-        }
-        candidates
-            .iter()
-            .map(|perm| {
-                let r = Renaming { sym: self, perm };
-                fingerprint(&c.map(p, c.map_id(perm), &r))
-            })
-            .min()
-            .expect("at least one candidate")
+        self.fingerprint_with_compiled(c, p, |_| ())
     }
 }
 
