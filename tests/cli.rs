@@ -552,6 +552,8 @@ fn the_reported_time_is_the_whole_runs_with_one_figure_per_phase() {
         [
             "lint",
             "search",
+            "ltl search",
+            "ltl product",
             "explanation:newcomer",
             "explanation:owner"
         ]
@@ -590,6 +592,7 @@ fn the_progress_display_names_every_phase_in_turn() {
         [
             "lint",
             "search",
+            "ltl search",
             "explanation:newcomer",
             "explanation:owner"
         ]

@@ -80,7 +80,8 @@ fn a_newcomer_is_surprised_by_every_first_step_and_learns() {
         .iter()
         .map(|e| e["action"].as_str().unwrap())
         .collect();
-    // Every pair is new to the newcomer: each of the six actions is explained once.
+    // Every pair is new to the newcomer: each of the eight actions is explained once (the
+    // last two close the door the robot opened).
     assert_eq!(
         actions,
         [
@@ -89,7 +90,9 @@ fn a_newcomer_is_surprised_by_every_first_step_and_learns() {
             "navigateTo(table)",
             "pickUp(cup1)",
             "navigateTo(dishwasher)",
-            "putDown(cup1)"
+            "putDown(cup1)",
+            "navigateTo(dishwasher)",
+            "closeDoor(dishwasher)"
         ]
     );
     // The owner, who knows the routine, is only told about the detour.

@@ -2,8 +2,16 @@
 
 use std::path::{Path, PathBuf};
 
-/// The kitchen manifest with `cups` cups; without the explanation users unless `explain`.
+/// The kitchen manifest with `cups` cups; without the explanation users unless `explain`,
+/// and without its `ltl` properties (the ltl bench measures those; the other benches keep
+/// the figures they were recorded with).
+#[allow(dead_code)] // Each bench includes this file; not every bench writes a manifest alone.
 pub fn manifest(cups: usize, explain: bool) -> String {
+    manifest_with(cups, explain, false)
+}
+
+/// [`manifest`], with the `ltl` properties when `ltl`.
+pub fn manifest_with(cups: usize, explain: bool, ltl: bool) -> String {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen/bdi-check.toml");
     let text = std::fs::read_to_string(root).expect("specs/kitchen/bdi-check.toml");
     let names: Vec<String> = (1..=cups).map(|i| format!("\"cup{i}\"")).collect();
@@ -12,9 +20,16 @@ pub fn manifest(cups: usize, explain: bool) -> String {
         .collect();
     let mut out = String::new();
     let mut skipping = false;
-    for line in text.lines() {
+    let lines: Vec<&str> = text.lines().collect();
+    for (k, line) in lines.iter().enumerate() {
         if line.starts_with('[') {
-            skipping = !explain && line.starts_with("[explanation");
+            // A `[[property]]` table with an `ltl` key (its next lines up to the next table).
+            let is_ltl = *line == "[[property]]"
+                && lines[k + 1..]
+                    .iter()
+                    .take_while(|l| !l.starts_with('['))
+                    .any(|l| l.starts_with("ltl = "));
+            skipping = (!explain && line.starts_with("[explanation")) || (!ltl && is_ltl);
         }
         if skipping {
             continue;
@@ -38,6 +53,12 @@ pub fn manifest(cups: usize, explain: bool) -> String {
 /// for `cups` cups.
 #[allow(dead_code)] // The spin bench writes its own folder (a seeded bug, the Promela model).
 pub fn project(bench: &str, cups: usize, explain: bool) -> PathBuf {
+    project_with(bench, cups, explain, false)
+}
+
+/// [`project`], with the `ltl` properties when `ltl`.
+#[allow(dead_code)] // As `project`.
+pub fn project_with(bench: &str, cups: usize, explain: bool, ltl: bool) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(
         "bdi-check-bench-{bench}-{cups}-{explain}-{}",
         std::process::id()
@@ -47,6 +68,10 @@ pub fn project(bench: &str, cups: usize, explain: bool) -> PathBuf {
     for f in ["kitchen.asl", "kitchen.pddl"] {
         std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
     }
-    std::fs::write(dir.join("bdi-check.toml"), manifest(cups, explain)).expect("writable");
+    std::fs::write(
+        dir.join("bdi-check.toml"),
+        manifest_with(cups, explain, ltl),
+    )
+    .expect("writable");
     dir
 }

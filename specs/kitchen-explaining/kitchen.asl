@@ -48,20 +48,23 @@ expected(nav_dishwasher, start_dishwasher).
 expected(req_wipe, nav_table).
 expected(nav_table, wipe_table).
 
-/* Storing a used cup in the dishwasher. */
+/* Storing a used cup in the dishwasher, then closing the dishwasher. */
 
-@storeUsedCup
-+!storeCup(C) : used(C) & not cupAt(C, dishwasher)
+@storeCup
++!storeCup(C) : true
    <- ?storeToken(C, R);
       -+last(R);
-      !openDishwasherIfNeed([used(C), neg(cupAt(C, dishwasher))]);
+      !stow(C);
+      !closeDishwasherIfNeed([]).
+
+@storeUsedCup
++!stow(C) : used(C) & not cupAt(C, dishwasher)
+   <- !openDishwasherIfNeed([used(C), neg(cupAt(C, dishwasher))]);
       !fetch(C, [used(C), neg(cupAt(C, dishwasher))]);
       !deliver(C, dishwasher, [used(C), neg(cupAt(C, dishwasher))]).
 
 @storeNothing
-+!storeCup(C) : not used(C) | cupAt(C, dishwasher)
-   <- ?storeToken(C, R);
-      -+last(R).
++!stow(C) : not used(C) | cupAt(C, dishwasher).
 
 /* Opening the dishwasher. */
 
@@ -119,20 +122,23 @@ expected(nav_table, wipe_table).
       -+last(K);
       putDown(C).
 
-/* Putting a clean cup away in the cupboard. */
+/* Putting a clean cup away in the cupboard, then closing the dishwasher it may have opened. */
 
-@putAwayCup
-+!putAway(C) : not used(C) & not cupAt(C, cupboard)
+@putAway
++!putAway(C) : true
    <- ?putAwayToken(C, R);
       -+last(R);
-      !reach(C, [neg(used(C)), neg(cupAt(C, cupboard))]);
+      !shelve(C);
+      !closeDishwasherIfNeed([]).
+
+@putAwayCup
++!shelve(C) : not used(C) & not cupAt(C, cupboard)
+   <- !reach(C, [neg(used(C)), neg(cupAt(C, cupboard))]);
       !fetch(C, [neg(used(C)), neg(cupAt(C, cupboard))]);
       !deliver(C, cupboard, [neg(used(C)), neg(cupAt(C, cupboard))]).
 
 @putAwayNothing
-+!putAway(C) : used(C) | cupAt(C, cupboard)
-   <- ?putAwayToken(C, R);
-      -+last(R).
++!shelve(C) : used(C) | cupAt(C, cupboard).
 
 @reachIntoDishwasher
 +!reach(C, Ctx) : cupAt(C, dishwasher)
@@ -192,8 +198,9 @@ expected(nav_table, wipe_table).
 +!unloadDishwasher : true
    <- -+last(req_unload);
       for (cupAt(C, dishwasher) & not used(C)) {
-         !putAway(C);
-      }.
+         !shelve(C);
+      };
+      !closeDishwasherIfNeed([]).
 
 /* Wiping the table. */
 

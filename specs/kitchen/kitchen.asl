@@ -9,18 +9,28 @@
 // * a body's actions never follow a subgoal that acts: what the user sees is then the
 //   body's own sequence, so the paper's Algorithm 1, which marks a body's actions when the
 //   plan is adopted, flags the same actions as the observed sequence (demand-adoption).
+// * a task that may open the dishwasher closes it again when it is done, from a plan whose
+//   context is `true` (`+!storeCup`, `+!putAway`, `+!unloadDishwasher`): the context of the
+//   plan that moved the cup no longer holds by then, and an explanation must not give it
+//   (the manifest's `door_closed_after_the_last_request`).
 
-/* Storing a used cup in the dishwasher (the paper's plan pi_1, with its moves in subgoals). */
+/* Storing a used cup in the dishwasher (the paper's plan pi_1, with its moves in subgoals),
+   then closing the dishwasher. */
+
+@storeCup
++!storeCup(C) : true
+   <- !stow(C);
+      !closeDishwasherIfNeed.
 
 @storeUsedCup
-+!storeCup(C) : used(C) & not cupAt(C, dishwasher)
++!stow(C) : used(C) & not cupAt(C, dishwasher)
    <- !openDishwasherIfNeed;
       !fetch(C);
       !deliver(C, dishwasher).
 
 // Nothing to store: the cup is clean, or in the dishwasher already.
 @storeNothing
-+!storeCup(C) : not used(C) | cupAt(C, dishwasher).
++!stow(C) : not used(C) | cupAt(C, dishwasher).
 
 /* Opening the dishwasher (the paper's plan pi_2). */
 
@@ -45,17 +55,22 @@
    <- navigateTo(L);
       putDown(C).
 
-/* Putting a clean cup away in the cupboard. */
+/* Putting a clean cup away in the cupboard, then closing the dishwasher it may have opened. */
+
+@putAway
++!putAway(C) : true
+   <- !shelve(C);
+      !closeDishwasherIfNeed.
 
 @putAwayCup
-+!putAway(C) : not used(C) & not cupAt(C, cupboard)
++!shelve(C) : not used(C) & not cupAt(C, cupboard)
    <- !reach(C);
       !fetch(C);
       !deliver(C, cupboard).
 
 // A used cup is not put away, and a cup in the cupboard is away already.
 @putAwayNothing
-+!putAway(C) : used(C) | cupAt(C, cupboard).
++!shelve(C) : used(C) | cupAt(C, cupboard).
 
 // Cups in the dishwasher can only be reached through its open door.
 @reachIntoDishwasher
@@ -93,8 +108,9 @@
 @unloadDishwasher
 +!unloadDishwasher : true
    <- for (cupAt(C, dishwasher) & not used(C)) {
-         !putAway(C);
-      }.
+         !shelve(C);
+      };
+      !closeDishwasherIfNeed.
 
 /* Wiping the table. */
 

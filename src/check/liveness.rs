@@ -102,8 +102,13 @@ impl Checker<'_> {
                 path.reverse();
                 path
             };
-            let terminal = (0..n as u32)
-                .find(|&i| bit(&seen, i) && self.graph.successors(i).is_some_and(|e| e.is_empty()));
+            // A run ends where nothing can happen, and where the agent is idle: the user
+            // may stop asking at any point (`[requests] max` is a bound, SPEC §1).
+            let terminal = (0..n as u32).find(|&i| {
+                bit(&seen, i)
+                    && (self.graph.successors(i).is_some_and(|e| e.is_empty())
+                        || bit(&self.facts.idle, i))
+            });
             let loop_comp = self.cyclic_components(|i| bit(&seen, i)).into_iter().next();
             let message = format!("`{}` may never hold", p.name);
             if let Some(t) = terminal {

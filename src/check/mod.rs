@@ -23,11 +23,13 @@ pub const CHECKS: &[&str] = &[
     "request-not-completed",
 ];
 
+pub mod buchi;
 pub mod explanation;
 pub mod explore;
 pub mod model;
 pub mod por;
 pub mod run;
+pub mod runs;
 pub mod sample;
 pub mod store;
 pub mod symmetry;
@@ -150,6 +152,7 @@ pub fn verify_with(
         .manifest
         .properties
         .iter()
+        .filter(|p| !crate::model::property::is_run_property(p))
         .filter_map(|p| {
             match formula::compile(&p.formula.expr, &project.atoms, &project.universe) {
                 Ok(cond) => Some(Prop {
@@ -168,6 +171,8 @@ pub fn verify_with(
     if !errors.is_empty() {
         return Err(errors);
     }
+    let (run_props, atomics) = crate::model::property::compile(project)?;
+    let run_atoms = (!run_props.is_empty()).then(|| runs::RunAtoms::new(&atomics, &sem));
     let symmetry = if opts.symmetry {
         symmetry::Symmetry::new(project, &sem)?
     } else {
@@ -191,10 +196,15 @@ pub fn verify_with(
             Some((earlier as u32, later as u32))
         })
         .collect();
+    // Under symmetry the stored graph follows one object under different names from state
+    // to state, which a formula naming an object cannot be checked on: the run properties
+    // then have an exact search of their own (below).
+    let runs_here = agent.symmetry.is_none();
     let conditions = Conditions {
         invariants: project.invariants.iter().map(|(_, c)| c).collect(),
         props: props.iter().map(|p| &p.cond).collect(),
         overlaps,
+        runs: run_atoms.as_ref().filter(|_| runs_here),
     };
     let n_conds = conditions.len();
     let eventually: Vec<usize> = props
@@ -225,43 +235,14 @@ pub fn verify_with(
     // Every stored state is also checked for equivariance: reduction is only exact if
     // renaming a state renames its successors (see Symmetry::equivariance_violation);
     // where it does not, the report says so.
-    let (graph, not_equivariant, unchecked) = match &compiled {
-        Some(c) => {
-            let model = CompiledAgent {
-                compiled: c,
-                symmetry: agent.symmetry.as_ref(),
-            };
-            let (g, unequal, unchecked) = search_agent(
-                &model,
-                (&conditions, |s: &Packed| c.applicable_plans(s).into()),
-                |s| model.equivariance_violation(s),
-                (limits, &search),
-                (&mut facts, &eventually, &mut failures),
-                |n, d, t| progress("search", n, d, t),
-            );
-            (g.cast(), unequal, unchecked)
-        }
-        None => search_agent(
-            &agent,
-            (&conditions, |s: &State| {
-                s.events.first().map_or_else(Plans::new, |ev| {
-                    sem.applicable(s, &ev.trigger, false)
-                        .into_iter()
-                        .map(|(plan, _)| plan)
-                        .collect()
-                })
-            }),
-            |s| {
-                agent
-                    .symmetry
-                    .as_ref()
-                    .and_then(|sym| sym.equivariance_violation(&sem, s))
-            },
-            (limits, &search),
-            (&mut facts, &eventually, &mut failures),
-            |n, d, t| progress("search", n, d, t),
-        ),
-    };
+    let (graph, not_equivariant, unchecked) = agent_search(
+        &agent,
+        compiled.as_ref(),
+        &conditions,
+        (limits, &search),
+        (&mut facts, &eventually, &mut failures),
+        &mut |n, d, t| progress("search", n, d, t),
+    );
     let Failures {
         actions: action_failures,
         goals: goal_failures,
@@ -285,6 +266,70 @@ pub fn verify_with(
     note_handled_gaps(&mut findings, project, &goal_failures);
     c.failures(&mut findings, action_failures, goal_failures);
     c.liveness(&mut findings, &props);
+    let mut run_phase = None;
+    let mut exact_phase = None;
+    if let Some(atoms) = &run_atoms {
+        if runs_here {
+            let t = std::time::Instant::now();
+            let reached = c.runs(&mut findings, &run_props);
+            run_phase = Some(crate::findings::Phase {
+                name: "ltl product".into(),
+                seconds: t.elapsed().as_secs_f64(),
+                states: Some(reached),
+            });
+        } else {
+            let t = std::time::Instant::now();
+            let exact = Agent {
+                sem: &sem,
+                symmetry: None,
+            };
+            let conditions = Conditions {
+                invariants: Vec::new(),
+                props: Vec::new(),
+                overlaps: Vec::new(),
+                runs: Some(atoms),
+            };
+            let mut facts = Facts::default();
+            let (graph, _, _) = agent_search(
+                &exact,
+                compiled.as_ref(),
+                &conditions,
+                (limits, &search),
+                (&mut facts, &[], &mut Failures::default()),
+                &mut |n, d, t| progress("ltl search", n, d, t),
+            );
+            let c = Checker {
+                project,
+                agent: &exact,
+                graph: &graph,
+                facts: &facts,
+                conditions: &conditions,
+            };
+            let searched = t.elapsed().as_secs_f64();
+            let states = graph.len();
+            let t = std::time::Instant::now();
+            let mut found = Vec::new();
+            let reached = c.runs(&mut found, &run_props);
+            if !graph.complete() && !found.iter().any(|f| f.status == Status::Fail) {
+                for f in &mut found {
+                    if f.status == Status::Pass && f.counterexample.is_none() {
+                        f.status = Status::Unknown;
+                    }
+                }
+            }
+            findings.extend(found);
+            exact_phase = Some(crate::findings::Phase {
+                name: "ltl search".into(),
+                seconds: searched,
+                states: Some(states),
+            });
+            run_phase = Some(crate::findings::Phase {
+                name: "ltl product".into(),
+                seconds: t.elapsed().as_secs_f64(),
+                states: Some(reached),
+            });
+        }
+    }
     // The explanation properties: one more search per user, each state paired with the
     // user's expected successors.
     let explore_opts = explore::Options {
@@ -316,11 +361,62 @@ pub fn verify_with(
         symmetry_caveat: not_equivariant,
         ..Verification::of(&graph, project, findings)
     };
+    v.stats.phases.extend(exact_phase);
+    v.stats.phases.extend(run_phase);
     v.stats.phases.extend(phases);
     if unchecked {
         v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
     }
     Ok(v)
+}
+
+/// The agent's search, on the compiled cycle when there is one, with `agent`'s symmetry.
+fn agent_search(
+    agent: &Agent,
+    compiled: Option<&Compiled>,
+    conditions: &Conditions,
+    bounds: (Limits, &Options),
+    record: (&mut Facts, &[usize], &mut Failures),
+    progress: &mut dyn FnMut(usize, u32, f64),
+) -> (explore::Graph, Option<String>, bool) {
+    let sem = agent.sem;
+    match compiled {
+        Some(c) => {
+            let model = CompiledAgent {
+                compiled: c,
+                symmetry: agent.symmetry.as_ref(),
+            };
+            let (g, unequal, unchecked) = search_agent(
+                &model,
+                (conditions, |s: &Packed| c.applicable_plans(s).into()),
+                |s| model.equivariance_violation(s),
+                bounds,
+                record,
+                progress,
+            );
+            (g.cast(), unequal, unchecked)
+        }
+        None => search_agent(
+            agent,
+            (conditions, |s: &State| {
+                s.events.first().map_or_else(Plans::new, |ev| {
+                    sem.applicable(s, &ev.trigger, false)
+                        .into_iter()
+                        .map(|(plan, _)| plan)
+                        .collect()
+                })
+            }),
+            |s| {
+                agent
+                    .symmetry
+                    .as_ref()
+                    .and_then(|sym| sym.equivariance_violation(sem, s))
+            },
+            bounds,
+            record,
+            progress,
+        ),
+    }
 }
 
 impl Verification {

@@ -189,6 +189,29 @@ pub trait AgentState {
     fn pending_requests(&self) -> u64;
     /// Whether the agent has nothing to do.
     fn is_idle(&self) -> bool;
+    /// The goals of its intentions, and with `events` those of its achievement-goal
+    /// events: what Jason's `.intend` (without) and `.desire` (with) look among.
+    fn goals(&self, events: bool) -> Vec<&crate::model::term::Term>;
+}
+
+/// The goals of `intentions` and, with `events`, of the `+!g` events among `queue`.
+fn goals_of<'a>(
+    intentions: impl Iterator<Item = &'a crate::semantics::Intention>,
+    queue: impl Iterator<Item = &'a crate::semantics::Event>,
+    events: bool,
+) -> Vec<&'a crate::model::term::Term> {
+    use crate::syntax::ast::{TriggerKind, TriggerOp};
+    let mut out: Vec<&crate::model::term::Term> = intentions.flat_map(|i| i.goals()).collect();
+    if events {
+        out.extend(
+            queue
+                .filter(|e| {
+                    e.trigger.op == TriggerOp::Add && e.trigger.kind == TriggerKind::Achieve
+                })
+                .map(|e| &e.trigger.literal),
+        );
+    }
+    out
 }
 
 impl AgentState for State {
@@ -201,6 +224,9 @@ impl AgentState for State {
     fn is_idle(&self) -> bool {
         State::is_idle(self)
     }
+    fn goals(&self, events: bool) -> Vec<&crate::model::term::Term> {
+        goals_of(self.all_intentions(), self.events.iter(), events)
+    }
 }
 
 impl AgentState for Packed<'_> {
@@ -212,6 +238,9 @@ impl AgentState for Packed<'_> {
     }
     fn is_idle(&self) -> bool {
         Packed::is_idle(self)
+    }
+    fn goals(&self, events: bool) -> Vec<&crate::model::term::Term> {
+        goals_of(self.all_intentions(), self.events(), events)
     }
 }
 

@@ -101,7 +101,7 @@ impl Checker<'_> {
                         ));
                     }
                 },
-                PropertyKind::Eventually => {}
+                PropertyKind::Eventually | PropertyKind::Ltl => {}
             }
         }
         // Deadlock: a state with nothing to do that is not a finished run: an intention in a

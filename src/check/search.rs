@@ -5,6 +5,7 @@
 use super::explore::{explore_with, Graph, Limits, Options};
 use super::failures::Failures;
 use super::model::{AgentState, CycleNotes, Model};
+use super::runs::{Letter, RunAtoms};
 use crate::model::cond::Cond;
 use std::collections::HashMap;
 
@@ -17,6 +18,8 @@ struct Summary {
     holds: smallvec::SmallVec<[u64; 2]>,
     pending: u64,
     idle: bool,
+    /// The atomic propositions of the run properties that hold ([`RunAtoms`]).
+    letter: Letter,
 }
 
 /// The state conditions evaluated on every state, in one numbering: invariants, then
@@ -25,6 +28,8 @@ pub(super) struct Conditions<'a> {
     pub(super) invariants: Vec<&'a Cond>,
     pub(super) props: Vec<&'a Cond>,
     pub(super) overlaps: Vec<(u32, u32)>,
+    /// The atomic propositions of the properties decided on runs, if any.
+    pub(super) runs: Option<&'a RunAtoms>,
 }
 
 impl Conditions<'_> {
@@ -55,6 +60,7 @@ impl Conditions<'_> {
             holds,
             pending: s.pending_requests(),
             idle: s.is_idle(),
+            letter: self.runs.map(|r| r.state_letter(s)).unwrap_or_default(),
         }
     }
 }
@@ -73,6 +79,14 @@ pub(super) struct Facts {
     pub(super) mask_ids: HashMap<u64, u32>,
     /// Per `eventually` property: bit per state, set when the property does not hold.
     pub(super) bad: Vec<Vec<u64>>,
+    /// Per state: an index into `letter_table` (the run properties' propositions that hold
+    /// there); empty when no property is decided on runs.
+    pub(super) letters: Vec<u32>,
+    pub(super) letter_table: Vec<Letter>,
+    pub(super) letter_ids: HashMap<Letter, u32>,
+    /// Per transition (source, position) that did an action some `did` names: those
+    /// propositions.
+    pub(super) steps: HashMap<(u32, u32), Letter>,
 }
 
 pub(super) fn bit(v: &[u64], i: u32) -> bool {
@@ -110,6 +124,14 @@ impl Facts {
         for (b, &j) in self.bad.iter_mut().zip(eventually) {
             set_bit(b, i, !bit(&s.holds, j as u32));
         }
+        if !s.letter.is_empty() {
+            let next = self.letter_table.len() as u32;
+            let id = *self.letter_ids.entry(s.letter.clone()).or_insert(next);
+            if id == next {
+                self.letter_table.push(s.letter);
+            }
+            self.letters.push(id);
+        }
     }
 
     pub(super) fn pending(&self, i: u32) -> u64 {
@@ -144,6 +166,7 @@ where
         .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
         .and_then(|d| std::time::Instant::now().checked_add(d));
     let unchecked = std::sync::atomic::AtomicBool::new(false);
+    let mut steps = HashMap::new();
     let graph = explore_with(
         model,
         limits,
@@ -162,9 +185,15 @@ where
             }
             facts.record(i, sum, eventually)
         },
-        |src, k, label: &M::Label, fp| failures.record(src, k, fp, label.notes()),
+        |src, k, label: &M::Label, fp| {
+            failures.record(src, k, fp, label.notes());
+            if let Some(l) = conditions.runs.and_then(|r| r.step_letter(label.notes())) {
+                steps.insert((src, k), l);
+            }
+        },
         progress,
     );
+    facts.steps = steps;
     let unchecked = unchecked.into_inner() && graph.complete();
     (graph.cast(), not_equivariant, unchecked)
 }

@@ -14,7 +14,7 @@ use crate::semantics::{Note, Semantics, State};
 use crate::syntax::ast::{TriggerKind, TriggerOp};
 use crate::syntax::{Diagnostic, SourceMap, Span};
 use serde::Deserialize;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 /// `replay REPORT [--finding ID]`: exit 1 while a counterexample still reaches its
@@ -420,6 +420,11 @@ fn replay_one(
     if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
         return replay_explained(project, sem, f, c, state, walked);
     }
+    if f.check == "property" {
+        if let Some(p) = run_property(project, f) {
+            return replay_run(project, sem, f, c, &p, state, walked);
+        }
+    }
     let check = Check::of(project, f, &[]);
     let mut builder = Builder::new(project, sem);
     let mut seen: HashSet<u64> = HashSet::from([fingerprint(&state)]);
@@ -445,10 +450,23 @@ fn replay_one(
     let run = find_run(&state, &recorded, &next, &|n: &Vec<Note>| {
         shown(project, sem, n)
     });
-    let budget = budget + run.as_ref().map_or(0, Vec::len);
+    let followed = run.as_ref().map_or(0, Vec::len);
+    let budget = budget + followed;
     for turn in 0..budget {
         if check.settles(&state) {
             return no("the property now holds on this run");
+        }
+        // The user may stop asking at any point: a run of an `eventually` property may end
+        // where the agent is idle, once the recorded run is followed.
+        if matches!(check, Check::Eventually(_)) && state.is_idle() && turn >= followed {
+            return Replayed {
+                id: f.id.clone(),
+                reached: true,
+                detail: format!(
+                    "the run ends after {} steps without the property (the agent idle, the user asking nothing more)",
+                    builder.steps().len()
+                ),
+            };
         }
         if check.state_violated(&state) {
             return Replayed {
@@ -512,6 +530,124 @@ fn replay_one(
         }
     }
     no("the run no longer reaches the violation")
+}
+
+/// The finding's property, when it is decided on runs (`ltl`, or a modality).
+fn run_property(project: &Project, f: &FindingIn) -> Option<crate::model::property::RunProperty> {
+    let name = f.id.strip_prefix("property:")?;
+    let (props, _) = crate::model::property::compile(project).ok()?;
+    props.into_iter().find(|p| p.name == name)
+}
+
+/// Most steps a replayed run of a run property is extended by (first successors) to close
+/// a loop after its recorded steps.
+const MAX_EXTENSION: usize = 10_000;
+
+/// Replays a finding of a property decided on runs: follows the recorded steps, then
+/// closes the run into a lasso (the recorded loop when the run comes back to its entry;
+/// otherwise the run ends where the agent is idle or stuck, or goes on by first successors
+/// until a state repeats), and decides the formula on that lasso with LTL's own semantics
+/// (not the automaton the search used).
+fn replay_run(
+    project: &Project,
+    sem: &Semantics,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    p: &crate::model::property::RunProperty,
+    start: State,
+    walked: &mut Vec<Walked>,
+) -> Replayed {
+    use crate::check::runs::{violated_on, RunAtoms};
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    if p.kind == crate::syntax::manifest::PropertyKind::Reachable {
+        return no("a `reachable` property's run is a witness, not a violation");
+    }
+    let Ok((_, atomics)) = crate::model::property::compile(project) else {
+        return no("the project's properties no longer compile");
+    };
+    let atoms = RunAtoms::new(&atomics, sem);
+    let recorded: Vec<(&str, &str)> = c
+        .steps
+        .iter()
+        .map(|s| (s.kind.as_str(), s.text.as_str()))
+        .collect();
+    let next = |s: &State| -> Vec<(Vec<Note>, State)> {
+        sem.successors(s)
+            .into_iter()
+            .map(|t| (t.notes, t.next))
+            .collect()
+    };
+    let picks = find_run(&start, &recorded, &next, &|n: &Vec<Note>| {
+        shown(project, sem, n)
+    })
+    .unwrap_or_default();
+    let mut letters = vec![atoms.state_letter(&start)];
+    let mut seen: HashMap<u64, usize> = HashMap::from([(fingerprint(&start), 0)]);
+    let mut state = start;
+    let mut taken = 0usize;
+    let followed = picks.len();
+    let loop_at = loop {
+        let pick = if taken < followed {
+            Some(picks[taken])
+        } else {
+            None
+        };
+        let succ = sem.successors(&state);
+        let pick = match pick {
+            Some(k) => k,
+            None => {
+                if state.is_idle() || succ.is_empty() {
+                    // The run ends here and stays: its last state repeats.
+                    letters.push(atoms.state_letter(&state));
+                    break letters.len() - 1;
+                }
+                if taken >= followed + MAX_EXTENSION {
+                    return no("the run does not close into a loop within the replay's bound");
+                }
+                0
+            }
+        };
+        let Some(t) = succ.get(pick) else {
+            return no("the recorded run is no longer possible");
+        };
+        let mut l = atoms.state_letter(&t.next);
+        if let Some(d) = atoms.step_letter(t.notes.iter()) {
+            for (w, x) in l.iter_mut().zip(d) {
+                *w |= x;
+            }
+        }
+        letters.push(l);
+        walked.push(Walked {
+            notes: t.notes.clone(),
+            state: t.next.clone(),
+        });
+        state = t.next.clone();
+        taken += 1;
+        let fp = fingerprint(&state);
+        if let Some(&e) = seen.get(&fp) {
+            if taken >= followed {
+                // Back in the state of position `e`: from here the run repeats positions
+                // e+1 ..= this one (the step into this one is the loop's last).
+                break e + 1;
+            }
+        }
+        seen.entry(fp).or_insert(letters.len() - 1);
+    };
+    match violated_on(p, &letters, loop_at) {
+        Some(binding) => Replayed {
+            id: f.id.clone(),
+            reached: true,
+            detail: if binding.is_empty() {
+                format!("violated on a run of {} steps", letters.len() - 1)
+            } else {
+                format!(
+                    "violated for {binding} on a run of {} steps",
+                    letters.len() - 1
+                )
+            },
+        },
+        None => no("the property now holds on this run"),
+    }
 }
 
 /// Replays an explanation finding: the run as the finding's user sees it (the id is
@@ -937,7 +1073,15 @@ fn system_lasso(
     let Some(ls) = loop_start else {
         // An `eventually` property may fail on a run that ends.
         return match check {
-            Check::Eventually(c) if system.successors(last).is_empty() && never(c) => Ok(()),
+            // Where every agent is done the user may stop asking: the run may end there.
+            Check::Eventually(c)
+                if (system.successors(last).is_empty()
+                    || (last.agents.iter().all(|a| a.is_idle())
+                        && last.mail.iter().all(|m| m.is_empty())))
+                    && never(c) =>
+            {
+                Ok(())
+            }
             _ => Err("the run no longer reaches the violation"),
         };
     };

@@ -54,6 +54,40 @@ pub fn compile_in(
     Ok(Cond::and(parts))
 }
 
+/// Adds to `types` the type of every named variable of the state formula `expr`, from the
+/// predicate positions it fills (a variable in several takes their meet). For formulas whose
+/// variables are shared with others, as in an `ltl` property.
+pub fn infer_types(
+    expr: &Expr,
+    atoms: &AtomTable,
+    universe: &Universe,
+    agents: &[String],
+    types: &mut BTreeMap<String, TypeId>,
+) -> Result<(), Diagnostic> {
+    Compiler {
+        atoms,
+        universe,
+        agents,
+    }
+    .infer(expr, types)
+}
+
+/// The state formula `expr` as a ground condition, its named variables bound by `env`.
+pub fn ground_with(
+    expr: &Expr,
+    atoms: &AtomTable,
+    universe: &Universe,
+    agents: &[String],
+    env: &BTreeMap<&str, ObjectId>,
+) -> Result<Cond, Diagnostic> {
+    Compiler {
+        atoms,
+        universe,
+        agents,
+    }
+    .ground(expr, env)
+}
+
 fn is_anonymous(name: &str) -> bool {
     name.starts_with('_')
 }

@@ -329,6 +329,11 @@ impl Packed<'_> {
         &self.beliefs.value.1
     }
 
+    /// The events, first in first out.
+    pub fn events(&self) -> impl Iterator<Item = &Event> {
+        self.events.iter().map(|e| &e.value)
+    }
+
     /// The first event of the queue.
     pub fn first_event(&self) -> Option<&Event> {
         self.events.first().map(|e| &e.value)

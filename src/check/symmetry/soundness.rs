@@ -173,7 +173,12 @@ impl Symmetry {
             let what = format!("invariant `{}`", i.name.value);
             formulas.push((&i.formula.text, i.formula.span, &i.formula.expr, what));
         }
-        for p in &m.properties {
+        // Properties decided on runs have an exact search of their own.
+        for p in m
+            .properties
+            .iter()
+            .filter(|p| !crate::model::property::is_run_property(p))
+        {
             let what = format!("property `{}`", p.name.value);
             formulas.push((&p.formula.text, p.formula.span, &p.formula.expr, what));
         }

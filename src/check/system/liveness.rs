@@ -163,9 +163,15 @@ pub(super) fn liveness(
         // before it on a shortest such run.
         let region = lg.reachable_within(never);
         let inside = |i: u32| region[i as usize].is_some();
-        // A run that ends there (the nearest), or a fair loop there.
+        // A run that ends there (the nearest), or a fair loop there. A run ends where
+        // nothing can happen, and where every agent is done: the user may stop asking at
+        // any point (`[requests] max` is a bound, SPEC §1).
         let dead_end = (0..n as u32)
-            .filter(|&i| inside(i) && graph.successors(i).is_some_and(|s| s.is_empty()))
+            .filter(|&i| {
+                inside(i)
+                    && (graph.successors(i).is_some_and(|s| s.is_empty())
+                        || facts.busy[i as usize] == 0)
+            })
             .min_by_key(|&i| path_within(&region, i).len());
         let f = match (dead_end, lg.fair_loop(inside, None)) {
             (Some(i), _) => {

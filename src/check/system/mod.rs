@@ -213,6 +213,19 @@ pub fn verify_system(
     // `eventually` properties: decided on runs ([`liveness`]).
     let mut eventually: Vec<(String, Cond, Span)> = Vec::new();
     for p in &project.manifest.properties {
+        if crate::model::property::is_run_property(p) {
+            errors.push(
+                Diagnostic::error(
+                    "input",
+                    format!(
+                        "property `{}`: `ltl` formulas and modalities (`believes`, `.intend`, ...) are checked in projects of one agent only, for now",
+                        p.name.value
+                    ),
+                )
+                .with_label(p.formula.span, "not supported with several agents"),
+            );
+            continue;
+        }
         match formula::compile_in(
             &p.formula.expr,
             &project.atoms,

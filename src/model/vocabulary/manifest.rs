@@ -43,8 +43,27 @@ impl Checker<'_> {
         for inv in &m.invariants {
             self.manifest_formula(&inv.formula, no_props);
         }
+        // The state formulas of a property, but those with a modality other than
+        // `.intend`/`.desire` (not predicates: `model::property` checks them as it compiles
+        // them). The parts of an `ltl` formula share their variables, so a variable is not
+        // required to be typed in each part.
         for p in &m.properties {
-            self.manifest_formula(&p.formula, Scope::Manifest { properties: true });
+            let scope = Scope::Manifest { properties: true };
+            let plain = |e: &&crate::syntax::ast::Expr| !crate::model::property::uses_modality(e);
+            match &p.ltl {
+                None if plain(&&p.formula.expr) => self.manifest_formula(&p.formula, scope),
+                None => {}
+                Some(l) => {
+                    for e in l.states().into_iter().filter(plain) {
+                        let f = Formula {
+                            text: p.formula.text.clone(),
+                            span: e.span,
+                            expr: e.clone(),
+                        };
+                        self.formula_part(&f, scope);
+                    }
+                }
+            }
         }
         for f in &m.requests.goals {
             let mut cl = Clause::default();
@@ -94,6 +113,14 @@ impl Checker<'_> {
             free_check: true,
             ..Clause::default()
         };
+        named_vars(&f.expr, &mut cl.vars);
+        self.formula(&mut cl, &f.expr, scope, Usage::Query);
+        self.clauses.push(cl);
+    }
+
+    /// A part of a formula whose variables other parts may type.
+    fn formula_part(&mut self, f: &Formula, scope: Scope) {
+        let mut cl = Clause::default();
         named_vars(&f.expr, &mut cl.vars);
         self.formula(&mut cl, &f.expr, scope, Usage::Query);
         self.clauses.push(cl);

@@ -23,6 +23,7 @@
 //! formulas, `sections` each section of the manifest and of a scenario, and `spans` maps
 //! the spans of a string's contents back into the TOML text.
 
+pub mod ltl;
 mod sections;
 mod spans;
 #[cfg(test)]
@@ -30,6 +31,7 @@ mod tests;
 mod types;
 mod validate;
 
+pub use ltl::{LtlBinary, LtlExpr, LtlKind, LtlUnary};
 pub use types::{
     AgentEntry, AgentSection, Allow, Arrival, Bounds, ExpectedPair, ExplanationSection, FileRef,
     Formula, InitialSection, Invariant, Located, Manifest, Modifies, ObjectType, Phrase,

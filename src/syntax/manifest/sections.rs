@@ -478,7 +478,7 @@ impl<'a> Cx<'a> {
     }
 
     fn properties(&mut self, root: &DeTable) -> Vec<Property> {
-        const KEYS: &[&str] = &["name", "always", "eventually", "reachable"];
+        const KEYS: &[&str] = &["name", "always", "eventually", "reachable", "ltl"];
         let Some(v) = root.get("property") else {
             return Vec::new();
         };
@@ -524,6 +524,7 @@ impl<'a> Cx<'a> {
                         "always" => PropertyKind::Always,
                         "eventually" => PropertyKind::Eventually,
                         "reachable" => PropertyKind::Reachable,
+                        "ltl" => PropertyKind::Ltl,
                         _ => return None,
                     };
                     Some((k, e))
@@ -533,7 +534,7 @@ impl<'a> Cx<'a> {
             if kinds.is_empty() {
                 self.err(
                     pv.span(),
-                    format!("{label} needs one of `always`, `eventually` or `reachable`"),
+                    format!("{label} needs one of `always`, `eventually`, `reachable` or `ltl`"),
                     "no formula",
                 );
                 continue;
@@ -542,7 +543,7 @@ impl<'a> Cx<'a> {
                 self.err(
                     key.span(),
                     format!(
-                        "{label} has both `{}` and `{}`: give exactly one of `always`, `eventually`, `reachable`",
+                        "{label} has both `{}` and `{}`: give exactly one of `always`, `eventually`, `reachable`, `ltl`",
                         kinds[0].0.key(),
                         k.key()
                     ),
@@ -550,12 +551,21 @@ impl<'a> Cx<'a> {
                 );
             }
             let (kind, (_, fv)) = kinds[0];
-            let formula = self.formula(fv, &format!("`{}` of {label}", kind.key()));
+            let what = format!("`{}` of {label}", kind.key());
+            let (formula, ltl) = if kind == PropertyKind::Ltl {
+                match self.ltl(fv, &what) {
+                    Some((f, l)) => (Some(f), Some(l)),
+                    None => (None, None),
+                }
+            } else {
+                (self.formula(fv, &what), None)
+            };
             if let (Some(name), Some(formula), 1) = (name, formula, kinds.len()) {
                 out.push(Property {
                     name,
                     kind,
                     formula,
+                    ltl,
                     span: self.span(pv.span()),
                 });
             }

@@ -154,6 +154,8 @@ pub enum PropertyKind {
     Eventually,
     /// `reachable = "f"`: some run reaches a state where `f` holds.
     Reachable,
+    /// `ltl = "f"`: every run satisfies the LTL formula `f`.
+    Ltl,
 }
 
 impl PropertyKind {
@@ -163,6 +165,7 @@ impl PropertyKind {
             PropertyKind::Always => "always",
             PropertyKind::Eventually => "eventually",
             PropertyKind::Reachable => "reachable",
+            PropertyKind::Ltl => "ltl",
         }
     }
 }
@@ -172,10 +175,14 @@ impl PropertyKind {
 pub struct Property {
     /// `name` (required, unique among properties).
     pub name: Located<String>,
-    /// Which of `always`, `eventually`, `reachable` was given (exactly one is required).
+    /// Which of `always`, `eventually`, `reachable`, `ltl` was given (exactly one is
+    /// required).
     pub kind: PropertyKind,
-    /// Its formula.
+    /// Its formula. For `ltl`, the text and span of the string, and the expression `true`:
+    /// the formula itself is [`Property::ltl`].
     pub formula: Formula,
+    /// The LTL formula of an `ltl` property.
+    pub ltl: Option<super::ltl::LtlExpr>,
     /// The table: its `[[property]]` header (or inline table).
     pub span: Span,
 }

@@ -432,6 +432,36 @@ impl<'a> Cx<'a> {
         })
     }
 
+    /// An `ltl` string: its text and span as a [`Formula`] whose expression is `true`, and
+    /// the parsed LTL formula.
+    pub(super) fn ltl(
+        &mut self,
+        v: &Spanned<DeValue>,
+        what: &str,
+    ) -> Option<(Formula, super::ltl::LtlExpr)> {
+        let s = self.string(v, what)?;
+        let ltl = self.parse_in(&s, v.span(), super::ltl::parse_ltl)?;
+        let expr = crate::syntax::ast::Expr {
+            kind: crate::syntax::ast::ExprKind::Literal(crate::syntax::ast::Literal {
+                namespace: None,
+                negated: false,
+                functor: "true".into(),
+                args: Vec::new(),
+                annots: None,
+                span: ltl.span,
+            }),
+            span: ltl.span,
+        };
+        Some((
+            Formula {
+                text: s.value,
+                span: s.span,
+                expr,
+            },
+            ltl,
+        ))
+    }
+
     pub(super) fn formulas(&mut self, v: &Spanned<DeValue>, what: &str) -> Vec<Formula> {
         let Some(a) = self.array(v, what, "an array of strings") else {
             return Vec::new();

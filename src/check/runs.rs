@@ -1,0 +1,805 @@
+//! Properties decided on runs ([`crate::model::property`]): `ltl` formulas, and state
+//! properties that use BDI modalities. The negated formula becomes a Büchi automaton
+//! ([`Buchi`]); its product with the explored graph is searched breadth-first, and a
+//! violation is an accepting cycle of the product: a lasso, the run to the loop then the
+//! loop. A prefix after which every continuation violates the formula (the automaton is in
+//! an accepting state that accepts anything) is reported as that prefix alone, as a
+//! safety violation is.
+//!
+//! What a run is: a path of the state graph, one reasoning cycle per step (`X` is the next
+//! cycle). A run may end in a state where the agent is idle, since the user may stop asking
+//! at any point (`[requests] max` is a bound), or where nothing can happen (a deadlock); a
+//! run that ends repeats its last state forever, and `did` is false there. Jason's
+//! round-robin scheduling of intentions is part of the cycle, so every loop of the graph is
+//! a run that is fair to the intentions.
+
+use super::buchi::Buchi;
+use super::checker::Checker;
+use super::model::AgentState;
+use super::search::bit;
+use crate::findings::{Finding, Status};
+use crate::model::ltl::Ltl;
+use crate::model::property::{Atomic, Atomics, RunProperty};
+use crate::model::subst::unifier;
+use crate::model::term::Term;
+use crate::semantics::{Note, Semantics};
+use crate::syntax::manifest::PropertyKind;
+use std::collections::{HashMap, VecDeque};
+
+/// The propositions that hold in one state (or one step), one bit per [`Atomic`].
+pub(crate) type Letter = smallvec::SmallVec<[u64; 1]>;
+
+/// How each atomic proposition is evaluated on a state of the search.
+pub(crate) struct RunAtoms {
+    evals: Vec<Eval>,
+    words: usize,
+}
+
+enum Eval {
+    Beliefs(crate::model::cond::Cond),
+    /// A goal pattern; `true`: events count too (`.desire`).
+    Goal(Term, bool),
+    /// The requests (one bit each) a `requested` pattern matches.
+    Requested(u64),
+    Did(Term),
+}
+
+impl RunAtoms {
+    /// The evaluation of `atomics` for the agent of `sem`.
+    pub(crate) fn new(atomics: &Atomics, sem: &Semantics) -> RunAtoms {
+        let evals = atomics
+            .list
+            .iter()
+            .map(|a| match a {
+                Atomic::Beliefs(c) => Eval::Beliefs(c.clone()),
+                Atomic::Intends(g) => Eval::Goal(g.clone(), false),
+                Atomic::Desires(g) => Eval::Goal(g.clone(), true),
+                Atomic::Requested(g) => Eval::Requested(
+                    sem.requests
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, r)| unifier(g, r).is_some())
+                        .fold(0u64, |m, (i, _)| m | 1 << i),
+                ),
+                Atomic::Did(a) => Eval::Did(a.clone()),
+            })
+            .collect::<Vec<_>>();
+        RunAtoms {
+            words: evals.len().div_ceil(64).max(1),
+            evals,
+        }
+    }
+
+    /// The propositions about states that hold in `s`.
+    pub(crate) fn state_letter<S: AgentState>(&self, s: &S) -> Letter {
+        let mut out: Letter = smallvec::smallvec![0; self.words];
+        let mut goals: [Option<Vec<&Term>>; 2] = [None, None];
+        for (j, e) in self.evals.iter().enumerate() {
+            let holds = match e {
+                Eval::Beliefs(c) => c.eval(s.beliefs()),
+                Eval::Goal(g, events) => goals[usize::from(*events)]
+                    .get_or_insert_with(|| s.goals(*events))
+                    .iter()
+                    .any(|t| unifier(g, t).is_some()),
+                Eval::Requested(mask) => s.pending_requests() & mask != 0,
+                Eval::Did(_) => false,
+            };
+            if holds {
+                out[j / 64] |= 1 << (j % 64);
+            }
+        }
+        out
+    }
+
+    /// The `did` propositions a transition with these notes makes true, if any.
+    pub(crate) fn step_letter<'n>(&self, notes: impl Iterator<Item = &'n Note>) -> Option<Letter> {
+        if !self.evals.iter().any(|e| matches!(e, Eval::Did(_))) {
+            return None;
+        }
+        let mut out: Letter = smallvec::smallvec![0; self.words];
+        let mut any = false;
+        for n in notes {
+            let Note::Action { term, .. } = n else {
+                continue;
+            };
+            for (j, e) in self.evals.iter().enumerate() {
+                if matches!(e, Eval::Did(a) if unifier(a, term).is_some()) {
+                    out[j / 64] |= 1 << (j % 64);
+                    any = true;
+                }
+            }
+        }
+        any.then_some(out)
+    }
+}
+
+/// The formula of one instance over local proposition numbers, and the global number of
+/// each local one.
+fn localize(f: &Ltl, map: &mut Vec<u32>) -> Ltl {
+    let b = |x: &Ltl, map: &mut Vec<u32>| Box::new(localize(x, map));
+    match f {
+        Ltl::True => Ltl::True,
+        Ltl::False => Ltl::False,
+        Ltl::Prop(p) => {
+            let k = map.iter().position(|q| q == p).unwrap_or_else(|| {
+                map.push(*p);
+                map.len() - 1
+            });
+            Ltl::Prop(k as u32)
+        }
+        Ltl::Not(a) => Ltl::Not(b(a, map)),
+        Ltl::Next(a) => Ltl::Next(b(a, map)),
+        Ltl::And(x, y) => Ltl::And(b(x, map), b(y, map)),
+        Ltl::Or(x, y) => Ltl::Or(b(x, map), b(y, map)),
+        Ltl::Until(x, y) => Ltl::Until(b(x, map), b(y, map)),
+        Ltl::Release(x, y) => Ltl::Release(b(x, map), b(y, map)),
+    }
+}
+
+/// A global letter restricted to the propositions `map` names, renumbered.
+fn local(letter: &[u64], map: &[u32]) -> u64 {
+    map.iter().enumerate().fold(0, |acc, (k, &p)| {
+        let set = letter
+            .get(p as usize / 64)
+            .is_some_and(|w| w >> (p % 64) & 1 == 1);
+        acc | (u64::from(set) << k)
+    })
+}
+
+/// A violation found in the product: graph states from an initial one, then either a loop
+/// (graph states from its entry back to it), a run that ends and stays (`ends`), or
+/// nothing (a bad prefix: every continuation violates).
+pub(crate) struct Violation {
+    pub(crate) path: Vec<u32>,
+    /// The loop, from its entry back to it (empty when there is none).
+    pub(crate) cycle: Vec<u32>,
+    /// The run ends at the last state of `path` and stays there.
+    pub(crate) ends: bool,
+}
+
+/// What the product reads of the explored graph, in the local numbering of one formula's
+/// propositions.
+pub(crate) trait RunGraph {
+    /// How many states are initial (the first ones).
+    fn initial(&self) -> u32;
+    /// The successors of `i`, in transition order; `None` when it was not expanded.
+    fn successors(&self, i: u32) -> Option<&[u32]>;
+    /// Whether a run may end in `i` and stay there.
+    fn may_end(&self, i: u32) -> bool;
+    /// The propositions that hold in `i`.
+    fn state_letter(&self, i: u32) -> u64;
+    /// The propositions the `k`-th transition from `i` makes true (`did`).
+    fn step_letter(&self, i: u32, k: u32) -> u64;
+}
+
+/// The explored graph of a [`Checker`], read through one formula's propositions.
+struct Explored<'c, 'g> {
+    checker: &'c Checker<'g>,
+    /// The global number of each local proposition.
+    map: Vec<u32>,
+    /// Per letter id of the search: the local letter.
+    state_letters: Vec<u64>,
+}
+
+impl RunGraph for Explored<'_, '_> {
+    fn initial(&self) -> u32 {
+        self.checker.graph.initial as u32
+    }
+    fn successors(&self, i: u32) -> Option<&[u32]> {
+        self.checker.graph.successors(i)
+    }
+    fn may_end(&self, i: u32) -> bool {
+        bit(&self.checker.facts.idle, i)
+            || self
+                .checker
+                .graph
+                .successors(i)
+                .is_some_and(|e| e.is_empty())
+    }
+    fn state_letter(&self, i: u32) -> u64 {
+        match self.checker.facts.letters.get(i as usize) {
+            Some(&id) => self.state_letters[id as usize],
+            None => 0,
+        }
+    }
+    fn step_letter(&self, i: u32, k: u32) -> u64 {
+        self.checker
+            .facts
+            .steps
+            .get(&(i, k))
+            .map_or(0, |l| local(l, &self.map))
+    }
+}
+
+/// The product of a graph with the automaton of a formula's negation.
+pub(crate) struct Product<'r, G: RunGraph> {
+    buchi: Buchi,
+    /// Per Büchi state: accepting, with a `true` edge back to itself.
+    universal: Vec<bool>,
+    graph: &'r G,
+    /// Product states the last search reached.
+    pub(crate) reached: std::cell::Cell<usize>,
+}
+
+/// A product state: graph state, Büchi state, and whether the run has ended (it stays in
+/// its last state for ever from there).
+type Node = (u32, u32, bool);
+
+impl<'r, G: RunGraph> Product<'r, G> {
+    /// The product of `graph` with the automaton of `not f` (`f` over the graph's local
+    /// propositions).
+    pub(crate) fn new(graph: &'r G, f: &Ltl) -> Self {
+        let buchi = Buchi::from_ltl(&Ltl::not(f.clone()));
+        Product {
+            universal: universal(&buchi),
+            buchi,
+            graph,
+            reached: std::cell::Cell::new(0),
+        }
+    }
+
+    /// The successors of a product node.
+    fn successors(&self, (i, q, ended): Node, out: &mut Vec<Node>) {
+        out.clear();
+        let b = &self.buchi.states[q as usize];
+        let follow = |letter: u64, j: u32, end: bool, out: &mut Vec<Node>| {
+            for (guard, q2) in &b.edges {
+                if guard.matches(letter) {
+                    out.push((j, *q2, end));
+                }
+            }
+        };
+        if !ended {
+            if let Some(succ) = self.graph.successors(i) {
+                for (k, &j) in succ.iter().enumerate() {
+                    let letter = self.graph.state_letter(j) | self.graph.step_letter(i, k as u32);
+                    follow(letter, j, false, out);
+                }
+            }
+        }
+        if ended || self.graph.may_end(i) {
+            follow(self.graph.state_letter(i), i, true, out);
+        }
+    }
+
+    /// Breadth-first over the product; the first bad prefix, or the shortest accepting
+    /// lasso found by the strongly connected components of the product.
+    pub(crate) fn search(&self) -> Option<Violation> {
+        let mut index: HashMap<Node, u32> = HashMap::new();
+        let mut nodes: Vec<Node> = Vec::new();
+        let mut parent: Vec<u32> = Vec::new();
+        let mut edges: Vec<Vec<u32>> = Vec::new();
+        let mut queue = VecDeque::new();
+        let init = &self.buchi.states[self.buchi.initial as usize];
+        let mut add = |n: Node, from: u32, nodes: &mut Vec<Node>, parent: &mut Vec<u32>| {
+            if let Some(&x) = index.get(&n) {
+                return (x, false);
+            }
+            let x = nodes.len() as u32;
+            index.insert(n, x);
+            nodes.push(n);
+            parent.push(from);
+            (x, true)
+        };
+        for i in 0..self.graph.initial() {
+            let letter = self.graph.state_letter(i);
+            for (guard, q) in &init.edges {
+                if guard.matches(letter) {
+                    let (x, new) = add((i, *q, false), u32::MAX, &mut nodes, &mut parent);
+                    if new {
+                        if self.universal[*q as usize] {
+                            self.reached.set(nodes.len());
+                            return Some(self.prefix(&nodes, &parent, x));
+                        }
+                        queue.push_back(x);
+                    }
+                }
+            }
+        }
+        let mut succ = Vec::new();
+        while let Some(x) = queue.pop_front() {
+            self.successors(nodes[x as usize], &mut succ);
+            let mut out = Vec::with_capacity(succ.len());
+            for &n in &succ {
+                let (y, new) = add(n, x, &mut nodes, &mut parent);
+                out.push(y);
+                if new {
+                    if self.universal[n.1 as usize] {
+                        self.reached.set(nodes.len());
+                        return Some(self.prefix(&nodes, &parent, y));
+                    }
+                    queue.push_back(y);
+                }
+            }
+            if edges.len() <= x as usize {
+                edges.resize(x as usize + 1, Vec::new());
+            }
+            edges[x as usize] = out;
+        }
+        edges.resize(nodes.len(), Vec::new());
+        self.reached.set(nodes.len());
+        self.lasso(&nodes, &parent, &edges)
+    }
+
+    /// The graph states of the run to product node `x` (ended steps left out: they stay).
+    fn run_to(&self, nodes: &[Node], parent: &[u32], x: u32) -> (Vec<u32>, bool) {
+        let mut out = Vec::new();
+        let mut at = x;
+        let ends = nodes[x as usize].2;
+        loop {
+            let (i, _, ended) = nodes[at as usize];
+            let p = parent[at as usize];
+            let stays = ended && p != u32::MAX && nodes[p as usize].0 == i;
+            if !stays {
+                out.push(i);
+            }
+            if p == u32::MAX {
+                break;
+            }
+            at = p;
+        }
+        out.reverse();
+        (out, ends)
+    }
+
+    fn prefix(&self, nodes: &[Node], parent: &[u32], x: u32) -> Violation {
+        let (path, _) = self.run_to(nodes, parent, x);
+        Violation {
+            path,
+            cycle: Vec::new(),
+            ends: false,
+        }
+    }
+
+    /// The shallowest accepting node on a cycle, and the shortest cycle through it.
+    fn lasso(&self, nodes: &[Node], parent: &[u32], edges: &[Vec<u32>]) -> Option<Violation> {
+        let comp = components(edges);
+        let on_cycle = |x: u32| {
+            let c = comp[x as usize];
+            edges[x as usize].iter().any(|&y| comp[y as usize] == c)
+        };
+        // Nodes are numbered breadth-first, so the first is the shallowest.
+        let entry = (0..nodes.len() as u32)
+            .find(|&x| self.buchi.states[nodes[x as usize].1 as usize].accepting && on_cycle(x))?;
+        let c = comp[entry as usize];
+        let mut back: HashMap<u32, u32> = HashMap::new();
+        let mut queue = VecDeque::from([entry]);
+        let mut closing = None;
+        'bfs: while let Some(x) = queue.pop_front() {
+            for &y in &edges[x as usize] {
+                if comp[y as usize] != c {
+                    continue;
+                }
+                if y == entry {
+                    closing = Some(x);
+                    break 'bfs;
+                }
+                if let std::collections::hash_map::Entry::Vacant(e) = back.entry(y) {
+                    e.insert(x);
+                    queue.push_back(y);
+                }
+            }
+        }
+        let mut cycle_nodes = vec![entry];
+        let mut at = closing?;
+        while at != entry {
+            cycle_nodes.push(at);
+            at = back[&at];
+        }
+        cycle_nodes.push(entry);
+        cycle_nodes.reverse();
+        let (path, _) = self.run_to(nodes, parent, entry);
+        if nodes[entry as usize].2 {
+            // The loop is the run staying in its last state.
+            return Some(Violation {
+                path,
+                cycle: Vec::new(),
+                ends: true,
+            });
+        }
+        let cycle = cycle_nodes.iter().map(|&x| nodes[x as usize].0).collect();
+        Some(Violation {
+            path,
+            cycle,
+            ends: false,
+        })
+    }
+}
+
+/// The strongly connected component of each node (Tarjan, iterative).
+fn components(edges: &[Vec<u32>]) -> Vec<u32> {
+    const UNSEEN: u32 = u32::MAX;
+    let n = edges.len();
+    let mut index = vec![UNSEEN; n];
+    let mut low = vec![0u32; n];
+    let mut comp = vec![UNSEEN; n];
+    let mut on_stack = vec![false; n];
+    let mut stack: Vec<u32> = Vec::new();
+    let mut next = 0u32;
+    let mut count = 0u32;
+    let mut calls: Vec<(u32, usize)> = Vec::new();
+    for root in 0..n as u32 {
+        if index[root as usize] != UNSEEN {
+            continue;
+        }
+        calls.push((root, 0));
+        while let Some(&mut (v, ref mut pos)) = calls.last_mut() {
+            let vi = v as usize;
+            if *pos == 0 && index[vi] == UNSEEN {
+                index[vi] = next;
+                low[vi] = next;
+                next += 1;
+                stack.push(v);
+                on_stack[vi] = true;
+            }
+            if let Some(&w) = edges[vi].get(*pos) {
+                *pos += 1;
+                if index[w as usize] == UNSEEN {
+                    calls.push((w, 0));
+                } else if on_stack[w as usize] {
+                    low[vi] = low[vi].min(index[w as usize]);
+                }
+                continue;
+            }
+            calls.pop();
+            if let Some(&(u, _)) = calls.last() {
+                low[u as usize] = low[u as usize].min(low[vi]);
+            }
+            if low[vi] == index[vi] {
+                while let Some(w) = stack.pop() {
+                    on_stack[w as usize] = false;
+                    comp[w as usize] = count;
+                    if w == v {
+                        break;
+                    }
+                }
+                count += 1;
+            }
+        }
+    }
+    comp
+}
+
+/// A Büchi state that accepts every continuation: accepting, with a `true` self-loop.
+fn universal(b: &Buchi) -> Vec<bool> {
+    b.states
+        .iter()
+        .enumerate()
+        .map(|(q, s)| {
+            s.accepting
+                && s.edges
+                    .iter()
+                    .any(|(g, to)| *to as usize == q && g.pos == 0 && g.neg == 0)
+        })
+        .collect()
+}
+
+/// Searches the product of the checker's graph with the automaton of `not f`; adds the
+/// product states it reached to `reached`.
+fn violation(checker: &Checker, f: &Ltl, reached: &mut usize) -> Option<Violation> {
+    let mut map = Vec::new();
+    let local_f = localize(f, &mut map);
+    let state_letters = checker
+        .facts
+        .letter_table
+        .iter()
+        .map(|l| local(l, &map))
+        .collect();
+    let g = Explored {
+        checker,
+        map,
+        state_letters,
+    };
+    let p = Product::new(&g, &local_f);
+    let v = p.search();
+    *reached += p.reached.get();
+    v
+}
+
+/// The formula of one instance as the property's kind reads it (`always f` is `[] f`).
+fn formula_of(kind: PropertyKind, f: &Ltl) -> Ltl {
+    match kind {
+        PropertyKind::Always => Ltl::always(f.clone()),
+        PropertyKind::Eventually => Ltl::eventually(f.clone()),
+        PropertyKind::Reachable => Ltl::always(Ltl::not(f.clone())),
+        _ => f.clone(),
+    }
+}
+
+/// On the run whose positions have the letters `letters` (each state's propositions with
+/// its step's), repeating from position `loop_at` for ever: the first instance of `p` it
+/// violates (its binding), if any. This is the reference semantics
+/// ([`Ltl::holds_on_lasso`]), independent of the automaton the search used: `replay`
+/// decides with it.
+pub(crate) fn violated_on(p: &RunProperty, letters: &[Letter], loop_at: usize) -> Option<String> {
+    p.instances.iter().find_map(|i| {
+        let mut map = Vec::new();
+        let f = localize(&formula_of(p.kind, &i.formula), &mut map);
+        let word: Vec<u64> = letters.iter().map(|l| local(l, &map)).collect();
+        let (prefix, cycle) = word.split_at(loop_at.min(word.len().saturating_sub(1)));
+        (!f.holds_on_lasso(prefix, cycle)).then(|| i.binding.clone())
+    })
+}
+
+impl Checker<'_> {
+    /// One finding per property decided on runs; returns the product states searched.
+    pub(super) fn runs(&self, out: &mut Vec<Finding>, props: &[RunProperty]) -> usize {
+        let mut reached = 0;
+        for p in props {
+            out.push(self.run_property(p, &mut reached));
+        }
+        reached
+    }
+
+    fn run_property(&self, p: &RunProperty, reached: &mut usize) -> Finding {
+        let f = |i: &crate::model::property::Instance| i.formula.clone();
+        match p.kind {
+            PropertyKind::Reachable => {
+                let goal = p.instances.first().map(f).unwrap_or(Ltl::True);
+                match violation(self, &formula_of(p.kind, &goal), reached) {
+                    Some(v) => {
+                        let mut x = self.finding(
+                            "property",
+                            &p.name,
+                            p.span,
+                            Status::Pass,
+                            format!(
+                                "`{}` is reached after {} steps (witness run attached)",
+                                p.name,
+                                v.path.len().saturating_sub(1)
+                            ),
+                        );
+                        x.counterexample = Some(self.counterexample(&v.path, None, &[]));
+                        x
+                    }
+                    None => {
+                        let status = if self.graph.complete() {
+                            Status::Fail
+                        } else {
+                            Status::Unknown
+                        };
+                        self.finding(
+                            "property",
+                            &p.name,
+                            p.span,
+                            status,
+                            format!("`{}` is never reached", p.name),
+                        )
+                    }
+                }
+            }
+            kind => {
+                for i in &p.instances {
+                    let formula = formula_of(kind, &i.formula);
+                    let Some(v) = violation(self, &formula, reached) else {
+                        continue;
+                    };
+                    let who = if i.binding.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" for {}", i.binding)
+                    };
+                    let steps = v.path.len().saturating_sub(1);
+                    let how = if !v.cycle.is_empty() {
+                        format!(
+                            "a run of {steps} steps enters a loop of {} steps on which it is violated",
+                            v.cycle.len() - 1
+                        )
+                    } else if v.ends {
+                        format!("a run ends after {steps} steps, and staying there violates it")
+                    } else {
+                        format!("it is violated after {steps} steps, whatever happens next")
+                    };
+                    let mut x = self.finding(
+                        "property",
+                        &p.name,
+                        p.span,
+                        Status::Fail,
+                        format!("`{}` does not hold{who}: {how}", p.name),
+                    );
+                    x.counterexample = Some(self.counterexample(&v.path, None, &v.cycle));
+                    return x;
+                }
+                self.finding(
+                    "property",
+                    &p.name,
+                    p.span,
+                    self.held(),
+                    format!("`{}` holds on every run", p.name),
+                )
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The product search against a brute-force check of every lasso up to a bound, on
+    //! random small graphs and formulas, with LTL's own semantics as the judge.
+    use super::*;
+
+    struct Toy {
+        initial: u32,
+        succ: Vec<Vec<u32>>,
+        ends: Vec<bool>,
+        letters: Vec<u64>,
+        /// Per state, per transition: the step letter.
+        steps: Vec<Vec<u64>>,
+    }
+
+    impl RunGraph for Toy {
+        fn initial(&self) -> u32 {
+            self.initial
+        }
+        fn successors(&self, i: u32) -> Option<&[u32]> {
+            Some(&self.succ[i as usize])
+        }
+        fn may_end(&self, i: u32) -> bool {
+            self.ends[i as usize]
+        }
+        fn state_letter(&self, i: u32) -> u64 {
+            self.letters[i as usize]
+        }
+        fn step_letter(&self, i: u32, k: u32) -> u64 {
+            self.steps[i as usize][k as usize]
+        }
+    }
+
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0 % n
+        }
+    }
+
+    fn toy(r: &mut Rng) -> Toy {
+        let n = 1 + r.next(4) as usize;
+        let mut succ = Vec::new();
+        let mut ends = Vec::new();
+        let mut steps = Vec::new();
+        for _ in 0..n {
+            let mut s: Vec<u32> = (0..n as u32).filter(|_| r.next(3) == 0).collect();
+            s.dedup();
+            ends.push(s.is_empty() || r.next(4) == 0);
+            // Propositions 0 and 1 are about states, 2 about steps (`did`).
+            steps.push(s.iter().map(|_| r.next(2) << 2).collect());
+            succ.push(s);
+        }
+        Toy {
+            initial: 1 + r.next(n as u64) as u32 % n as u32,
+            letters: (0..n).map(|_| r.next(4)).collect(),
+            succ,
+            ends,
+            steps,
+        }
+    }
+
+    fn formula(r: &mut Rng, depth: u32) -> Ltl {
+        if depth == 0 || r.next(4) == 0 {
+            return Ltl::Prop(r.next(3) as u32);
+        }
+        let a = formula(r, depth - 1);
+        match r.next(11) {
+            0 => Ltl::not(a),
+            1 => Ltl::next(a),
+            2 => Ltl::always(a),
+            3 => Ltl::eventually(a),
+            k => {
+                let b = formula(r, depth - 1);
+                match k {
+                    4 => Ltl::and(a, b),
+                    5 => Ltl::or(a, b),
+                    6 => Ltl::until(a, b),
+                    7 => Ltl::release(a, b),
+                    8 => Ltl::weak_until(a, b),
+                    9 => Ltl::leads_to(a, b),
+                    _ => Ltl::implies(a, b),
+                }
+            }
+        }
+    }
+
+    /// Every lasso of the toy with at most `bound` transitions before it closes: the
+    /// letters of its positions and where the repetition starts.
+    fn lassos(g: &Toy, bound: usize) -> Vec<(Vec<u64>, usize)> {
+        let mut out = Vec::new();
+        // (states, letters)
+        let mut stack: Vec<(Vec<u32>, Vec<u64>)> = (0..g.initial)
+            .map(|i| (vec![i], vec![g.letters[i as usize]]))
+            .collect();
+        while let Some((states, letters)) = stack.pop() {
+            let last = *states.last().unwrap_or(&0);
+            if g.ends[last as usize] {
+                let mut l = letters.clone();
+                l.push(g.letters[last as usize]);
+                let at = l.len() - 1;
+                out.push((l, at));
+            }
+            if states.len() > bound {
+                continue;
+            }
+            for (k, &j) in g.succ[last as usize].iter().enumerate() {
+                let mut s2 = states.clone();
+                let mut l2 = letters.clone();
+                s2.push(j);
+                l2.push(g.letters[j as usize] | g.steps[last as usize][k]);
+                let m = s2.len() - 1;
+                for (e, _) in s2[..m].iter().enumerate().filter(|(_, &x)| x == j) {
+                    out.push((l2.clone(), e + 1));
+                }
+                stack.push((s2, l2));
+            }
+        }
+        out
+    }
+
+    /// The word of a violation the product reported (a bad prefix is continued by first
+    /// successors until it closes).
+    fn word_of(g: &Toy, v: &Violation) -> (Vec<u64>, usize) {
+        let letter = |i: u32, j: u32| {
+            let k = g.succ[i as usize].iter().position(|&x| x == j).unwrap_or(0);
+            g.letters[j as usize] | g.steps[i as usize][k]
+        };
+        let mut states = v.path.clone();
+        let mut letters = vec![g.letters[states[0] as usize]];
+        for w in states.windows(2) {
+            letters.push(letter(w[0], w[1]));
+        }
+        if !v.cycle.is_empty() {
+            let start = letters.len();
+            for w in v.cycle.windows(2) {
+                letters.push(letter(w[0], w[1]));
+            }
+            return (letters, start);
+        }
+        loop {
+            let last = *states.last().unwrap_or(&0);
+            if v.ends || g.ends[last as usize] {
+                letters.push(g.letters[last as usize]);
+                let at = letters.len() - 1;
+                return (letters, at);
+            }
+            let j = g.succ[last as usize][0];
+            letters.push(letter(last, j));
+            if let Some(e) = states.iter().position(|&x| x == j) {
+                return (letters, e + 1);
+            }
+            states.push(j);
+        }
+    }
+
+    #[test]
+    fn the_product_finds_a_violation_exactly_when_some_lasso_violates() {
+        let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+        let (mut found, mut held) = (0, 0);
+        for case in 0..3000 {
+            let g = toy(&mut r);
+            let f = formula(&mut r, 3);
+            let v = Product::new(&g, &f).search();
+            let brute = lassos(&g, 5)
+                .into_iter()
+                .find(|(w, at)| !f.holds_on_lasso(&w[..*at], &w[*at..]));
+            match (&v, &brute) {
+                (Some(v), _) => {
+                    let (w, at) = word_of(&g, v);
+                    assert!(
+                        !f.holds_on_lasso(&w[..at], &w[at..]),
+                        "case {case}: {f:?}: the reported run {:?} / {:?} satisfies it",
+                        v.path,
+                        v.cycle
+                    );
+                    found += 1;
+                }
+                (None, Some((w, at))) => {
+                    panic!("case {case}: {f:?}: missed the violating lasso {w:?} from {at}")
+                }
+                (None, None) => held += 1,
+            }
+        }
+        // Both outcomes are exercised.
+        assert!(found > 300 && held > 300, "{found} violated, {held} held");
+    }
+}

@@ -1,0 +1,559 @@
+//! Properties decided on runs rather than on beliefs alone: `ltl` formulas, and
+//! `always`/`eventually`/`reachable` formulas that use BDI modalities (SPEC §1). Each is
+//! compiled to [`Ltl`] over a project-wide table of [`Atomic`] propositions, one formula per
+//! assignment of its free variables (a variable ranges over its type, and the property must
+//! hold for every object: `requested(storeCup(C)) ~> cupAt(C, dishwasher)` is one formula per
+//! cup).
+//!
+//! The modalities, after AJPF's `B`, `G`, `I`, `D` and `P`:
+//! - `believes(f)`: the agent believes the state formula `f`;
+//! - `holds(f)`: `f` holds in the environment (the agent perceives it exactly, so in a
+//!   project of one agent this is `f` on the environment's atoms of its beliefs);
+//! - `desires(g)` and `.desire(g)`: Jason's `.desire`: `+!g` is an event, or some intention
+//!   has `g` as a goal;
+//! - `intends(g)` and `.intend(g)`: Jason's `.intend`: some intention has `g` as a goal;
+//! - `did(a)`: the step into this state executed the environment action `a` (it did not
+//!   fail);
+//! - `requested(g)`: the user's request `!g` has arrived and is still served (an intention
+//!   or an event of it remains).
+//!
+//! The agent argument (`believes(ag, f)`) may be given; it must name this project's agent.
+//! `explained(user, a)` is refused: the explanations are checked by their own searches.
+
+use super::atoms::AtomTable;
+use super::cond::Cond;
+use super::formula::{ground_with, infer_types};
+use super::ground::product;
+use super::ltl::Ltl;
+use super::project::Project;
+use super::term::Term;
+use super::universe::{ObjectId, TypeId};
+use crate::syntax::ast::{Expr, ExprKind, Literal};
+use crate::syntax::manifest::{LtlBinary, LtlExpr, LtlKind, LtlUnary, PropertyKind};
+use crate::syntax::{Diagnostic, Span};
+use std::collections::{BTreeMap, HashMap};
+
+/// The modalities a property may use, by functor.
+const MODALITIES: &[&str] = &[
+    "believes",
+    "holds",
+    "desires",
+    "intends",
+    ".desire",
+    ".intend",
+    "did",
+    "requested",
+    "explained",
+];
+
+/// Most distinct atomic propositions one formula may speak of (a letter is a `u64`).
+pub const MAX_PROPS: usize = 64;
+
+/// What one atomic proposition asks of a state of a run.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Atomic {
+    /// A condition on the beliefs (a plain state formula, `believes(f)` or `holds(f)`).
+    Beliefs(Cond),
+    /// Some intention has a goal that unifies with this one.
+    Intends(Term),
+    /// `+!g` is an event, or some intention has the goal `g`.
+    Desires(Term),
+    /// The request of a goal that unifies with this one is being served.
+    Requested(Term),
+    /// The step into the state executed an action that unifies with this one.
+    Did(Term),
+}
+
+/// The atomic propositions of every property of a project, numbered.
+#[derive(Clone, Debug, Default)]
+pub struct Atomics {
+    /// By number.
+    pub list: Vec<Atomic>,
+    index: HashMap<Atomic, u32>,
+}
+
+impl Atomics {
+    fn intern(&mut self, a: Atomic) -> Ltl {
+        match a {
+            Atomic::Beliefs(Cond::True) => return Ltl::True,
+            Atomic::Beliefs(Cond::False) => return Ltl::False,
+            _ => {}
+        }
+        let next = self.list.len() as u32;
+        let id = *self.index.entry(a.clone()).or_insert(next);
+        if id == next {
+            self.list.push(a);
+        }
+        Ltl::Prop(id)
+    }
+
+    /// Whether some proposition is about the step into a state rather than the state.
+    pub fn reads_steps(&self) -> bool {
+        self.list.iter().any(|a| matches!(a, Atomic::Did(_)))
+    }
+
+    /// Whether some proposition reads more than the beliefs.
+    pub fn reads_mind(&self) -> bool {
+        self.list.iter().any(|a| !matches!(a, Atomic::Beliefs(_)))
+    }
+}
+
+/// One formula of a property: the property with its free variables bound.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// `C = cup1, ...` (empty when the formula has no free variable).
+    pub binding: String,
+    /// The formula, over the numbers of [`Atomics`].
+    pub formula: Ltl,
+}
+
+/// A property decided on runs.
+#[derive(Clone, Debug)]
+pub struct RunProperty {
+    /// Its name.
+    pub name: String,
+    /// `ltl`, or the state kind it was written with.
+    pub kind: PropertyKind,
+    /// Its formula in the manifest.
+    pub span: Span,
+    /// For `ltl`: one formula per assignment of the free variables, all of which must hold.
+    /// For the state kinds: exactly one, a formula without temporal operators (the
+    /// conjunction over the assignments), which `always`, `eventually` or `reachable`
+    /// applies to.
+    pub instances: Vec<Instance>,
+}
+
+/// Whether a state formula uses a modality (and so is decided on runs).
+pub fn is_modal(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Literal(l) => {
+            MODALITIES.contains(&l.functor.as_str()) || l.args.iter().any(is_modal)
+        }
+        ExprKind::Not(a) => is_modal(a),
+        ExprKind::And(a, b) | ExprKind::Or(a, b) | ExprKind::Rel(_, a, b) => {
+            is_modal(a) || is_modal(b)
+        }
+        _ => false,
+    }
+}
+
+/// Whether a state formula uses a modality other than Jason's `.intend` and `.desire`
+/// (which the vocabulary checks know).
+pub fn uses_modality(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Literal(l) => {
+            (MODALITIES.contains(&l.functor.as_str()) && !l.functor.starts_with('.'))
+                || l.args.iter().any(uses_modality)
+        }
+        ExprKind::Not(a) => uses_modality(a),
+        ExprKind::And(a, b) | ExprKind::Or(a, b) | ExprKind::Rel(_, a, b) => {
+            uses_modality(a) || uses_modality(b)
+        }
+        _ => false,
+    }
+}
+
+/// Whether a manifest property is decided on runs (see the module's documentation).
+pub fn is_run_property(p: &crate::syntax::manifest::Property) -> bool {
+    p.kind == PropertyKind::Ltl || is_modal(&p.formula.expr)
+}
+
+/// Compiles every property of the project that is decided on runs, in manifest order.
+pub fn compile(project: &Project) -> Result<(Vec<RunProperty>, Atomics), Vec<Diagnostic>> {
+    let mut atomics = Atomics::default();
+    let mut out = Vec::new();
+    let mut errors = Vec::new();
+    for p in &project.manifest.properties {
+        if !is_run_property(p) {
+            continue;
+        }
+        let c = Compiler {
+            project,
+            atoms: &project.atoms,
+        };
+        match c.property(p, &mut atomics) {
+            Ok(instances) => out.push(RunProperty {
+                name: p.name.value.clone(),
+                kind: p.kind,
+                span: p.formula.span,
+                instances,
+            }),
+            Err(d) => errors.push(d),
+        }
+    }
+    if errors.is_empty() {
+        Ok((out, atomics))
+    } else {
+        Err(errors)
+    }
+}
+
+struct Compiler<'a> {
+    project: &'a Project,
+    atoms: &'a AtomTable,
+}
+
+type Env<'e> = BTreeMap<&'e str, ObjectId>;
+
+/// An LTL formula with its state formulas still to ground.
+enum Shape<'e> {
+    State(&'e Expr),
+    Unary(LtlUnary, Box<Shape<'e>>),
+    Binary(LtlBinary, Box<Shape<'e>>, Box<Shape<'e>>),
+}
+
+fn shape(e: &LtlExpr) -> Shape<'_> {
+    match &e.kind {
+        LtlKind::State(x) => Shape::State(x),
+        LtlKind::Unary(op, a) => Shape::Unary(*op, Box::new(shape(a))),
+        LtlKind::Binary(op, a, b) => Shape::Binary(*op, Box::new(shape(a)), Box::new(shape(b))),
+    }
+}
+
+impl Compiler<'_> {
+    fn property(
+        &self,
+        p: &crate::syntax::manifest::Property,
+        atomics: &mut Atomics,
+    ) -> Result<Vec<Instance>, Diagnostic> {
+        let s = match &p.ltl {
+            Some(l) => shape(l),
+            None => Shape::State(&p.formula.expr),
+        };
+        let mut types = BTreeMap::new();
+        self.infer_shape(&s, &mut types)?;
+        let names: Vec<&String> = types.keys().collect();
+        let tys: Vec<TypeId> = types.values().copied().collect();
+        let mut instances: Vec<Instance> = Vec::new();
+        for objs in product(&self.project.universe, &tys) {
+            let env: Env = names
+                .iter()
+                .map(|n| n.as_str())
+                .zip(objs.iter().copied())
+                .collect();
+            let formula = self.ground_shape(&s, &env, atomics)?;
+            let binding = names
+                .iter()
+                .zip(&objs)
+                .map(|(n, o)| format!("{n} = {}", self.project.universe.object_name(*o)))
+                .collect::<Vec<_>>()
+                .join(", ");
+            if !instances.iter().any(|i| i.formula == formula) {
+                instances.push(Instance { binding, formula });
+            }
+        }
+        for i in &instances {
+            let distinct = count_props(&i.formula);
+            if distinct > MAX_PROPS {
+                return Err(Diagnostic::error(
+                    "input",
+                    format!(
+                        "property `{}` speaks of {distinct} distinct state formulas at once; at most {MAX_PROPS} are supported",
+                        p.name.value
+                    ),
+                )
+                .with_label(p.formula.span, "split it into several properties"));
+            }
+        }
+        if p.kind != PropertyKind::Ltl {
+            // A state formula holds where it holds for every assignment.
+            let all = instances
+                .into_iter()
+                .map(|i| i.formula)
+                .reduce(Ltl::and)
+                .unwrap_or(Ltl::True);
+            instances = vec![Instance {
+                binding: String::new(),
+                formula: all,
+            }];
+        }
+        Ok(instances)
+    }
+
+    fn infer_shape(
+        &self,
+        s: &Shape,
+        types: &mut BTreeMap<String, TypeId>,
+    ) -> Result<(), Diagnostic> {
+        match s {
+            Shape::State(e) => self.infer_state(e, types),
+            Shape::Unary(_, a) => self.infer_shape(a, types),
+            Shape::Binary(_, a, b) => {
+                self.infer_shape(a, types)?;
+                self.infer_shape(b, types)
+            }
+        }
+    }
+
+    fn infer_state(
+        &self,
+        e: &Expr,
+        types: &mut BTreeMap<String, TypeId>,
+    ) -> Result<(), Diagnostic> {
+        if !is_modal(e) {
+            return infer_types(e, self.atoms, &self.project.universe, &[], types);
+        }
+        match &e.kind {
+            ExprKind::Not(a) => self.infer_state(a, types),
+            ExprKind::And(a, b) | ExprKind::Or(a, b) => {
+                self.infer_state(a, types)?;
+                self.infer_state(b, types)
+            }
+            ExprKind::Literal(l) if MODALITIES.contains(&l.functor.as_str()) => {
+                let (what, arg) = self.modal_arg(l)?;
+                match what {
+                    "believes" | "holds" => self.infer_state(arg, types),
+                    "did" => {
+                        let ExprKind::Literal(a) = &arg.kind else {
+                            return Ok(());
+                        };
+                        if let Some((_, sig)) = self.project.vocabulary.action(&a.functor) {
+                            for (i, x) in a.args.iter().enumerate() {
+                                let ty = sig.params.get(sig.param_of_arg(i)).copied();
+                                self.type_var(x, ty, types)?;
+                            }
+                        }
+                        Ok(())
+                    }
+                    _ => {
+                        let ExprKind::Literal(g) = &arg.kind else {
+                            return Ok(());
+                        };
+                        if let Some((_, sig)) =
+                            self.project.vocabulary.goal(&g.functor, g.args.len())
+                        {
+                            for (x, ty) in g.args.iter().zip(&sig.params) {
+                                self.type_var(x, Some(*ty), types)?;
+                            }
+                        }
+                        Ok(())
+                    }
+                }
+            }
+            _ => Err(modal_inside(e)),
+        }
+    }
+
+    /// Gives variable `x` the type `ty` (met with the one it has).
+    fn type_var(
+        &self,
+        x: &Expr,
+        ty: Option<TypeId>,
+        types: &mut BTreeMap<String, TypeId>,
+    ) -> Result<(), Diagnostic> {
+        let (ExprKind::Var(v), Some(ty)) = (&x.kind, ty) else {
+            return Ok(());
+        };
+        if v.name.starts_with('_') || ty == TypeId::OBJECT {
+            return Ok(());
+        }
+        let u = &self.project.universe;
+        let t = match types.get(&v.name) {
+            None => ty,
+            Some(&prev) => u.meet(prev, ty).ok_or_else(|| {
+                Diagnostic::error(
+                    "input",
+                    format!(
+                        "variable `{}` would be both a `{}` and a `{}`",
+                        v.name,
+                        u.type_name(prev),
+                        u.type_name(ty)
+                    ),
+                )
+                .with_label(x.span, "here")
+            })?,
+        };
+        types.insert(v.name.clone(), t);
+        Ok(())
+    }
+
+    /// The modality's name (`.intend` read as `intends`) and its formula argument, after
+    /// the agent argument if one is given.
+    fn modal_arg<'l>(&self, l: &'l Literal) -> Result<(&'static str, &'l Expr), Diagnostic> {
+        let what = match l.functor.as_str() {
+            "believes" => "believes",
+            "holds" => "holds",
+            "desires" | ".desire" => "desires",
+            "intends" | ".intend" => "intends",
+            "did" => "did",
+            "requested" => "requested",
+            _ => {
+                return Err(Diagnostic::error(
+                    "input",
+                    "`explained` cannot be used in a property yet: the explanations are checked by the explanation properties of each user",
+                )
+                .with_label(l.span, "not supported here"))
+            }
+        };
+        let agent_arg = matches!(what, "believes" | "desires" | "intends" | "did")
+            && !l.functor.starts_with('.');
+        let arg = match (l.args.as_slice(), agent_arg) {
+            ([f], _) => f,
+            ([ag, f], true) => {
+                let named = match &ag.kind {
+                    ExprKind::Literal(a) if a.args.is_empty() => Some(a.functor.as_str()),
+                    _ => None,
+                };
+                if named != Some(self.project.name.as_str()) {
+                    return Err(Diagnostic::error(
+                        "input",
+                        format!(
+                            "`{}` names an agent this project does not have: its agent is `{}`",
+                            l.functor, self.project.name
+                        ),
+                    )
+                    .with_label(ag.span, "no such agent"));
+                }
+                f
+            }
+            _ => {
+                let how = if agent_arg {
+                    format!("`{0}(f)` or `{0}(agent, f)`", l.functor)
+                } else {
+                    format!("`{}(f)`", l.functor)
+                };
+                return Err(Diagnostic::error(
+                    "input",
+                    format!("`{}` takes one formula: write {how}", l.functor),
+                )
+                .with_label(l.span, "wrong number of arguments"));
+            }
+        };
+        Ok((what, arg))
+    }
+
+    fn ground_shape(&self, s: &Shape, env: &Env, atomics: &mut Atomics) -> Result<Ltl, Diagnostic> {
+        Ok(match s {
+            Shape::State(e) => self.ground_state(e, env, atomics)?,
+            Shape::Unary(op, a) => {
+                let a = self.ground_shape(a, env, atomics)?;
+                match op {
+                    LtlUnary::Not => Ltl::not(a),
+                    LtlUnary::Next => Ltl::next(a),
+                    LtlUnary::Always => Ltl::always(a),
+                    LtlUnary::Eventually => Ltl::eventually(a),
+                }
+            }
+            Shape::Binary(op, a, b) => {
+                let a = self.ground_shape(a, env, atomics)?;
+                let b = self.ground_shape(b, env, atomics)?;
+                match op {
+                    LtlBinary::And => Ltl::and(a, b),
+                    LtlBinary::Or => Ltl::or(a, b),
+                    LtlBinary::Implies => Ltl::implies(a, b),
+                    LtlBinary::Iff => Ltl::iff(a, b),
+                    LtlBinary::LeadsTo => Ltl::leads_to(a, b),
+                    LtlBinary::Until => Ltl::until(a, b),
+                    LtlBinary::Release => Ltl::release(a, b),
+                    LtlBinary::WeakUntil => Ltl::weak_until(a, b),
+                }
+            }
+        })
+    }
+
+    fn ground_state(&self, e: &Expr, env: &Env, atomics: &mut Atomics) -> Result<Ltl, Diagnostic> {
+        if !is_modal(e) {
+            let c = ground_with(e, self.atoms, &self.project.universe, &[], env)?;
+            return Ok(atomics.intern(Atomic::Beliefs(c)));
+        }
+        Ok(match &e.kind {
+            ExprKind::Not(a) => Ltl::not(self.ground_state(a, env, atomics)?),
+            ExprKind::And(a, b) => Ltl::and(
+                self.ground_state(a, env, atomics)?,
+                self.ground_state(b, env, atomics)?,
+            ),
+            ExprKind::Or(a, b) => Ltl::or(
+                self.ground_state(a, env, atomics)?,
+                self.ground_state(b, env, atomics)?,
+            ),
+            ExprKind::Literal(l) if MODALITIES.contains(&l.functor.as_str()) => {
+                let (what, arg) = self.modal_arg(l)?;
+                match what {
+                    "believes" | "holds" => {
+                        if is_modal(arg) {
+                            return Err(modal_inside(arg));
+                        }
+                        let c = ground_with(arg, self.atoms, &self.project.universe, &[], env)?;
+                        atomics.intern(Atomic::Beliefs(c))
+                    }
+                    _ => {
+                        let t = self.ground_term(arg, env)?;
+                        atomics.intern(match what {
+                            "desires" => Atomic::Desires(t),
+                            "intends" => Atomic::Intends(t),
+                            "did" => Atomic::Did(t),
+                            _ => Atomic::Requested(t),
+                        })
+                    }
+                }
+            }
+            _ => return Err(modal_inside(e)),
+        })
+    }
+
+    /// A goal or action pattern with the bound variables replaced by their objects;
+    /// anonymous variables stay (they match anything).
+    fn ground_term(&self, arg: &Expr, env: &Env) -> Result<Term, Diagnostic> {
+        if !matches!(arg.kind, ExprKind::Literal(_)) {
+            return Err(Diagnostic::error("input", "expected a goal or an action")
+                .with_label(arg.span, "such as `storeCup(C)` or `navigateTo(table)`"));
+        }
+        let t = super::from_ast::term_from_expr(arg).map_err(|e| {
+            Diagnostic::error("input", e.message.clone()).with_label(e.span, "here")
+        })?;
+        let mut s = super::subst::Substitution::new();
+        for (name, o) in env {
+            s.bind(
+                super::term::Var::named(name),
+                Term::atom(self.project.universe.object_name(*o)),
+            );
+        }
+        let t = s.apply(&t);
+        if let Some(v) = free_named_var(&t) {
+            return Err(
+                Diagnostic::error("input", format!("variable `{v}` has no type here")).with_label(
+                    arg.span,
+                    "use it as an argument of a predicate, a goal or an action to give it a type",
+                ),
+            );
+        }
+        Ok(t)
+    }
+}
+
+fn free_named_var(t: &Term) -> Option<String> {
+    if let Some(v) = t.as_var() {
+        return (!v.is_anonymous()).then(|| v.name().to_string());
+    }
+    t.args().iter().chain(t.annots()).find_map(free_named_var)
+}
+
+fn modal_inside(e: &Expr) -> Diagnostic {
+    Diagnostic::error(
+        "input",
+        "a modality can be combined with `not`, `&` and `|` only",
+    )
+    .with_label(
+        e.span,
+        "not inside `.count`, a comparison or another modality's formula",
+    )
+}
+
+fn count_props(f: &Ltl) -> usize {
+    fn walk(f: &Ltl, seen: &mut std::collections::BTreeSet<u32>) {
+        match f {
+            Ltl::True | Ltl::False => {}
+            Ltl::Prop(p) => {
+                seen.insert(*p);
+            }
+            Ltl::Not(a) | Ltl::Next(a) => walk(a, seen),
+            Ltl::And(a, b) | Ltl::Or(a, b) | Ltl::Until(a, b) | Ltl::Release(a, b) => {
+                walk(a, seen);
+                walk(b, seen);
+            }
+        }
+    }
+    let mut seen = Default::default();
+    walk(f, &mut seen);
+    seen.len()
+}

@@ -1,0 +1,330 @@
+//! `ltl` properties and the BDI modalities (SPEC §1): a seeded defect per operator and
+//! modality, found with a run that replays; LTL agreeing with `always` and `eventually`
+//! where both can say the same; refusals with their place.
+
+mod common;
+use common::{bdi_check, temp_dir, verify_json};
+use std::path::{Path, PathBuf};
+
+/// A copy of the project `base` with `extra` appended to its manifest (relative paths to
+/// the crate's specs made absolute).
+fn project_with(tag: &str, base: &str, extra: &str) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = temp_dir(tag);
+    for e in std::fs::read_dir(root.join(base)).unwrap().flatten() {
+        let to = dir.join(e.file_name());
+        if e.path().is_file() {
+            std::fs::copy(e.path(), &to).unwrap();
+        }
+    }
+    let manifest = dir.join("bdi-check.toml");
+    let text = std::fs::read_to_string(&manifest).unwrap();
+    let specs = format!("\"{}/specs/", root.display());
+    let text = text.replace("\"../../../specs/", &specs);
+    std::fs::write(&manifest, format!("{text}\n{extra}")).unwrap();
+    dir
+}
+
+fn property(name: &str, key: &str, formula: &str) -> String {
+    format!("[[property]]\nname = \"{name}\"\n{key} = \"{formula}\"\n")
+}
+
+fn finding<'r>(r: &'r serde_json::Value, id: &str) -> &'r serde_json::Value {
+    r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["id"] == id)
+        .unwrap_or_else(|| panic!("no {id} in {r:#}"))
+}
+
+fn replay(report: &Path, id: &str) -> (i32, String) {
+    let o = bdi_check(&["replay", report.to_str().unwrap(), "--finding", id]);
+    (
+        o.status.code().unwrap(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+    )
+}
+
+/// Each operator and modality: a formula this agent satisfies, or one it violates.
+const CASES: &[(&str, &str, bool)] = &[
+    ("always", "[] .count(robotAt(_), 1)", true),
+    ("always", "[] robotAt(table)", false),
+    ("eventually", "<> not dirty(table)", false),
+    ("leads-to", "requested(wipeTable) ~> not dirty(table)", true),
+    ("leads-to", "requested(rest) ~> not dirty(table)", false),
+    (
+        "until",
+        "dirty(table) U (did(wipe(table)) | [] dirty(table))",
+        true,
+    ),
+    ("until", "dirty(table) U did(wipe(table))", false),
+    ("weak-until", "dirty(table) W did(wipe(table))", true),
+    ("weak-until", "robotAt(table) W did(wipe(table))", false),
+    (
+        "release",
+        "did(wipe(table)) R (dirty(table) | did(wipe(table)))",
+        true,
+    ),
+    ("release", "did(wipe(table)) R dirty(table)", false),
+    ("next", "X robotAt(table)", true),
+    (
+        "next",
+        "[] (did(navigateTo(table)) -> X robotAt(cupboard))",
+        false,
+    ),
+    (
+        "iff",
+        "[] (believes(dirty(table)) <-> holds(dirty(table)))",
+        true,
+    ),
+    (
+        "iff",
+        "[] (robotAt(cupboard) <-> did(navigateTo(cupboard)))",
+        false,
+    ),
+    (
+        "implies",
+        "[] (requested(rest) -> <> did(wipe(table)))",
+        false,
+    ),
+    ("and", "<> requested(wipeTable) & <> requested(rest)", false),
+    (
+        "or",
+        "[] (dirty(table) | did(wipe(table)) | not intends(wipeTable))",
+        true,
+    ),
+    ("not", "not <> did(navigateTo(cupboard))", false),
+    (
+        "intends",
+        "[] (intends(wipeTable) -> requested(wipeTable))",
+        true,
+    ),
+    ("intends", "<> intends(rest)", false),
+    ("desires", "[] not desires(rest)", false),
+    ("did", "[] not did(wipe(table))", false),
+    ("requested", "[] not requested(wipeTable)", false),
+    (
+        "agent",
+        "[] (believes(agent, dirty(table)) -> holds(dirty(table)))",
+        true,
+    ),
+];
+
+#[test]
+fn a_seeded_defect_per_operator_and_modality_is_found_and_replays() {
+    for (i, (what, formula, holds)) in CASES.iter().enumerate() {
+        let dir = project_with(
+            &format!("ltl-case-{i}"),
+            "tests/verify/ltl_table",
+            &property("p", "ltl", formula),
+        );
+        let (code, r, file) = verify_json(dir.to_str().unwrap(), &format!("ltl-report-{i}"));
+        let f = finding(&r, "property:p");
+        let context = format!("{what}: {formula}: {f:#}");
+        if *holds {
+            assert_eq!(f["status"], "pass", "{context}");
+            assert_eq!(code, 0, "{context}");
+            continue;
+        }
+        assert_eq!(f["status"], "fail", "{context}");
+        assert_eq!(code, 1, "{context}");
+        assert!(f["counterexample"].is_object(), "{context}");
+        let (rc, out) = replay(&file, "property:p");
+        assert_eq!(rc, 1, "{context}: {out}");
+        assert!(
+            out.contains("still reaches its violation"),
+            "{context}: {out}"
+        );
+    }
+}
+
+/// A run that loops for ever: the counterexample is a lasso whose loop replays.
+#[test]
+fn a_violation_on_a_loop_is_a_lasso_that_replays() {
+    let dir = project_with(
+        "ltl-lasso",
+        "tests/verify/livelock",
+        &property("rests", "ltl", "<> [] robotAt(table)"),
+    );
+    let (_, r, file) = verify_json(dir.to_str().unwrap(), "ltl-lasso-report");
+    let f = finding(&r, "property:rests");
+    assert_eq!(f["status"], "fail", "{f:#}");
+    let c = &f["counterexample"];
+    let steps = c["steps"].as_array().unwrap().len();
+    let start = c["loop_start"].as_u64().unwrap_or_else(|| panic!("{f:#}")) as usize;
+    assert!(start < steps, "{f:#}");
+    assert_eq!(replay(&file, "property:rests").0, 1);
+}
+
+/// Where `always`/`eventually` and `ltl` can say the same, they say the same, and a
+/// violated `always` has a run of the same length both ways (both are shortest).
+#[test]
+fn ltl_agrees_with_always_and_eventually() {
+    let table = [
+        property("a1", "always", "not robotAt(cupboard)"),
+        property("a2", "always", ".count(robotAt(_), 1)"),
+        property("e1", "eventually", "robotAt(table)"),
+        property("e2", "eventually", "not dirty(table)"),
+        property("e3", "eventually", "robotAt(cupboard) | not dirty(table)"),
+    ]
+    .concat();
+    let projects = [
+        ("specs/kitchen", String::new()),
+        ("tests/verify/invariant", String::new()),
+        ("tests/verify/eventually", String::new()),
+        ("tests/verify/ltl_table", table),
+    ];
+    let mut compared = 0;
+    for (k, (base, own)) in projects.iter().enumerate() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(root.join(base).join("bdi-check.toml")).unwrap();
+        let text = format!("{text}\n{own}");
+        let m: toml::Value = toml::from_str(&text).unwrap();
+        let mut twins = String::new();
+        let mut pairs = Vec::new();
+        let props = m.get("property").and_then(|p| p.as_array()).cloned();
+        for p in props.unwrap_or_default() {
+            let name = p["name"].as_str().unwrap();
+            for (key, op) in [("always", "[]"), ("eventually", "<>")] {
+                if let Some(f) = p.get(key).and_then(|f| f.as_str()) {
+                    let twin = format!("{name}_ltl");
+                    twins.push_str(&property(&twin, "ltl", &format!("{op} ({f})")));
+                    pairs.push((name.to_string(), twin, key));
+                }
+            }
+        }
+        // The invariants too, as `always` and as `[]`.
+        if let Some(inv) = m.get("invariants").and_then(|i| i.as_table()) {
+            for (name, f) in inv {
+                let f = f.as_str().unwrap();
+                twins.push_str(&property(&format!("{name}_always"), "always", f));
+                twins.push_str(&property(
+                    &format!("{name}_ltl"),
+                    "ltl",
+                    &format!("[] ({f})"),
+                ));
+                pairs.push((format!("{name}_always"), format!("{name}_ltl"), "always"));
+            }
+        }
+        let dir = project_with(&format!("ltl-twin-{k}"), base, &format!("{own}{twins}"));
+        let (_, r, _) = verify_json(
+            &format!("{}", dir.display()),
+            &format!("ltl-twin-report-{k}"),
+        );
+        for (a, b, key) in pairs {
+            let fa = finding(&r, &format!("property:{a}"));
+            let fb = finding(&r, &format!("property:{b}"));
+            assert_eq!(fa["status"], fb["status"], "{base}: {fa:#} {fb:#}");
+            if key == "always" && fa["status"] == "fail" {
+                let len =
+                    |f: &serde_json::Value| f["counterexample"]["steps"].as_array().unwrap().len();
+                assert_eq!(len(fa), len(fb), "{base}: {fa:#} {fb:#}");
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared >= 12, "{compared}");
+}
+
+/// `.intend` and `.desire` in `always`, `eventually` and `reachable` (SPEC §1), with
+/// Jason's meaning.
+#[test]
+fn intend_and_desire_work_in_state_properties() {
+    let extra = [
+        property(
+            "busy_means_asked",
+            "always",
+            "not .intend(rest) | requested(rest)",
+        ),
+        property("never_intends_wiping", "always", "not .intend(wipeTable)"),
+        property("wants_rest", "reachable", ".desire(rest) & robotAt(table)"),
+        property("stops_wanting_rest", "eventually", "not .desire(rest)"),
+    ]
+    .concat();
+    let dir = project_with("ltl-intend", "tests/verify/ltl_table", &extra);
+    let (_, r, file) = verify_json(dir.to_str().unwrap(), "ltl-intend-report");
+    assert_eq!(finding(&r, "property:busy_means_asked")["status"], "pass");
+    let f = finding(&r, "property:never_intends_wiping");
+    assert_eq!(f["status"], "fail", "{f:#}");
+    assert_eq!(replay(&file, "property:never_intends_wiping").0, 1);
+    let f = finding(&r, "property:wants_rest");
+    assert_eq!(f["status"], "pass", "{f:#}");
+    assert!(f["counterexample"].is_object(), "a witness run: {f:#}");
+    assert_eq!(finding(&r, "property:stops_wanting_rest")["status"], "pass");
+}
+
+/// What a property cannot say is refused with its place, exit 2.
+#[test]
+fn unsupported_and_malformed_formulas_are_refused_with_their_place() {
+    let cases = [
+        (
+            "[] explained(owner, wipe(table))",
+            "`explained` cannot be used",
+        ),
+        (
+            "[] believes(robot, dirty(table))",
+            "names an agent this project does not have",
+        ),
+        ("[] (dirty(table) -> )", "expected a state formula"),
+        ("[] unknown(table)", "unknown predicate `unknown`"),
+        ("<> believes(unknwn(table))", "is not a predicate"),
+        ("[] .count(intends(rest), 1)", "a modality can be combined"),
+    ];
+    for (i, (formula, message)) in cases.iter().enumerate() {
+        let dir = project_with(
+            &format!("ltl-bad-{i}"),
+            "tests/verify/ltl_table",
+            &property("p", "ltl", formula),
+        );
+        let o = bdi_check(&["verify", dir.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(2), "{formula}: {out}{err}");
+        let all = format!("{out}{err}");
+        assert!(all.contains(message), "{formula}: {all}");
+        assert!(all.contains("bdi-check.toml:"), "{formula}: {all}");
+    }
+}
+
+/// The kitchen's properties hold; without the tasks' closing of the dishwasher door, the
+/// owner's door property fails with a run that replays, and the others still hold.
+#[test]
+fn the_kitchen_closes_the_door_it_opens() {
+    let (code, r, _) = verify_json("specs/kitchen", "ltl-kitchen");
+    assert_eq!(code, 0, "{r:#}");
+    let names = [
+        "every_used_cup_is_stored",
+        "door_closed_after_the_last_request",
+        "no_cup_in_hand_while_wiping",
+        "never_runs_with_the_door_open",
+    ];
+    for n in names {
+        assert_eq!(
+            finding(&r, &format!("property:{n}"))["status"],
+            "pass",
+            "{n}"
+        );
+    }
+    let dir = project_with("ltl-kitchen-open", "specs/kitchen", "");
+    let asl = dir.join("kitchen.asl");
+    let text = std::fs::read_to_string(&asl).unwrap();
+    let open = text.replace(";\n      !closeDishwasherIfNeed.", ".");
+    assert_ne!(open, text);
+    std::fs::write(&asl, open).unwrap();
+    let (code, r, file) = verify_json(dir.to_str().unwrap(), "ltl-kitchen-open-report");
+    assert_eq!(code, 1, "{r:#}");
+    let f = finding(&r, "property:door_closed_after_the_last_request");
+    assert_eq!(f["status"], "fail", "{f:#}");
+    assert_eq!(
+        replay(&file, "property:door_closed_after_the_last_request").0,
+        1
+    );
+    for n in names.iter().filter(|n| !n.starts_with("door")) {
+        assert_eq!(
+            finding(&r, &format!("property:{n}"))["status"],
+            "pass",
+            "{n}"
+        );
+    }
+}
