@@ -328,3 +328,21 @@ fn the_kitchen_closes_the_door_it_opens() {
         );
     }
 }
+
+/// A formula whose automaton would take unbounded time is undecided (exit 3), quickly,
+/// never a pass.
+#[test]
+fn a_formula_too_long_to_translate_is_undecided() {
+    let part = "(robotAt(table) | X dirty(table))";
+    let formula = vec![part; 14].join(" U ");
+    let dir = project_with(
+        "ltl-too-long",
+        "tests/verify/ltl_table",
+        &property("p", "ltl", &formula),
+    );
+    let (code, r, _) = verify_json(dir.to_str().unwrap(), "ltl-too-long-report");
+    let f = finding(&r, "property:p");
+    assert_eq!(f["status"], "unknown", "{f:#}");
+    assert!(f["message"].as_str().unwrap().contains("too long"), "{f:#}");
+    assert_eq!(code, 3, "{r:#}");
+}

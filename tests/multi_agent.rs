@@ -1915,3 +1915,53 @@ fn plans_that_can_never_be_in_the_library_together_are_no_overlap() {
         "{r:#}"
     );
 }
+
+#[test]
+fn without_fairness_among_agents_a_loop_may_leave_one_out() {
+    // The fair poll of `runs_that_go_on_for_ever_are_fair_to_every_agent`: `b` can always
+    // tell `a` to stop. With `fairness = ["intentions"]` the runs where `b` never moves
+    // count too: `a` polls for ever there, and the loop replays (it need not move `b`).
+    let poll = "!wait.\n+!wait : not go <- .wait(100); !wait.\n+!wait : go <- a.\n";
+    let d = two_agents(
+        "unfair-allowed",
+        poll,
+        "!tell.\n+!tell <- .send(a, tell, go).\n",
+    );
+    let toml = d.join("bdi-check.toml");
+    let text = std::fs::read_to_string(&toml).unwrap();
+    std::fs::write(
+        &toml,
+        format!("{text}[bounds]\nfairness = [\"intentions\"]\n"),
+    )
+    .unwrap();
+    let (code, r, file) = verify_json(d.to_str().unwrap(), "unfair-allowed-report");
+    assert_eq!(code, 1, "{r:#}");
+    let f = failing(&r, "livelock");
+    assert_eq!(f.len(), 1, "{r:#}");
+    assert_eq!(f[0]["id"], "livelock:a", "{r:#}");
+    let o = bdi_check(&["replay", file.to_str().unwrap(), "--finding", "livelock:a"]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    // And the fairness the passing checks assumed is said.
+    let b = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["id"] == "livelock:b")
+        .unwrap();
+    assert!(
+        b["message"].as_str().unwrap().contains("not to the agents"),
+        "{b:#}"
+    );
+    // `intentions` cannot be left out: the cycle's selection is Jason's round-robin.
+    std::fs::write(&toml, format!("{text}[bounds]\nfairness = [\"agents\"]\n")).unwrap();
+    let o = bdi_check(&["verify", d.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("must list \"intentions\""), "{err}");
+    assert!(err.contains("bdi-check.toml:"), "{err}");
+}

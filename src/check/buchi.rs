@@ -85,10 +85,20 @@ impl Buchi {
     /// state has no edge. Propositions numbered 64 or more are false in every letter, as in
     /// [`Ltl::holds_on_lasso`].
     pub fn from_ltl(f: &Ltl) -> Buchi {
+        Buchi::from_ltl_within(f, usize::MAX).unwrap_or(Buchi {
+            states: Vec::new(),
+            initial: 0,
+        })
+    }
+
+    /// [`Buchi::from_ltl`], or `None` when the tableau would take more than `budget` steps
+    /// (node splits and expansions): the translation is exponential in the formula, and a
+    /// long one must be refused rather than take unbounded time and memory.
+    pub fn from_ltl_within(f: &Ltl, budget: usize) -> Option<Buchi> {
         let mut closure = Closure::default();
         let root = closure.intern(f, true);
-        let tableau = Tableau::expand(&closure, root);
-        simplify(degeneralize(&closure, &tableau), 0)
+        let tableau = Tableau::expand(&closure, root, budget)?;
+        Some(simplify(degeneralize(&closure, &tableau), 0))
     }
 
     /// Whether the automaton accepts the word `prefix · cycle^ω`: an accepting state on a
@@ -233,7 +243,7 @@ struct Tableau {
 impl Tableau {
     /// GPVW's `expand`, with an explicit stack instead of recursion (a long formula would
     /// otherwise nest one call per node).
-    fn expand(closure: &Closure, root: usize) -> Tableau {
+    fn expand(closure: &Closure, root: usize, budget: usize) -> Option<Tableau> {
         let init = Node {
             incoming: BTreeSet::new(),
             old: BTreeSet::new(),
@@ -247,7 +257,12 @@ impl Tableau {
             old: BTreeSet::new(),
             next: BTreeSet::new(),
         }];
+        let mut steps = 0usize;
         while let Some(mut n) = stack.pop() {
+            steps += 1;
+            if steps > budget {
+                return None;
+            }
             if !expand_node(closure, &mut n, &mut stack) {
                 continue;
             }
@@ -269,7 +284,7 @@ impl Tableau {
             });
             found.insert(key, id);
         }
-        Tableau { nodes }
+        Some(Tableau { nodes })
     }
 }
 

@@ -69,7 +69,7 @@ impl Checker<'_> {
                 "all",
                 span,
                 self.held(),
-                "every request ends (completed or reported as a goal failure)".into(),
+                "every request ends (completed or reported as a goal failure) on every run (each fair to the intentions: Jason's round-robin selection)".into(),
             )),
         }
         use crate::syntax::manifest::PropertyKind;
@@ -138,7 +138,10 @@ impl Checker<'_> {
                     &p.name,
                     p.span,
                     self.held(),
-                    format!("`{}` eventually holds on every run", p.name),
+                    format!(
+                        "`{}` eventually holds on every run (each fair to the intentions: Jason's round-robin selection)",
+                        p.name
+                    ),
                 ));
             }
         }

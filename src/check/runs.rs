@@ -160,6 +160,8 @@ pub(crate) struct Violation {
 /// What the product reads of the explored graph, in the local numbering of one formula's
 /// propositions.
 pub(crate) trait RunGraph {
+    /// How many states there are.
+    fn len(&self) -> u32;
     /// How many states are initial (the first ones).
     fn initial(&self) -> u32;
     /// The successors of `i`, in transition order; `None` when it was not expanded.
@@ -182,6 +184,9 @@ struct Explored<'c, 'g> {
 }
 
 impl RunGraph for Explored<'_, '_> {
+    fn len(&self) -> u32 {
+        self.checker.graph.len() as u32
+    }
     fn initial(&self) -> u32 {
         self.checker.graph.initial as u32
     }
@@ -211,6 +216,11 @@ impl RunGraph for Explored<'_, '_> {
     }
 }
 
+/// Most steps the tableau may take to translate one formula: the translation is
+/// exponential in the formula's temporal operators, and a formula it cannot translate in
+/// this many is left undecided (a dozen nested `U` reach it; the kitchen's take under 100).
+pub(crate) const TABLEAU_BUDGET: usize = 200_000;
+
 /// The product of a graph with the automaton of a formula's negation.
 pub(crate) struct Product<'r, G: RunGraph> {
     buchi: Buchi,
@@ -228,14 +238,15 @@ type Node = (u32, u32, bool);
 impl<'r, G: RunGraph> Product<'r, G> {
     /// The product of `graph` with the automaton of `not f` (`f` over the graph's local
     /// propositions).
-    pub(crate) fn new(graph: &'r G, f: &Ltl) -> Self {
-        let buchi = Buchi::from_ltl(&Ltl::not(f.clone()));
-        Product {
+    /// `None` when the automaton would take more than [`TABLEAU_BUDGET`] steps to build.
+    pub(crate) fn new(graph: &'r G, f: &Ltl) -> Option<Self> {
+        let buchi = Buchi::from_ltl_within(&Ltl::not(f.clone()), TABLEAU_BUDGET)?;
+        Some(Product {
             universal: universal(&buchi),
             buchi,
             graph,
             reached: std::cell::Cell::new(0),
-        }
+        })
     }
 
     /// The successors of a product node.
@@ -265,58 +276,54 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// Breadth-first over the product; the first bad prefix, or the shortest accepting
     /// lasso found by the strongly connected components of the product.
     pub(crate) fn search(&self) -> Option<Violation> {
-        let mut index: HashMap<Node, u32> = HashMap::new();
+        // Product nodes are numbered in the order found, breadth-first: node `x` is expanded
+        // when `x` nodes were, so its edges go at the end of `edges` (one flat array).
+        let nb = self.buchi.states.len();
+        let slot = |(i, q, ended): Node| (i as usize * nb + q as usize) * 2 + usize::from(ended);
+        let mut index: Vec<u32> = vec![u32::MAX; self.graph.len() as usize * nb * 2];
         let mut nodes: Vec<Node> = Vec::new();
         let mut parent: Vec<u32> = Vec::new();
-        let mut edges: Vec<Vec<u32>> = Vec::new();
-        let mut queue = VecDeque::new();
-        let init = &self.buchi.states[self.buchi.initial as usize];
+        let mut edges = Csr::default();
         let mut add = |n: Node, from: u32, nodes: &mut Vec<Node>, parent: &mut Vec<u32>| {
-            if let Some(&x) = index.get(&n) {
-                return (x, false);
+            let at = &mut index[slot(n)];
+            if *at != u32::MAX {
+                return (*at, false);
             }
             let x = nodes.len() as u32;
-            index.insert(n, x);
+            *at = x;
             nodes.push(n);
             parent.push(from);
             (x, true)
         };
+        let init = &self.buchi.states[self.buchi.initial as usize];
         for i in 0..self.graph.initial() {
             let letter = self.graph.state_letter(i);
             for (guard, q) in &init.edges {
                 if guard.matches(letter) {
                     let (x, new) = add((i, *q, false), u32::MAX, &mut nodes, &mut parent);
-                    if new {
-                        if self.universal[*q as usize] {
-                            self.reached.set(nodes.len());
-                            return Some(self.prefix(&nodes, &parent, x));
-                        }
-                        queue.push_back(x);
+                    if new && self.universal[*q as usize] {
+                        self.reached.set(nodes.len());
+                        return Some(self.prefix(&nodes, &parent, x));
                     }
                 }
             }
         }
         let mut succ = Vec::new();
-        while let Some(x) = queue.pop_front() {
+        let mut x = 0u32;
+        while (x as usize) < nodes.len() {
             self.successors(nodes[x as usize], &mut succ);
-            let mut out = Vec::with_capacity(succ.len());
+            edges.start.push(edges.to.len() as u32);
             for &n in &succ {
                 let (y, new) = add(n, x, &mut nodes, &mut parent);
-                out.push(y);
-                if new {
-                    if self.universal[n.1 as usize] {
-                        self.reached.set(nodes.len());
-                        return Some(self.prefix(&nodes, &parent, y));
-                    }
-                    queue.push_back(y);
+                edges.to.push(y);
+                if new && self.universal[n.1 as usize] {
+                    self.reached.set(nodes.len());
+                    return Some(self.prefix(&nodes, &parent, y));
                 }
             }
-            if edges.len() <= x as usize {
-                edges.resize(x as usize + 1, Vec::new());
-            }
-            edges[x as usize] = out;
+            x += 1;
         }
-        edges.resize(nodes.len(), Vec::new());
+        edges.start.push(edges.to.len() as u32);
         self.reached.set(nodes.len());
         self.lasso(&nodes, &parent, &edges)
     }
@@ -352,11 +359,11 @@ impl<'r, G: RunGraph> Product<'r, G> {
     }
 
     /// The shallowest accepting node on a cycle, and the shortest cycle through it.
-    fn lasso(&self, nodes: &[Node], parent: &[u32], edges: &[Vec<u32>]) -> Option<Violation> {
+    fn lasso(&self, nodes: &[Node], parent: &[u32], edges: &Csr) -> Option<Violation> {
         let comp = components(edges);
         let on_cycle = |x: u32| {
             let c = comp[x as usize];
-            edges[x as usize].iter().any(|&y| comp[y as usize] == c)
+            edges.of(x).iter().any(|&y| comp[y as usize] == c)
         };
         // Nodes are numbered breadth-first, so the first is the shallowest.
         let entry = (0..nodes.len() as u32)
@@ -366,7 +373,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let mut queue = VecDeque::from([entry]);
         let mut closing = None;
         'bfs: while let Some(x) = queue.pop_front() {
-            for &y in &edges[x as usize] {
+            for &y in edges.of(x) {
                 if comp[y as usize] != c {
                     continue;
                 }
@@ -406,8 +413,26 @@ impl<'r, G: RunGraph> Product<'r, G> {
     }
 }
 
+/// Edges of nodes numbered `0..n`, in one array: node `x`'s are `to[start[x]..start[x+1]]`.
+#[derive(Default)]
+struct Csr {
+    start: Vec<u32>,
+    to: Vec<u32>,
+}
+
+impl Csr {
+    fn len(&self) -> usize {
+        self.start.len().saturating_sub(1)
+    }
+
+    fn of(&self, x: u32) -> &[u32] {
+        let x = x as usize;
+        &self.to[self.start[x] as usize..self.start[x + 1] as usize]
+    }
+}
+
 /// The strongly connected component of each node (Tarjan, iterative).
-fn components(edges: &[Vec<u32>]) -> Vec<u32> {
+fn components(edges: &Csr) -> Vec<u32> {
     const UNSEEN: u32 = u32::MAX;
     let n = edges.len();
     let mut index = vec![UNSEEN; n];
@@ -432,7 +457,7 @@ fn components(edges: &[Vec<u32>]) -> Vec<u32> {
                 stack.push(v);
                 on_stack[vi] = true;
             }
-            if let Some(&w) = edges[vi].get(*pos) {
+            if let Some(&w) = edges.of(v).get(*pos) {
                 *pos += 1;
                 if index[w as usize] == UNSEEN {
                     calls.push((w, 0));
@@ -474,9 +499,16 @@ fn universal(b: &Buchi) -> Vec<bool> {
         .collect()
 }
 
+/// The formula could not be translated within [`TABLEAU_BUDGET`].
+struct TooLong;
+
 /// Searches the product of the checker's graph with the automaton of `not f`; adds the
 /// product states it reached to `reached`.
-fn violation(checker: &Checker, f: &Ltl, reached: &mut usize) -> Option<Violation> {
+fn violation(
+    checker: &Checker,
+    f: &Ltl,
+    reached: &mut usize,
+) -> Result<Option<Violation>, TooLong> {
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
     let state_letters = checker
@@ -490,10 +522,10 @@ fn violation(checker: &Checker, f: &Ltl, reached: &mut usize) -> Option<Violatio
         map,
         state_letters,
     };
-    let p = Product::new(&g, &local_f);
+    let p = Product::new(&g, &local_f).ok_or(TooLong)?;
     let v = p.search();
     *reached += p.reached.get();
-    v
+    Ok(v)
 }
 
 /// The formula of one instance as the property's kind reads it (`always f` is `[] f`).
@@ -532,11 +564,23 @@ impl Checker<'_> {
     }
 
     fn run_property(&self, p: &RunProperty, reached: &mut usize) -> Finding {
+        let too_long = || {
+            let mut f = self.finding("property", &p.name, p.span, Status::Unknown, String::new());
+            // Undecided for the formula, not for the search: no "cut short" caveat.
+            f.message = format!(
+                "`{}`: its formula is too long to translate to an automaton (more than {TABLEAU_BUDGET} tableau steps); split it into several properties",
+                p.name
+            );
+            f
+        };
         let f = |i: &crate::model::property::Instance| i.formula.clone();
         match p.kind {
             PropertyKind::Reachable => {
                 let goal = p.instances.first().map(f).unwrap_or(Ltl::True);
-                match violation(self, &formula_of(p.kind, &goal), reached) {
+                let Ok(found) = violation(self, &formula_of(p.kind, &goal), reached) else {
+                    return too_long();
+                };
+                match found {
                     Some(v) => {
                         let mut x = self.finding(
                             "property",
@@ -571,7 +615,10 @@ impl Checker<'_> {
             kind => {
                 for i in &p.instances {
                     let formula = formula_of(kind, &i.formula);
-                    let Some(v) = violation(self, &formula, reached) else {
+                    let Ok(found) = violation(self, &formula, reached) else {
+                        return too_long();
+                    };
+                    let Some(v) = found else {
                         continue;
                     };
                     let who = if i.binding.is_empty() {
@@ -605,7 +652,10 @@ impl Checker<'_> {
                     &p.name,
                     p.span,
                     self.held(),
-                    format!("`{}` holds on every run", p.name),
+                    format!(
+                        "`{}` holds on every run (each fair to the intentions: Jason's round-robin selection)",
+                        p.name
+                    ),
                 )
             }
         }
@@ -628,6 +678,9 @@ mod tests {
     }
 
     impl RunGraph for Toy {
+        fn len(&self) -> u32 {
+            self.succ.len() as u32
+        }
         fn initial(&self) -> u32 {
             self.initial
         }
@@ -778,7 +831,7 @@ mod tests {
         for case in 0..3000 {
             let g = toy(&mut r);
             let f = formula(&mut r, 3);
-            let v = Product::new(&g, &f).search();
+            let v = Product::new(&g, &f).and_then(|p| p.search());
             let brute = lassos(&g, 5)
                 .into_iter()
                 .find(|(w, at)| !f.holds_on_lasso(&w[..*at], &w[*at..]));

@@ -1094,8 +1094,12 @@ fn system_lasso(
         [Note::Request { .. }] => None,
         _ => Some(l.agent as usize),
     };
-    // Fair to every agent.
-    for j in 0..system.names().len() {
+    // Fair to every agent (unless the manifest leaves that out).
+    let fair = system
+        .agents
+        .first()
+        .is_none_or(|a| a.project.manifest.bounds.fair_agents);
+    for j in (0..system.names().len()).filter(|_| fair) {
         let always = lo.iter().all(|s| {
             system
                 .successors(s)

@@ -49,6 +49,10 @@ const MODALITIES: &[&str] = &[
 /// Most distinct atomic propositions one formula may speak of (a letter is a `u64`).
 pub const MAX_PROPS: usize = 64;
 
+/// Most formulas one property may stand for (assignments of its free variables): each is
+/// a product search of its own.
+pub const MAX_INSTANCES: usize = 10_000;
+
 /// What one atomic proposition asks of a state of a run.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Atomic {
@@ -224,6 +228,19 @@ impl Compiler<'_> {
         self.infer_shape(&s, &mut types)?;
         let names: Vec<&String> = types.keys().collect();
         let tys: Vec<TypeId> = types.values().copied().collect();
+        let count = tys.iter().fold(1usize, |n, t| {
+            n.saturating_mul(self.project.universe.objects_of(*t).len())
+        });
+        if count > MAX_INSTANCES {
+            return Err(Diagnostic::error(
+                "input",
+                format!(
+                    "property `{}` stands for {count} formulas, one per assignment of its variables; at most {MAX_INSTANCES} are supported",
+                    p.name.value
+                ),
+            )
+            .with_label(p.formula.span, "fewer variables, or variables of smaller types"));
+        }
         let mut instances: Vec<Instance> = Vec::new();
         for objs in product(&self.project.universe, &tys) {
             let env: Env = names

@@ -98,10 +98,18 @@ pub(super) fn liveness(
     } else {
         Status::Unknown
     };
+    let fair = cx.projects[0].manifest.bounds.fair_agents;
     let lg = Loops {
         graph,
         facts: &facts,
         agents,
+        fair,
+    };
+    // What the runs that go on for ever are assumed to be.
+    let runs = if fair {
+        "every run fair to the agents (and to each one's intentions)"
+    } else {
+        "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
     };
     for (k, name) in names.iter().enumerate() {
         let bit = 1u64 << k;
@@ -123,7 +131,7 @@ pub(super) fn liveness(
                 name,
                 at,
                 held,
-                format!("every fair run of `{name}` ends with it idle"),
+                format!("on {runs}, `{name}` ends idle"),
             ),
         });
     }
@@ -153,7 +161,7 @@ pub(super) fn liveness(
             "all",
             place,
             held,
-            "every request ends (completed or reported as a goal failure) on every fair run".into(),
+            format!("every request ends (completed or reported as a goal failure) on {runs}"),
         ),
     });
     for (j, (name, span)) in eventually.iter().enumerate() {
@@ -203,7 +211,7 @@ pub(super) fn liveness(
                 name,
                 *span,
                 held,
-                format!("`{name}` holds at some point of every fair run"),
+                format!("`{name}` holds at some point of {runs}"),
             ),
         };
         out.push(f);
@@ -215,6 +223,9 @@ struct Loops<'a> {
     graph: &'a Graph<SystemState>,
     facts: &'a Facts,
     agents: usize,
+    /// Weak fairness of agents (`[bounds] fairness`): a loop in which an agent could move
+    /// in every state must move it.
+    fair: bool,
 }
 
 impl Loops<'_> {
@@ -257,7 +268,7 @@ impl Loops<'_> {
                 .filter_map(|(_, _, a)| *a)
                 .fold(0u64, |b, a| b | 1 << a);
             let needed = (0..self.agents as u8)
-                .filter(|a| everywhere >> a & 1 == 1)
+                .filter(|a| self.fair && everywhere >> a & 1 == 1)
                 .collect::<Vec<_>>();
             if needed.iter().any(|a| moved >> a & 1 == 0) {
                 continue;

@@ -777,6 +777,7 @@ impl<'a> Cx<'a> {
             "plan_selection",
             "numbers",
             "random",
+            "fairness",
         ];
         let mut out = Bounds::default();
         let Some(t) = self.section(root, "bounds", KEYS) else {
@@ -809,6 +810,32 @@ impl<'a> Cx<'a> {
             }
             let sym = out.symmetry.clone();
             self.no_duplicates(&sym, "symmetry type");
+        }
+        if let Some(v) = t.get("fairness") {
+            let kinds = self.strings(v, "`bounds.fairness`");
+            let mut intentions = false;
+            out.fair_agents = false;
+            for (s, r) in &kinds {
+                match s.value.as_str() {
+                    "intentions" => intentions = true,
+                    "agents" => out.fair_agents = true,
+                    other => self.err(
+                        r.clone(),
+                        format!(
+                            "\"{}\" is not a kind of fairness: `bounds.fairness` lists \"intentions\" and \"agents\"",
+                            other.escape_debug()
+                        ),
+                        "expected \"intentions\" or \"agents\"",
+                    ),
+                }
+            }
+            if !intentions {
+                self.err(
+                    v.span(),
+                    "`bounds.fairness` must list \"intentions\": the reasoning cycle selects intentions round-robin, as Jason does by default, and that is fair",
+                    "add \"intentions\"",
+                );
+            }
         }
         if let Some(v) = t.get("plan_selection") {
             match self.choice(v, "`bounds.plan_selection`", &["first", "any"]) {

@@ -274,6 +274,12 @@ pub struct Bounds {
     /// `random = [0.0, 0.5, ...]`: the values `.random(X)` may give (Jason's are any double
     /// in `[0, 1)`; the model branches over these). Default: none (`.random(X)` refused).
     pub random: Option<Located<Vec<f64>>>,
+    /// `fairness = ["intentions", "agents"]`: which runs that go on for ever count. Weak
+    /// fairness of intentions is Jason's round-robin selection, which the cycle runs, so it
+    /// cannot be left out; weak fairness of agents (a run where an agent that could move in
+    /// every state of a loop never moves there does not count) is on unless left out.
+    /// Default: both.
+    pub fair_agents: bool,
 }
 
 /// Most values `[bounds] random` may list.
@@ -291,6 +297,7 @@ impl Default for Bounds {
             plan_selection: PlanSelection::First,
             numbers: None,
             random: None,
+            fair_agents: true,
         }
     }
 }
