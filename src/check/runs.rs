@@ -151,8 +151,13 @@ fn local(letter: &[u64], map: &[u32]) -> u64 {
 /// nothing (a bad prefix: every continuation violates).
 pub(crate) struct Violation {
     pub(crate) path: Vec<u32>,
+    /// For each step of `path`: its position among the transitions of the state it leaves,
+    /// as exploration numbered them (a `did` tells transitions to one state apart).
+    pub(crate) path_via: Vec<u32>,
     /// The loop, from its entry back to it (empty when there is none).
     pub(crate) cycle: Vec<u32>,
+    /// As `path_via`, for `cycle`.
+    pub(crate) cycle_via: Vec<u32>,
     /// The run ends at the last state of `path` and stays there.
     pub(crate) ends: bool,
 }
@@ -235,6 +240,9 @@ pub(crate) struct Product<'r, G: RunGraph> {
 /// its last state for ever from there).
 type Node = (u32, u32, bool);
 
+/// The "transition" of a step where the run ends, or stays ended: its state repeats.
+const STAYS: u32 = u32::MAX;
+
 impl<'r, G: RunGraph> Product<'r, G> {
     /// The product of `graph` with the automaton of `not f` (`f` over the graph's local
     /// propositions).
@@ -250,13 +258,15 @@ impl<'r, G: RunGraph> Product<'r, G> {
     }
 
     /// The successors of a product node.
-    fn successors(&self, (i, q, ended): Node, out: &mut Vec<Node>) {
+    /// The successors of a product node, each with the graph transition taken (its
+    /// position among the state's transitions; [`STAYS`] when the run ends or stays ended).
+    fn successors(&self, (i, q, ended): Node, out: &mut Vec<(Node, u32)>) {
         out.clear();
         let b = &self.buchi.states[q as usize];
-        let follow = |letter: u64, j: u32, end: bool, out: &mut Vec<Node>| {
+        let follow = |letter: u64, j: u32, end: bool, k: u32, out: &mut Vec<(Node, u32)>| {
             for (guard, q2) in &b.edges {
                 if guard.matches(letter) {
-                    out.push((j, *q2, end));
+                    out.push(((j, *q2, end), k));
                 }
             }
         };
@@ -264,12 +274,12 @@ impl<'r, G: RunGraph> Product<'r, G> {
             if let Some(succ) = self.graph.successors(i) {
                 for (k, &j) in succ.iter().enumerate() {
                     let letter = self.graph.state_letter(j) | self.graph.step_letter(i, k as u32);
-                    follow(letter, j, false, out);
+                    follow(letter, j, false, k as u32, out);
                 }
             }
         }
         if ended || self.graph.may_end(i) {
-            follow(self.graph.state_letter(i), i, true, out);
+            follow(self.graph.state_letter(i), i, true, STAYS, out);
         }
     }
 
@@ -282,25 +292,27 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let slot = |(i, q, ended): Node| (i as usize * nb + q as usize) * 2 + usize::from(ended);
         let mut index: Vec<u32> = vec![u32::MAX; self.graph.len() as usize * nb * 2];
         let mut nodes: Vec<Node> = Vec::new();
-        let mut parent: Vec<u32> = Vec::new();
+        // Per node: the node it was first reached from, and by which transition.
+        let mut parent: Vec<(u32, u32)> = Vec::new();
         let mut edges = Csr::default();
-        let mut add = |n: Node, from: u32, nodes: &mut Vec<Node>, parent: &mut Vec<u32>| {
-            let at = &mut index[slot(n)];
-            if *at != u32::MAX {
-                return (*at, false);
-            }
-            let x = nodes.len() as u32;
-            *at = x;
-            nodes.push(n);
-            parent.push(from);
-            (x, true)
-        };
+        let mut add =
+            |n: Node, from: (u32, u32), nodes: &mut Vec<Node>, parent: &mut Vec<(u32, u32)>| {
+                let at = &mut index[slot(n)];
+                if *at != u32::MAX {
+                    return (*at, false);
+                }
+                let x = nodes.len() as u32;
+                *at = x;
+                nodes.push(n);
+                parent.push(from);
+                (x, true)
+            };
         let init = &self.buchi.states[self.buchi.initial as usize];
         for i in 0..self.graph.initial() {
             let letter = self.graph.state_letter(i);
             for (guard, q) in &init.edges {
                 if guard.matches(letter) {
-                    let (x, new) = add((i, *q, false), u32::MAX, &mut nodes, &mut parent);
+                    let (x, new) = add((i, *q, false), (u32::MAX, STAYS), &mut nodes, &mut parent);
                     if new && self.universal[*q as usize] {
                         self.reached.set(nodes.len());
                         return Some(self.prefix(&nodes, &parent, x));
@@ -313,9 +325,10 @@ impl<'r, G: RunGraph> Product<'r, G> {
         while (x as usize) < nodes.len() {
             self.successors(nodes[x as usize], &mut succ);
             edges.start.push(edges.to.len() as u32);
-            for &n in &succ {
-                let (y, new) = add(n, x, &mut nodes, &mut parent);
+            for &(n, k) in &succ {
+                let (y, new) = add(n, (x, k), &mut nodes, &mut parent);
                 edges.to.push(y);
+                edges.via.push(k);
                 if new && self.universal[n.1 as usize] {
                     self.reached.set(nodes.len());
                     return Some(self.prefix(&nodes, &parent, y));
@@ -328,38 +341,46 @@ impl<'r, G: RunGraph> Product<'r, G> {
         self.lasso(&nodes, &parent, &edges)
     }
 
-    /// The graph states of the run to product node `x` (ended steps left out: they stay).
-    fn run_to(&self, nodes: &[Node], parent: &[u32], x: u32) -> (Vec<u32>, bool) {
-        let mut out = Vec::new();
+    /// The graph states of the run to product node `x`, and the transition of each step
+    /// (the steps where the run ends or stays ended are left out: the state repeats).
+    fn run_to(&self, nodes: &[Node], parent: &[(u32, u32)], x: u32) -> (Vec<u32>, Vec<u32>) {
+        let (mut states, mut via) = (Vec::new(), Vec::new());
         let mut at = x;
-        let ends = nodes[x as usize].2;
         loop {
-            let (i, _, ended) = nodes[at as usize];
-            let p = parent[at as usize];
-            let stays = ended && p != u32::MAX && nodes[p as usize].0 == i;
-            if !stays {
-                out.push(i);
+            let (p, k) = parent[at as usize];
+            if k != STAYS {
+                via.push(k);
+            }
+            if k == STAYS || p == u32::MAX {
+                if p == u32::MAX || nodes[p as usize].0 != nodes[at as usize].0 {
+                    states.push(nodes[at as usize].0);
+                }
+            } else {
+                states.push(nodes[at as usize].0);
             }
             if p == u32::MAX {
                 break;
             }
             at = p;
         }
-        out.reverse();
-        (out, ends)
+        states.reverse();
+        via.reverse();
+        (states, via)
     }
 
-    fn prefix(&self, nodes: &[Node], parent: &[u32], x: u32) -> Violation {
-        let (path, _) = self.run_to(nodes, parent, x);
+    fn prefix(&self, nodes: &[Node], parent: &[(u32, u32)], x: u32) -> Violation {
+        let (path, path_via) = self.run_to(nodes, parent, x);
         Violation {
             path,
+            path_via,
             cycle: Vec::new(),
+            cycle_via: Vec::new(),
             ends: false,
         }
     }
 
     /// The shallowest accepting node on a cycle, and the shortest cycle through it.
-    fn lasso(&self, nodes: &[Node], parent: &[u32], edges: &Csr) -> Option<Violation> {
+    fn lasso(&self, nodes: &[Node], parent: &[(u32, u32)], edges: &Csr) -> Option<Violation> {
         let comp = components(edges);
         let on_cycle = |x: u32| {
             let c = comp[x as usize];
@@ -369,45 +390,55 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let entry = (0..nodes.len() as u32)
             .find(|&x| self.buchi.states[nodes[x as usize].1 as usize].accepting && on_cycle(x))?;
         let c = comp[entry as usize];
-        let mut back: HashMap<u32, u32> = HashMap::new();
+        // Breadth-first from the entry back to it inside its component; each node with the
+        // one before it and the transition between them.
+        let mut back: HashMap<u32, (u32, u32)> = HashMap::new();
         let mut queue = VecDeque::from([entry]);
         let mut closing = None;
         'bfs: while let Some(x) = queue.pop_front() {
-            for &y in edges.of(x) {
+            for (&y, &k) in edges.of(x).iter().zip(edges.via_of(x)) {
                 if comp[y as usize] != c {
                     continue;
                 }
                 if y == entry {
-                    closing = Some(x);
+                    closing = Some((x, k));
                     break 'bfs;
                 }
                 if let std::collections::hash_map::Entry::Vacant(e) = back.entry(y) {
-                    e.insert(x);
+                    e.insert((x, k));
                     queue.push_back(y);
                 }
             }
         }
-        let mut cycle_nodes = vec![entry];
-        let mut at = closing?;
-        while at != entry {
-            cycle_nodes.push(at);
-            at = back[&at];
-        }
-        cycle_nodes.push(entry);
-        cycle_nodes.reverse();
-        let (path, _) = self.run_to(nodes, parent, entry);
+        let (path, path_via) = self.run_to(nodes, parent, entry);
         if nodes[entry as usize].2 {
             // The loop is the run staying in its last state.
             return Some(Violation {
                 path,
+                path_via,
                 cycle: Vec::new(),
+                cycle_via: Vec::new(),
                 ends: true,
             });
         }
-        let cycle = cycle_nodes.iter().map(|&x| nodes[x as usize].0).collect();
+        // Built backwards from the closing step.
+        let (mut at, k) = closing?;
+        let mut cycle = vec![nodes[entry as usize].0];
+        let mut cycle_via = vec![k];
+        while at != entry {
+            cycle.push(nodes[at as usize].0);
+            let (p, k) = back[&at];
+            cycle_via.push(k);
+            at = p;
+        }
+        cycle.push(nodes[entry as usize].0);
+        cycle.reverse();
+        cycle_via.reverse();
         Some(Violation {
             path,
+            path_via,
             cycle,
+            cycle_via,
             ends: false,
         })
     }
@@ -418,6 +449,8 @@ impl<'r, G: RunGraph> Product<'r, G> {
 struct Csr {
     start: Vec<u32>,
     to: Vec<u32>,
+    /// Per edge: the graph transition it takes ([`STAYS`] when the run ends or stays).
+    via: Vec<u32>,
 }
 
 impl Csr {
@@ -428,6 +461,11 @@ impl Csr {
     fn of(&self, x: u32) -> &[u32] {
         let x = x as usize;
         &self.to[self.start[x] as usize..self.start[x + 1] as usize]
+    }
+
+    fn via_of(&self, x: u32) -> &[u32] {
+        let x = x as usize;
+        &self.via[self.start[x] as usize..self.start[x + 1] as usize]
     }
 }
 
@@ -563,6 +601,17 @@ impl Checker<'_> {
         reached
     }
 
+    /// The run of a violation, each step the transition the product took.
+    fn counterexample_of(&self, v: &Violation) -> crate::findings::Counterexample {
+        super::trace::counterexample_via(
+            self.project,
+            self.agent,
+            self.graph,
+            (&v.path, &v.path_via),
+            (&v.cycle, &v.cycle_via),
+        )
+    }
+
     fn run_property(&self, p: &RunProperty, reached: &mut usize) -> Finding {
         let too_long = || {
             let mut f = self.finding("property", &p.name, p.span, Status::Unknown, String::new());
@@ -593,7 +642,7 @@ impl Checker<'_> {
                                 v.path.len().saturating_sub(1)
                             ),
                         );
-                        x.counterexample = Some(self.counterexample(&v.path, None, &[]));
+                        x.counterexample = Some(self.counterexample_of(&v));
                         x
                     }
                     None => {
@@ -644,7 +693,7 @@ impl Checker<'_> {
                         Status::Fail,
                         format!("`{}` does not hold{who}: {how}", p.name),
                     );
-                    x.counterexample = Some(self.counterexample(&v.path, None, &v.cycle));
+                    x.counterexample = Some(self.counterexample_of(&v));
                     return x;
                 }
                 self.finding(
@@ -714,8 +763,8 @@ mod tests {
         let mut ends = Vec::new();
         let mut steps = Vec::new();
         for _ in 0..n {
-            let mut s: Vec<u32> = (0..n as u32).filter(|_| r.next(3) == 0).collect();
-            s.dedup();
+            // Targets may repeat: two transitions to one state that differ in `did`.
+            let s: Vec<u32> = (0..r.next(4)).map(|_| r.next(n as u64) as u32).collect();
             ends.push(s.is_empty() || r.next(4) == 0);
             // Propositions 0 and 1 are about states, 2 about steps (`did`).
             steps.push(s.iter().map(|_| r.next(2) << 2).collect());
@@ -792,19 +841,26 @@ mod tests {
     /// The word of a violation the product reported (a bad prefix is continued by first
     /// successors until it closes).
     fn word_of(g: &Toy, v: &Violation) -> (Vec<u64>, usize) {
+        // The step's letter by the transition the product says it took.
+        let by = |i: u32, j: u32, k: u32| {
+            assert_eq!(g.succ[i as usize][k as usize], j, "transition {k} of {i}");
+            g.letters[j as usize] | g.steps[i as usize][k as usize]
+        };
         let letter = |i: u32, j: u32| {
             let k = g.succ[i as usize].iter().position(|&x| x == j).unwrap_or(0);
-            g.letters[j as usize] | g.steps[i as usize][k]
+            by(i, j, k as u32)
         };
         let mut states = v.path.clone();
         let mut letters = vec![g.letters[states[0] as usize]];
-        for w in states.windows(2) {
-            letters.push(letter(w[0], w[1]));
+        assert_eq!(v.path_via.len() + 1, v.path.len());
+        for (w, &k) in states.windows(2).zip(&v.path_via) {
+            letters.push(by(w[0], w[1], k));
         }
         if !v.cycle.is_empty() {
             let start = letters.len();
-            for w in v.cycle.windows(2) {
-                letters.push(letter(w[0], w[1]));
+            assert_eq!(v.cycle_via.len() + 1, v.cycle.len());
+            for (w, &k) in v.cycle.windows(2).zip(&v.cycle_via) {
+                letters.push(by(w[0], w[1], k));
             }
             return (letters, start);
         }

@@ -85,6 +85,49 @@ pub fn counterexample(
     }
 }
 
+/// The run from the initial state `path[0]` that takes, to each next state of `path`, the
+/// transition at position `path_via[s]` among those exploration numbered (several may lead
+/// to one state and do different things), then likewise the loop `cycle` (from its entry
+/// back to it) if not empty.
+pub fn counterexample_via(
+    project: &Project,
+    agent: &Agent,
+    graph: &Graph,
+    (path, path_via): (&[u32], &[u32]),
+    (cycle, cycle_via): (&[u32], &[u32]),
+) -> Counterexample {
+    let show = |a: &AtomId| project.atoms.display(*a, &project.universe);
+    let mut b = Builder::new(project, agent.sem);
+    let first = path.first().copied().unwrap_or(0);
+    let Some(mut walk) = Walk::start(agent, graph, first) else {
+        return Counterexample {
+            initial: Vec::new(),
+            requests: Vec::new(),
+            steps: Vec::new(),
+            loop_start: None,
+        };
+    };
+    let initial = walk.state.beliefs.iter().map(|a| show(&a)).collect();
+    for (&j, &k) in path[1..].iter().zip(path_via) {
+        let fp = graph.fingerprint(j);
+        b.push(walk.step_by(k, fp, |_| true).unwrap_or_default());
+    }
+    let mut loop_start = None;
+    if cycle.len() >= 2 {
+        loop_start = Some(b.steps.len());
+        for (&j, &k) in cycle[1..].iter().zip(cycle_via) {
+            let fp = graph.fingerprint(j);
+            b.push(walk.step_by(k, fp, |_| true).unwrap_or_default());
+        }
+    }
+    Counterexample {
+        initial,
+        requests: b.requests,
+        steps: b.steps,
+        loop_start,
+    }
+}
+
 /// Renders the notes of consecutive transitions as trace steps, numbering intentions in
 /// order of appearance.
 pub struct Builder<'a> {
