@@ -10,7 +10,6 @@
 //! run's time. `-- --threads N` passes `--threads N` on.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 #[path = "common/kitchen.rs"]
 mod kitchen;
@@ -67,22 +66,9 @@ fn kitchen(cups: usize, explain: bool) -> PathBuf {
     kitchen::project("libraries", cups, explain)
 }
 
-/// One `verify` of `dir`: its JSON.
+/// One `verify --no-symmetry` of `dir`: its JSON.
 fn verify(dir: &Path, threads: Option<&str>) -> serde_json::Value {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_bdi-check"));
-    cmd.args(["verify", "--no-symmetry", "--format", "json"])
-        .arg(dir);
-    if let Some(t) = threads {
-        cmd.args(["--threads", t]);
-    }
-    let out = cmd.output().expect("bdi-check runs");
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
-        panic!(
-            "{}: verify's JSON: {e}\n{}",
-            dir.display(),
-            String::from_utf8_lossy(&out.stderr)
-        )
-    })
+    kitchen::verify_json(dir, &["--no-symmetry"], threads)
 }
 
 fn main() {

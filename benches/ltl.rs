@@ -9,28 +9,13 @@
 //! properties and their instances). `-- --threads N` passes `--threads N` on.
 
 use std::path::Path;
-use std::process::Command;
 
 #[path = "common/kitchen.rs"]
 mod kitchen;
 
 fn verify(dir: &Path, symmetry: bool, threads: Option<&str>) -> serde_json::Value {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_bdi-check"));
-    cmd.args(["verify", "--format", "json"]).arg(dir);
-    if !symmetry {
-        cmd.arg("--no-symmetry");
-    }
-    if let Some(t) = threads {
-        cmd.args(["--threads", t]);
-    }
-    let out = cmd.output().expect("bdi-check runs");
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
-        panic!(
-            "{}: verify's JSON: {e}\n{}",
-            dir.display(),
-            String::from_utf8_lossy(&out.stderr)
-        )
-    })
+    let args: &[&str] = if symmetry { &[] } else { &["--no-symmetry"] };
+    kitchen::verify_json(dir, args, threads)
 }
 
 fn main() {

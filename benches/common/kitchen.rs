@@ -75,3 +75,22 @@ pub fn project_with(bench: &str, cups: usize, explain: bool, ltl: bool) -> PathB
     .expect("writable");
     dir
 }
+
+/// `bdi-check verify --format json DIR` with `args` (and `--threads N` when given), by the
+/// release binary: its report.
+#[allow(dead_code)] // Not every bench reads a report.
+pub fn verify_json(dir: &Path, args: &[&str], threads: Option<&str>) -> serde_json::Value {
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_bdi-check"));
+    cmd.args(["verify", "--format", "json"]).args(args).arg(dir);
+    if let Some(t) = threads {
+        cmd.args(["--threads", t]);
+    }
+    let out = cmd.output().expect("bdi-check runs");
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "{}: verify's JSON: {e}\n{}",
+            dir.display(),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    })
+}

@@ -35,6 +35,24 @@ pub struct Extra<'w> {
 /// reduction handles (the order of a permutation of `n` objects is small).
 const MAX_LOOP_ROUNDS: usize = 720;
 
+/// A run's builder, a walk in its initial state `path[0]` and the atoms true there; `None`
+/// when no initial state has the stored fingerprint.
+fn start<'a>(
+    project: &'a Project,
+    agent: &'a Agent,
+    graph: &'a Graph,
+    path: &[u32],
+) -> Option<(Builder<'a>, Walk<'a, Agent<'a>>, Vec<String>)> {
+    let walk = Walk::start(agent, graph, path.first().copied().unwrap_or(0))?;
+    let initial = walk
+        .state
+        .beliefs
+        .iter()
+        .map(|a| project.atoms.display(a, &project.universe))
+        .collect();
+    Some((Builder::new(project, agent.sem), walk, initial))
+}
+
 /// The run along `path` (state indices from an initial state), then the transition
 /// `extra` if given, then the loop `cycle` (state indices from the loop's entry back to it)
 /// if given.
@@ -46,18 +64,9 @@ pub fn counterexample(
     extra: Option<Extra>,
     cycle: &[u32],
 ) -> Counterexample {
-    let show = |a: &AtomId| project.atoms.display(*a, &project.universe);
-    let mut b = Builder::new(project, agent.sem);
-    let first = path.first().copied().unwrap_or(0);
-    let Some(mut walk) = Walk::start(agent, graph, first) else {
-        return Counterexample {
-            initial: Vec::new(),
-            requests: Vec::new(),
-            steps: Vec::new(),
-            loop_start: None,
-        };
+    let Some((mut b, mut walk, initial)) = start(project, agent, graph, path) else {
+        return Counterexample::default();
     };
-    let initial = walk.state.beliefs.iter().map(|a| show(&a)).collect();
     for &j in &path[1..] {
         b.push(walk.step_to(j).unwrap_or_default());
     }
@@ -96,18 +105,9 @@ pub fn counterexample_via(
     (path, path_via): (&[u32], &[u32]),
     (cycle, cycle_via): (&[u32], &[u32]),
 ) -> Counterexample {
-    let show = |a: &AtomId| project.atoms.display(*a, &project.universe);
-    let mut b = Builder::new(project, agent.sem);
-    let first = path.first().copied().unwrap_or(0);
-    let Some(mut walk) = Walk::start(agent, graph, first) else {
-        return Counterexample {
-            initial: Vec::new(),
-            requests: Vec::new(),
-            steps: Vec::new(),
-            loop_start: None,
-        };
+    let Some((mut b, mut walk, initial)) = start(project, agent, graph, path) else {
+        return Counterexample::default();
     };
-    let initial = walk.state.beliefs.iter().map(|a| show(&a)).collect();
     for (&j, &k) in path[1..].iter().zip(path_via) {
         let fp = graph.fingerprint(j);
         b.push(walk.step_by(k, fp, |_| true).unwrap_or_default());
