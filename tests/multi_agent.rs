@@ -1965,3 +1965,76 @@ fn without_fairness_among_agents_a_loop_may_leave_one_out() {
     assert!(err.contains("must list \"intentions\""), "{err}");
     assert!(err.contains("bdi-check.toml:"), "{err}");
 }
+
+#[test]
+fn ltl_among_agents_names_them_and_assumes_the_fairness_the_manifest_says() {
+    // The fair poll: `b` can always tell `a` to stop polling, and then `a` does `a`.
+    let poll = "!wait.\n+!wait : not go <- .wait(100); !wait.\n+!wait : go <- a.\n";
+    let d = two_agents("ltl-poll", poll, "!tell.\n+!tell <- .send(a, tell, go).\n");
+    let toml = d.join("bdi-check.toml");
+    let text = std::fs::read_to_string(&toml).unwrap();
+    let props = "[[property]]\nname = \"acts\"\nltl = \"<> did(a, a)\"\n\
+                 [[property]]\nname = \"told_first\"\nltl = \"[] (did(a, a) -> believes(a, go))\"\n\
+                 [[property]]\nname = \"b_never_acts\"\nltl = \"[] not did(b, a) & <> p\"\n";
+    std::fs::write(&toml, format!("{text}{props}")).unwrap();
+    let (code, r, _) = verify_json(d.to_str().unwrap(), "ltl-poll-report");
+    assert_eq!(code, 0, "{r:#}");
+    for id in [
+        "property:acts",
+        "property:told_first",
+        "property:b_never_acts",
+    ] {
+        let f = r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["id"] == id)
+            .unwrap();
+        assert_eq!(f["status"], "pass", "{f:#}");
+        assert!(
+            f["message"]
+                .as_str()
+                .unwrap()
+                .contains("fair to the agents"),
+            "{f:#}"
+        );
+    }
+    // Without fairness of agents, `b` may never move: `a` polls for ever, a lasso that
+    // replays (and it need not move `b`).
+    std::fs::write(
+        &toml,
+        format!("{text}[bounds]\nfairness = [\"intentions\"]\n{props}"),
+    )
+    .unwrap();
+    let (code, r, file) = verify_json(d.to_str().unwrap(), "ltl-unfair-poll-report");
+    assert_eq!(code, 1, "{r:#}");
+    let acts = r["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["id"] == "property:acts")
+        .unwrap();
+    assert_eq!(acts["status"], "fail", "{acts:#}");
+    assert!(acts["counterexample"]["loop_start"].is_u64(), "{acts:#}");
+    let o = bdi_check(&[
+        "replay",
+        file.to_str().unwrap(),
+        "--finding",
+        "property:acts",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    // A modality names its agent among several.
+    std::fs::write(
+        &toml,
+        format!("{text}[[property]]\nname = \"whose\"\nltl = \"<> believes(go)\"\n"),
+    )
+    .unwrap();
+    let err = verify_error(&d);
+    assert!(err.contains("must name its agent"), "{err}");
+    assert!(err.contains("bdi-check.toml:"), "{err}");
+}

@@ -37,23 +37,24 @@ pub(crate) struct RunAtoms {
 
 enum Eval {
     Beliefs(crate::model::cond::Cond),
-    /// A goal pattern; `true`: events count too (`.desire`).
-    Goal(Term, bool),
+    /// An agent's goal pattern; `true`: events count too (`.desire`).
+    Goal(u8, Term, bool),
     /// The requests (one bit each) a `requested` pattern matches.
     Requested(u64),
-    Did(Term),
+    /// An action pattern of an agent.
+    Did(u8, Term),
 }
 
 impl RunAtoms {
-    /// The evaluation of `atomics` for the agent of `sem`.
+    /// The evaluation of `atomics` for the agent of `sem` (the one requests go to).
     pub(crate) fn new(atomics: &Atomics, sem: &Semantics) -> RunAtoms {
         let evals = atomics
             .list
             .iter()
             .map(|a| match a {
                 Atomic::Beliefs(c) => Eval::Beliefs(c.clone()),
-                Atomic::Intends(g) => Eval::Goal(g.clone(), false),
-                Atomic::Desires(g) => Eval::Goal(g.clone(), true),
+                Atomic::Intends(k, g) => Eval::Goal(*k, g.clone(), false),
+                Atomic::Desires(k, g) => Eval::Goal(*k, g.clone(), true),
                 Atomic::Requested(g) => Eval::Requested(
                     sem.requests
                         .iter()
@@ -61,7 +62,7 @@ impl RunAtoms {
                         .filter(|(_, r)| unifier(g, r).is_some())
                         .fold(0u64, |m, (i, _)| m | 1 << i),
                 ),
-                Atomic::Did(a) => Eval::Did(a.clone()),
+                Atomic::Did(k, a) => Eval::Did(*k, a.clone()),
             })
             .collect::<Vec<_>>();
         RunAtoms {
@@ -72,17 +73,42 @@ impl RunAtoms {
 
     /// The propositions about states that hold in `s`.
     pub(crate) fn state_letter<S: AgentState>(&self, s: &S) -> Letter {
+        self.letter(s.beliefs(), &[s], s.pending_requests())
+    }
+
+    /// The propositions about states that hold in a state of several agents: `everything`
+    /// its atoms as [`crate::semantics::System::everything`] numbers them, `agents` the
+    /// agents' states, the requests going to the first.
+    pub(crate) fn system_letter(
+        &self,
+        everything: &crate::model::atoms::AtomSet,
+        agents: &[crate::semantics::State],
+    ) -> Letter {
+        let minds: Vec<&crate::semantics::State> = agents.iter().collect();
+        let pending = agents.first().map_or(0, |a| a.pending_requests());
+        self.letter(everything, &minds, pending)
+    }
+
+    fn letter<S: AgentState>(
+        &self,
+        beliefs: &crate::model::atoms::AtomSet,
+        minds: &[&S],
+        pending: u64,
+    ) -> Letter {
         let mut out: Letter = smallvec::smallvec![0; self.words];
-        let mut goals: [Option<Vec<&Term>>; 2] = [None, None];
+        let mut goals: HashMap<(u8, bool), Vec<&Term>> = HashMap::new();
         for (j, e) in self.evals.iter().enumerate() {
             let holds = match e {
-                Eval::Beliefs(c) => c.eval(s.beliefs()),
-                Eval::Goal(g, events) => goals[usize::from(*events)]
-                    .get_or_insert_with(|| s.goals(*events))
-                    .iter()
-                    .any(|t| unifier(g, t).is_some()),
-                Eval::Requested(mask) => s.pending_requests() & mask != 0,
-                Eval::Did(_) => false,
+                Eval::Beliefs(c) => c.eval(beliefs),
+                Eval::Goal(k, g, events) => minds.get(*k as usize).is_some_and(|m| {
+                    goals
+                        .entry((*k, *events))
+                        .or_insert_with(|| m.goals(*events))
+                        .iter()
+                        .any(|t| unifier(g, t).is_some())
+                }),
+                Eval::Requested(mask) => pending & mask != 0,
+                Eval::Did(..) => false,
             };
             if holds {
                 out[j / 64] |= 1 << (j % 64);
@@ -91,9 +117,18 @@ impl RunAtoms {
         out
     }
 
-    /// The `did` propositions a transition with these notes makes true, if any.
-    pub(crate) fn step_letter<'n>(&self, notes: impl Iterator<Item = &'n Note>) -> Option<Letter> {
-        if !self.evals.iter().any(|e| matches!(e, Eval::Did(_))) {
+    /// The `did` propositions a transition of `agent` (0 when there is one) with these
+    /// notes makes true, if any.
+    pub(crate) fn step_letter<'n>(
+        &self,
+        agent: u8,
+        notes: impl Iterator<Item = &'n Note>,
+    ) -> Option<Letter> {
+        if !self
+            .evals
+            .iter()
+            .any(|e| matches!(e, Eval::Did(k, _) if *k == agent))
+        {
             return None;
         }
         let mut out: Letter = smallvec::smallvec![0; self.words];
@@ -103,7 +138,7 @@ impl RunAtoms {
                 continue;
             };
             for (j, e) in self.evals.iter().enumerate() {
-                if matches!(e, Eval::Did(a) if unifier(a, term).is_some()) {
+                if matches!(e, Eval::Did(k, a) if *k == agent && unifier(a, term).is_some()) {
                     out[j / 64] |= 1 << (j % 64);
                     any = true;
                 }
@@ -177,11 +212,50 @@ pub(crate) trait RunGraph {
     fn state_letter(&self, i: u32) -> u64;
     /// The propositions the `k`-th transition from `i` makes true (`did`).
     fn step_letter(&self, i: u32, k: u32) -> u64;
+    /// How many agents a loop must be weakly fair to (0: every loop is a run).
+    fn fair_agents(&self) -> u8 {
+        0
+    }
+    /// The agents that can take a step from `i`, one bit each.
+    fn enabled(&self, _i: u32) -> u64 {
+        0
+    }
+    /// The agent that takes the `k`-th transition from `i` (`None`: the user).
+    fn mover(&self, _i: u32, _k: u32) -> Option<u8> {
+        None
+    }
 }
 
-/// The explored graph of a [`Checker`], read through one formula's propositions.
-struct Explored<'c, 'g> {
-    checker: &'c Checker<'g>,
+/// What a search recorded for the run properties, on any explored graph (one agent's, or
+/// every interleaving of several).
+pub(crate) struct RunFacts<'a> {
+    /// How many states; the first `initial` are initial.
+    pub(crate) len: u32,
+    pub(crate) initial: u32,
+    /// A state's successors in transition order (`None`: not expanded).
+    pub(crate) successors: &'a dyn Fn(u32) -> Option<&'a [u32]>,
+    /// Whether a run may end in a state and stay there.
+    pub(crate) may_end: &'a dyn Fn(u32) -> bool,
+    /// Per state: an index into `letter_table`.
+    pub(crate) letters: &'a [u32],
+    pub(crate) letter_table: &'a [Letter],
+    /// Per transition (source, position) that did a `did` action: those propositions.
+    pub(crate) steps: &'a HashMap<(u32, u32), Letter>,
+    /// With several agents and weak fairness of agents: how many agents, the agents that
+    /// can move from a state (one bit each), and the agent of a transition.
+    pub(crate) fairness: Option<Fairness<'a>>,
+}
+
+/// Weak fairness of agents, as [`RunFacts::fairness`] reads it.
+pub(crate) struct Fairness<'a> {
+    pub(crate) agents: u8,
+    pub(crate) enabled: &'a dyn Fn(u32) -> u64,
+    pub(crate) mover: &'a dyn Fn(u32, u32) -> Option<u8>,
+}
+
+/// Recorded facts read through one formula's propositions.
+struct Explored<'f, 'a> {
+    facts: &'f RunFacts<'a>,
     /// The global number of each local proposition.
     map: Vec<u32>,
     /// Per letter id of the search: the local letter.
@@ -190,34 +264,37 @@ struct Explored<'c, 'g> {
 
 impl RunGraph for Explored<'_, '_> {
     fn len(&self) -> u32 {
-        self.checker.graph.len() as u32
+        self.facts.len
     }
     fn initial(&self) -> u32 {
-        self.checker.graph.initial as u32
+        self.facts.initial
     }
     fn successors(&self, i: u32) -> Option<&[u32]> {
-        self.checker.graph.successors(i)
+        (self.facts.successors)(i)
     }
     fn may_end(&self, i: u32) -> bool {
-        bit(&self.checker.facts.idle, i)
-            || self
-                .checker
-                .graph
-                .successors(i)
-                .is_some_and(|e| e.is_empty())
+        (self.facts.may_end)(i)
     }
     fn state_letter(&self, i: u32) -> u64 {
-        match self.checker.facts.letters.get(i as usize) {
+        match self.facts.letters.get(i as usize) {
             Some(&id) => self.state_letters[id as usize],
             None => 0,
         }
     }
     fn step_letter(&self, i: u32, k: u32) -> u64 {
-        self.checker
-            .facts
+        self.facts
             .steps
             .get(&(i, k))
             .map_or(0, |l| local(l, &self.map))
+    }
+    fn fair_agents(&self) -> u8 {
+        self.facts.fairness.as_ref().map_or(0, |f| f.agents)
+    }
+    fn enabled(&self, i: u32) -> u64 {
+        self.facts.fairness.as_ref().map_or(0, |f| (f.enabled)(i))
+    }
+    fn mover(&self, i: u32, k: u32) -> Option<u8> {
+        self.facts.fairness.as_ref().and_then(|f| (f.mover)(i, k))
     }
 }
 
@@ -379,37 +456,44 @@ impl<'r, G: RunGraph> Product<'r, G> {
         }
     }
 
-    /// The shallowest accepting node on a cycle, and the shortest cycle through it.
+    /// The shallowest accepting node on a cycle of a fair component, and a shortest cycle
+    /// through it (with fairness of agents, through a step of every agent that could move
+    /// everywhere in the component).
     fn lasso(&self, nodes: &[Node], parent: &[(u32, u32)], edges: &Csr) -> Option<Violation> {
         let comp = components(edges);
         let on_cycle = |x: u32| {
             let c = comp[x as usize];
             edges.of(x).iter().any(|&y| comp[y as usize] == c)
         };
-        // Nodes are numbered breadth-first, so the first is the shallowest.
-        let entry = (0..nodes.len() as u32)
-            .find(|&x| self.buchi.states[nodes[x as usize].1 as usize].accepting && on_cycle(x))?;
-        let c = comp[entry as usize];
-        // Breadth-first from the entry back to it inside its component; each node with the
-        // one before it and the transition between them.
-        let mut back: HashMap<u32, (u32, u32)> = HashMap::new();
-        let mut queue = VecDeque::from([entry]);
-        let mut closing = None;
-        'bfs: while let Some(x) = queue.pop_front() {
-            for (&y, &k) in edges.of(x).iter().zip(edges.via_of(x)) {
-                if comp[y as usize] != c {
-                    continue;
-                }
-                if y == entry {
-                    closing = Some((x, k));
-                    break 'bfs;
-                }
-                if let std::collections::hash_map::Entry::Vacant(e) = back.entry(y) {
-                    e.insert((x, k));
-                    queue.push_back(y);
+        // Per component: the agents that can move in every one of its states, and those
+        // that move inside it (weak fairness of agents: the first must be among the second).
+        let agents = self.graph.fair_agents();
+        let mut everywhere: HashMap<u32, u64> = HashMap::new();
+        let mut moved: HashMap<u32, u64> = HashMap::new();
+        if agents > 0 {
+            for (x, &(i, _, ended)) in nodes.iter().enumerate() {
+                let c = comp[x];
+                // A run that ended stays: no agent is owed a step there.
+                let can = if ended { 0 } else { self.graph.enabled(i) };
+                *everywhere.entry(c).or_insert(u64::MAX) &= can;
+                for (&y, &k) in edges.of(x as u32).iter().zip(edges.via_of(x as u32)) {
+                    if comp[y as usize] == c && k != STAYS {
+                        if let Some(a) = self.graph.mover(i, k) {
+                            *moved.entry(c).or_insert(0) |= 1 << a;
+                        }
+                    }
                 }
             }
         }
+        let owed = |c: u32| everywhere.get(&c).copied().unwrap_or(0);
+        let fair = |c: u32| owed(c) & !moved.get(&c).copied().unwrap_or(0) == 0;
+        // Nodes are numbered breadth-first, so the first is the shallowest.
+        let entry = (0..nodes.len() as u32).find(|&x| {
+            self.buchi.states[nodes[x as usize].1 as usize].accepting
+                && on_cycle(x)
+                && fair(comp[x as usize])
+        })?;
+        let c = comp[entry as usize];
         let (path, path_via) = self.run_to(nodes, parent, entry);
         if nodes[entry as usize].2 {
             // The loop is the run staying in its last state.
@@ -421,19 +505,33 @@ impl<'r, G: RunGraph> Product<'r, G> {
                 ends: true,
             });
         }
-        // Built backwards from the closing step.
-        let (mut at, k) = closing?;
+        // From the entry, for each agent, through a step of it when it can move everywhere
+        // in the component, else through a state where it cannot (unless the entry is
+        // one); then back to the entry. The loop is then fair to every agent.
         let mut cycle = vec![nodes[entry as usize].0];
-        let mut cycle_via = vec![k];
-        while at != entry {
-            cycle.push(nodes[at as usize].0);
-            let (p, k) = back[&at];
-            cycle_via.push(k);
-            at = p;
+        let mut cycle_via = Vec::new();
+        let mut at = entry;
+        let disabled = |y: u32, a: u8| self.graph.enabled(nodes[y as usize].0) >> a & 1 == 0;
+        for a in 0..agents {
+            let steps = if owed(c) >> a & 1 == 1 {
+                self.path_within(edges, (&comp, c), at, |x, _, k| {
+                    k != STAYS && self.graph.mover(nodes[x as usize].0, k) == Some(a)
+                })?
+            } else if disabled(entry, a) {
+                continue;
+            } else {
+                self.path_within(edges, (&comp, c), at, |_, y, _| disabled(y, a))?
+            };
+            for &(y, k) in &steps {
+                cycle.push(nodes[y as usize].0);
+                cycle_via.push(k);
+            }
+            at = steps.last().map_or(at, |s| s.0);
         }
-        cycle.push(nodes[entry as usize].0);
-        cycle.reverse();
-        cycle_via.reverse();
+        for (y, k) in self.path_within(edges, (&comp, c), at, |_, y, _| y == entry)? {
+            cycle.push(nodes[y as usize].0);
+            cycle_via.push(k);
+        }
         Some(Violation {
             path,
             path_via,
@@ -441,6 +539,44 @@ impl<'r, G: RunGraph> Product<'r, G> {
             cycle_via,
             ends: false,
         })
+    }
+
+    /// A shortest run of product steps inside component `c` from node `from` whose last
+    /// step `x -> y` (by transition `k`) satisfies `goal(x, y, k)`: the nodes entered, each
+    /// with its transition.
+    fn path_within(
+        &self,
+        edges: &Csr,
+        (comp, c): (&[u32], u32),
+        from: u32,
+        goal: impl Fn(u32, u32, u32) -> bool,
+    ) -> Option<Vec<(u32, u32)>> {
+        let mut back: HashMap<u32, (u32, u32)> = HashMap::new();
+        let mut queue = VecDeque::from([from]);
+        let mut seen = std::collections::HashSet::from([from]);
+        while let Some(x) = queue.pop_front() {
+            for (&y, &k) in edges.of(x).iter().zip(edges.via_of(x)) {
+                if comp[y as usize] != c {
+                    continue;
+                }
+                if goal(x, y, k) {
+                    let mut steps = vec![(y, k)];
+                    let mut at = x;
+                    while at != from {
+                        let (p, k) = back[&at];
+                        steps.push((at, k));
+                        at = p;
+                    }
+                    steps.reverse();
+                    return Some(steps);
+                }
+                if seen.insert(y) {
+                    back.insert(y, (x, k));
+                    queue.push_back(y);
+                }
+            }
+        }
+        None
     }
 }
 
@@ -540,23 +676,14 @@ fn universal(b: &Buchi) -> Vec<bool> {
 /// The formula could not be translated within [`TABLEAU_BUDGET`].
 struct TooLong;
 
-/// Searches the product of the checker's graph with the automaton of `not f`; adds the
+/// Searches the product of the recorded graph with the automaton of `not f`; adds the
 /// product states it reached to `reached`.
-fn violation(
-    checker: &Checker,
-    f: &Ltl,
-    reached: &mut usize,
-) -> Result<Option<Violation>, TooLong> {
+fn violation(facts: &RunFacts, f: &Ltl, reached: &mut usize) -> Result<Option<Violation>, TooLong> {
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
-    let state_letters = checker
-        .facts
-        .letter_table
-        .iter()
-        .map(|l| local(l, &map))
-        .collect();
+    let state_letters = facts.letter_table.iter().map(|l| local(l, &map)).collect();
     let g = Explored {
-        checker,
+        facts,
         map,
         state_letters,
     };
@@ -564,6 +691,85 @@ fn violation(
     let v = p.search();
     *reached += p.reached.get();
     Ok(v)
+}
+
+/// What the runs say of one property: its status, message and run (a violation, or a
+/// `reachable` property's witness). `complete`: every state was expanded. `runs` says
+/// which runs a passing property held on.
+pub(crate) fn decide(
+    facts: &RunFacts,
+    p: &RunProperty,
+    (complete, runs): (bool, &str),
+    reached: &mut usize,
+) -> (Status, String, Option<Violation>) {
+    let too_long = || {
+        (
+            Status::Unknown,
+            format!(
+                "`{}`: its formula is too long to translate to an automaton (more than {TABLEAU_BUDGET} tableau steps); split it into several properties",
+                p.name
+            ),
+            None,
+        )
+    };
+    let held = if complete {
+        Status::Pass
+    } else {
+        Status::Unknown
+    };
+    if p.kind == PropertyKind::Reachable {
+        let goal = p.instances.first().map_or(Ltl::True, |i| i.formula.clone());
+        let Ok(found) = violation(facts, &formula_of(p.kind, &goal), reached) else {
+            return too_long();
+        };
+        return match found {
+            Some(v) => (
+                Status::Pass,
+                format!(
+                    "`{}` is reached after {} steps (witness run attached)",
+                    p.name,
+                    v.path.len().saturating_sub(1)
+                ),
+                Some(v),
+            ),
+            None if complete => (Status::Fail, format!("`{}` is never reached", p.name), None),
+            None => (
+                Status::Unknown,
+                format!("`{}` is never reached", p.name),
+                None,
+            ),
+        };
+    }
+    for i in &p.instances {
+        let Ok(found) = violation(facts, &formula_of(p.kind, &i.formula), reached) else {
+            return too_long();
+        };
+        let Some(v) = found else {
+            continue;
+        };
+        let who = if i.binding.is_empty() {
+            String::new()
+        } else {
+            format!(" for {}", i.binding)
+        };
+        let steps = v.path.len().saturating_sub(1);
+        let how = if !v.cycle.is_empty() {
+            format!(
+                "a run of {steps} steps enters a loop of {} steps on which it is violated",
+                v.cycle.len() - 1
+            )
+        } else if v.ends {
+            format!("a run ends after {steps} steps, and staying there violates it")
+        } else {
+            format!("it is violated after {steps} steps, whatever happens next")
+        };
+        return (
+            Status::Fail,
+            format!("`{}` does not hold{who}: {how}", p.name),
+            Some(v),
+        );
+    }
+    (held, format!("`{}` holds on {runs}", p.name), None)
 }
 
 /// The formula of one instance as the property's kind reads it (`always f` is `[] f`).
@@ -613,101 +819,32 @@ impl Checker<'_> {
     }
 
     fn run_property(&self, p: &RunProperty, reached: &mut usize) -> Finding {
-        let too_long = || {
-            let mut f = self.finding("property", &p.name, p.span, Status::Unknown, String::new());
-            // Undecided for the formula, not for the search: no "cut short" caveat.
-            f.message = format!(
-                "`{}`: its formula is too long to translate to an automaton (more than {TABLEAU_BUDGET} tableau steps); split it into several properties",
-                p.name
-            );
-            f
+        let graph = self.graph;
+        let succ = |i: u32| graph.successors(i);
+        let may_end =
+            |i: u32| bit(&self.facts.idle, i) || graph.successors(i).is_some_and(|e| e.is_empty());
+        let facts = RunFacts {
+            len: graph.len() as u32,
+            initial: graph.initial as u32,
+            successors: &succ,
+            may_end: &may_end,
+            letters: &self.facts.letters,
+            letter_table: &self.facts.letter_table,
+            steps: &self.facts.steps,
+            fairness: None,
         };
-        let f = |i: &crate::model::property::Instance| i.formula.clone();
-        match p.kind {
-            PropertyKind::Reachable => {
-                let goal = p.instances.first().map(f).unwrap_or(Ltl::True);
-                let Ok(found) = violation(self, &formula_of(p.kind, &goal), reached) else {
-                    return too_long();
-                };
-                match found {
-                    Some(v) => {
-                        let mut x = self.finding(
-                            "property",
-                            &p.name,
-                            p.span,
-                            Status::Pass,
-                            format!(
-                                "`{}` is reached after {} steps (witness run attached)",
-                                p.name,
-                                v.path.len().saturating_sub(1)
-                            ),
-                        );
-                        x.counterexample = Some(self.counterexample_of(&v));
-                        x
-                    }
-                    None => {
-                        let status = if self.graph.complete() {
-                            Status::Fail
-                        } else {
-                            Status::Unknown
-                        };
-                        self.finding(
-                            "property",
-                            &p.name,
-                            p.span,
-                            status,
-                            format!("`{}` is never reached", p.name),
-                        )
-                    }
-                }
-            }
-            kind => {
-                for i in &p.instances {
-                    let formula = formula_of(kind, &i.formula);
-                    let Ok(found) = violation(self, &formula, reached) else {
-                        return too_long();
-                    };
-                    let Some(v) = found else {
-                        continue;
-                    };
-                    let who = if i.binding.is_empty() {
-                        String::new()
-                    } else {
-                        format!(" for {}", i.binding)
-                    };
-                    let steps = v.path.len().saturating_sub(1);
-                    let how = if !v.cycle.is_empty() {
-                        format!(
-                            "a run of {steps} steps enters a loop of {} steps on which it is violated",
-                            v.cycle.len() - 1
-                        )
-                    } else if v.ends {
-                        format!("a run ends after {steps} steps, and staying there violates it")
-                    } else {
-                        format!("it is violated after {steps} steps, whatever happens next")
-                    };
-                    let mut x = self.finding(
-                        "property",
-                        &p.name,
-                        p.span,
-                        Status::Fail,
-                        format!("`{}` does not hold{who}: {how}", p.name),
-                    );
-                    x.counterexample = Some(self.counterexample_of(&v));
-                    return x;
-                }
-                self.finding(
-                    "property",
-                    &p.name,
-                    p.span,
-                    self.held(),
-                    format!(
-                        "`{}` holds on every run (each fair to the intentions: Jason's round-robin selection)",
-                        p.name
-                    ),
-                )
-            }
-        }
+        let runs = "every run (each fair to the intentions: Jason's round-robin selection)";
+        let (status, message, v) = decide(&facts, p, (graph.complete(), runs), reached);
+        let mut f = self.finding("property", &p.name, p.span, status, String::new());
+        // A formula too long is undecided for itself, not for the search: no caveat.
+        f.message = if status == Status::Unknown && !message.contains("too long") {
+            self.finding("property", &p.name, p.span, status, message)
+                .message
+        } else {
+            message
+        };
+        f.counterexample = v.map(|v| self.counterexample_of(&v));
+        f
     }
 }
 
@@ -724,6 +861,16 @@ mod tests {
         letters: Vec<u64>,
         /// Per state, per transition: the step letter.
         steps: Vec<Vec<u64>>,
+        /// Per state, per transition: its agent, when loops must be fair to 2 agents.
+        movers: Option<Vec<Vec<Option<u8>>>>,
+    }
+
+    impl Toy {
+        fn enabled_at(&self, i: u32) -> u64 {
+            self.movers.as_ref().map_or(0, |m| {
+                m[i as usize].iter().flatten().fold(0, |b, &a| b | 1 << a)
+            })
+        }
     }
 
     impl RunGraph for Toy {
@@ -744,6 +891,19 @@ mod tests {
         }
         fn step_letter(&self, i: u32, k: u32) -> u64 {
             self.steps[i as usize][k as usize]
+        }
+        fn fair_agents(&self) -> u8 {
+            if self.movers.is_some() {
+                2
+            } else {
+                0
+            }
+        }
+        fn enabled(&self, i: u32) -> u64 {
+            self.enabled_at(i)
+        }
+        fn mover(&self, i: u32, k: u32) -> Option<u8> {
+            self.movers.as_ref().and_then(|m| m[i as usize][k as usize])
         }
     }
 
@@ -770,12 +930,26 @@ mod tests {
             steps.push(s.iter().map(|_| r.next(2) << 2).collect());
             succ.push(s);
         }
+        // Half the graphs are of two agents whose loops must be fair to both.
+        let movers = (r.next(2) == 0).then(|| {
+            succ.iter()
+                .map(|s| {
+                    s.iter()
+                        .map(|_| match r.next(3) {
+                            2 => None,
+                            a => Some(a as u8),
+                        })
+                        .collect()
+                })
+                .collect()
+        });
         Toy {
             initial: 1 + r.next(n as u64) as u32 % n as u32,
             letters: (0..n).map(|_| r.next(4)).collect(),
             succ,
             ends,
             steps,
+            movers,
         }
     }
 
@@ -809,10 +983,25 @@ mod tests {
     fn lassos(g: &Toy, bound: usize) -> Vec<(Vec<u64>, usize)> {
         let mut out = Vec::new();
         // (states, letters)
-        let mut stack: Vec<(Vec<u32>, Vec<u64>)> = (0..g.initial)
-            .map(|i| (vec![i], vec![g.letters[i as usize]]))
+        // (states, letters, transitions taken)
+        type Walked = (Vec<u32>, Vec<u64>, Vec<u32>);
+        let mut stack: Vec<Walked> = (0..g.initial)
+            .map(|i| (vec![i], vec![g.letters[i as usize]], Vec::new()))
             .collect();
-        while let Some((states, letters)) = stack.pop() {
+        // A loop over positions e..m (transitions e..m-1) is fair when every agent that can
+        // move in each of its states moves in it.
+        let fair = |states: &[u32], ks: &[u32], e: usize| {
+            let owed = states[e..states.len() - 1]
+                .iter()
+                .fold(u64::MAX, |b, &i| b & g.enabled_at(i));
+            let moved = states[e..states.len() - 1]
+                .iter()
+                .zip(&ks[e..])
+                .filter_map(|(&i, &k)| g.mover(i, k))
+                .fold(0u64, |b, a| b | 1 << a);
+            g.movers.is_none() || owed & !moved == 0
+        };
+        while let Some((states, letters, ks)) = stack.pop() {
             let last = *states.last().unwrap_or(&0);
             if g.ends[last as usize] {
                 let mut l = letters.clone();
@@ -826,13 +1015,17 @@ mod tests {
             for (k, &j) in g.succ[last as usize].iter().enumerate() {
                 let mut s2 = states.clone();
                 let mut l2 = letters.clone();
+                let mut k2 = ks.clone();
                 s2.push(j);
                 l2.push(g.letters[j as usize] | g.steps[last as usize][k]);
+                k2.push(k as u32);
                 let m = s2.len() - 1;
                 for (e, _) in s2[..m].iter().enumerate().filter(|(_, &x)| x == j) {
-                    out.push((l2.clone(), e + 1));
+                    if fair(&s2, &k2, e) {
+                        out.push((l2.clone(), e + 1));
+                    }
                 }
-                stack.push((s2, l2));
+                stack.push((s2, l2, k2));
             }
         }
         out
@@ -893,6 +1086,21 @@ mod tests {
                 .find(|(w, at)| !f.holds_on_lasso(&w[..*at], &w[*at..]));
             match (&v, &brute) {
                 (Some(v), _) => {
+                    if !v.cycle.is_empty() {
+                        // The reported loop is fair.
+                        let sources = &v.cycle[..v.cycle.len() - 1];
+                        let owed = sources.iter().fold(u64::MAX, |b, &i| b & g.enabled_at(i));
+                        let moved = sources
+                            .iter()
+                            .zip(&v.cycle_via)
+                            .filter_map(|(&i, &k)| g.mover(i, k))
+                            .fold(0u64, |b, a| b | 1 << a);
+                        assert!(
+                            g.movers.is_none() || owed & !moved == 0,
+                            "case {case}: an unfair loop {:?}",
+                            v.cycle
+                        );
+                    }
                     let (w, at) = word_of(&g, v);
                     assert!(
                         !f.holds_on_lasso(&w[..at], &w[at..]),

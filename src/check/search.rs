@@ -187,7 +187,10 @@ where
         },
         |src, k, label: &M::Label, fp| {
             failures.record(src, k, fp, label.notes());
-            if let Some(l) = conditions.runs.and_then(|r| r.step_letter(label.notes())) {
+            if let Some(l) = conditions
+                .runs
+                .and_then(|r| r.step_letter(0, label.notes()))
+            {
                 steps.insert((src, k), l);
             }
         },

@@ -611,7 +611,7 @@ fn replay_run(
             return no("the recorded run is no longer possible");
         };
         let mut l = atoms.state_letter(&t.next);
-        if let Some(d) = atoms.step_letter(t.notes.iter()) {
+        if let Some(d) = atoms.step_letter(0, t.notes.iter()) {
             for (w, x) in l.iter_mut().zip(d) {
                 *w |= x;
             }
@@ -1138,6 +1138,152 @@ fn system_lasso(
     }
 }
 
+/// The finding's property, when it is decided on runs, in a project of several agents.
+fn system_run_property(
+    project: &Project,
+    system: &crate::semantics::System,
+    f: &FindingIn,
+) -> Option<crate::model::property::RunProperty> {
+    let name = f.id.strip_prefix("property:")?;
+    let (props, _) = crate::model::property::compile_in(project, system.names()).ok()?;
+    props.into_iter().find(|p| p.name == name)
+}
+
+/// [`replay_run`] among several agents: the recorded steps (`picks`), closed into a lasso
+/// (the recorded loop, which must be fair to the agents when the manifest assumes so; else
+/// the run ends where every agent is done or nothing can happen; else it goes on by first
+/// successors until a state repeats), decided by LTL's own semantics.
+fn replay_system_run(
+    system: &crate::semantics::System,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    p: &crate::model::property::RunProperty,
+    start: crate::semantics::SystemState,
+    picks: &[usize],
+    shown: &dyn Fn(&crate::semantics::Step) -> Vec<(String, String)>,
+) -> Replayed {
+    use crate::check::runs::{violated_on, RunAtoms};
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    if p.kind == crate::syntax::manifest::PropertyKind::Reachable {
+        return no("a `reachable` property's run is a witness, not a violation");
+    }
+    let project = system.agents[0].project;
+    let Ok((_, atomics)) = crate::model::property::compile_in(project, system.names()) else {
+        return no("the project's properties no longer compile");
+    };
+    let atoms = RunAtoms::new(&atomics, &system.agents[0]);
+    let letter =
+        |s: &crate::semantics::SystemState| atoms.system_letter(&system.everything(s), &s.agents);
+    let mut states = vec![start.clone()];
+    let mut letters = vec![letter(&start)];
+    // Trace steps before each transition, and each transition's agent (`None`: the user).
+    let mut before = Vec::new();
+    let mut movers: Vec<Option<usize>> = Vec::new();
+    let mut shown_steps = 0;
+    let mut state = start;
+    let take = |state: &crate::semantics::SystemState, k: usize| {
+        system.successors(state).into_iter().nth(k)
+    };
+    for &k in picks {
+        let Some((label, t)) = take(&state, k) else {
+            return no("the recorded run is no longer possible");
+        };
+        before.push(shown_steps);
+        shown_steps += shown(&label).len();
+        let mut l = letter(&t);
+        if let Some(d) = atoms.step_letter(label.agent, label.notes.iter()) {
+            for (w, x) in l.iter_mut().zip(d) {
+                *w |= x;
+            }
+        }
+        movers.push(match label.notes.as_slice() {
+            [Note::Request { .. }] => None,
+            _ => Some(label.agent as usize),
+        });
+        letters.push(l);
+        state = t;
+        states.push(state.clone());
+    }
+    let fair = project.manifest.bounds.fair_agents;
+    let done = |s: &crate::semantics::SystemState| {
+        system.successors(s).is_empty()
+            || (s.agents.iter().all(|a| a.is_idle()) && s.mail.iter().all(|m| m.is_empty()))
+    };
+    // The recorded loop: from the transition where its steps begin, back to the last state.
+    let last = states.last().cloned();
+    let recorded_loop = c.loop_start.and_then(|ls| {
+        (0..before.len()).find(|&t| before[t] == ls && Some(&states[t]) == last.as_ref())
+    });
+    let loop_at = match recorded_loop {
+        Some(t0) => {
+            if fair {
+                let lo = &states[t0..states.len() - 1];
+                for j in 0..system.names().len() {
+                    let always = lo.iter().all(|s| {
+                        system.successors(s).iter().any(|(l, _)| {
+                            !matches!(l.notes.as_slice(), [Note::Request { .. }])
+                                && l.agent as usize == j
+                        })
+                    });
+                    if always && !movers[t0..].contains(&Some(j)) {
+                        return no("its loop leaves out an agent that could move");
+                    }
+                }
+            }
+            t0 + 1
+        }
+        None => {
+            let mut seen: HashMap<u64, usize> = HashMap::new();
+            for (i, s) in states.iter().enumerate() {
+                seen.entry(fingerprint(s)).or_insert(i);
+            }
+            let mut extended = 0;
+            loop {
+                let last = states.last().cloned().unwrap_or_else(|| state.clone());
+                if done(&last) {
+                    letters.push(letter(&last));
+                    break letters.len() - 1;
+                }
+                if extended >= MAX_EXTENSION {
+                    return no("the run does not close into a loop within the replay's bound");
+                }
+                let Some((label, t)) = take(&last, 0) else {
+                    return no("the run cannot go on");
+                };
+                let mut l = letter(&t);
+                if let Some(d) = atoms.step_letter(label.agent, label.notes.iter()) {
+                    for (w, x) in l.iter_mut().zip(d) {
+                        *w |= x;
+                    }
+                }
+                letters.push(l);
+                extended += 1;
+                let fp = fingerprint(&t);
+                states.push(t);
+                if let Some(&e) = seen.get(&fp) {
+                    break e + 1;
+                }
+                seen.insert(fp, states.len() - 1);
+            }
+        }
+    };
+    match violated_on(p, &letters, loop_at) {
+        Some(binding) => Replayed {
+            id: f.id.clone(),
+            reached: true,
+            detail: if binding.is_empty() {
+                format!("violated on a run of {} steps", letters.len() - 1)
+            } else {
+                format!(
+                    "violated for {binding} on a run of {} steps",
+                    letters.len() - 1
+                )
+            },
+        },
+        None => no("the property now holds on this run"),
+    }
+}
+
 /// Replays one finding's run among several agents.
 fn replay_system_one(
     agents: &[Project],
@@ -1189,6 +1335,12 @@ fn replay_system_one(
     let Some(run) = find_run(&state, &recorded, &next, &shown) else {
         return no("the project no longer gives this run");
     };
+    if let Some(p) = (f.check == "property")
+        .then(|| system_run_property(project, system, f))
+        .flatten()
+    {
+        return replay_system_run(system, f, c, &p, state, &run, &shown);
+    }
     let mut steps = 0;
     // The run's states and steps, and how many trace steps come before each transition.
     let mut states = vec![state.clone()];

@@ -17,8 +17,10 @@
 //! - `requested(g)`: the user's request `!g` has arrived and is still served (an intention
 //!   or an event of it remains).
 //!
-//! The agent argument (`believes(ag, f)`) may be given; it must name this project's agent.
-//! `explained(user, a)` is refused: the explanations are checked by their own searches.
+//! The agent argument (`believes(ag, f)`) may be given in a project of one agent (it must
+//! name that agent) and must be given in a project of several ([`compile_in`]), where
+//! `ag::b` in a state formula is agent `ag`'s belief too. `explained(user, a)` is refused:
+//! the explanations are checked by their own searches.
 
 use super::atoms::AtomTable;
 use super::cond::Cond;
@@ -58,14 +60,16 @@ pub const MAX_INSTANCES: usize = 10_000;
 pub enum Atomic {
     /// A condition on the beliefs (a plain state formula, `believes(f)` or `holds(f)`).
     Beliefs(Cond),
-    /// Some intention has a goal that unifies with this one.
-    Intends(Term),
-    /// `+!g` is an event, or some intention has the goal `g`.
-    Desires(Term),
+    /// Some intention of the agent (its index among the project's agents, 0 when there
+    /// is one) has a goal that unifies with this one.
+    Intends(u8, Term),
+    /// `+!g` is an event of the agent, or some intention of it has the goal `g`.
+    Desires(u8, Term),
     /// The request of a goal that unifies with this one is being served.
     Requested(Term),
-    /// The step into the state executed an action that unifies with this one.
-    Did(Term),
+    /// The step into the state was the agent's, and executed an action that unifies with
+    /// this one.
+    Did(u8, Term),
 }
 
 /// The atomic propositions of every property of a project, numbered.
@@ -93,7 +97,7 @@ impl Atomics {
 
     /// Whether some proposition is about the step into a state rather than the state.
     pub fn reads_steps(&self) -> bool {
-        self.list.iter().any(|a| matches!(a, Atomic::Did(_)))
+        self.list.iter().any(|a| matches!(a, Atomic::Did(..)))
     }
 
     /// Whether some proposition reads more than the beliefs.
@@ -164,6 +168,16 @@ pub fn is_run_property(p: &crate::syntax::manifest::Property) -> bool {
 
 /// Compiles every property of the project that is decided on runs, in manifest order.
 pub fn compile(project: &Project) -> Result<(Vec<RunProperty>, Atomics), Vec<Diagnostic>> {
+    compile_in(project, &[])
+}
+
+/// [`compile`] in a project of several agents, named by `agents` (empty for one agent): a
+/// modality names its agent (`believes(ag, f)`), and a state formula's `ag::b` is agent
+/// `ag`'s belief, as [`crate::model::formula::compile_in`] reads it.
+pub fn compile_in(
+    project: &Project,
+    agents: &[String],
+) -> Result<(Vec<RunProperty>, Atomics), Vec<Diagnostic>> {
     let mut atomics = Atomics::default();
     let mut out = Vec::new();
     let mut errors = Vec::new();
@@ -174,6 +188,7 @@ pub fn compile(project: &Project) -> Result<(Vec<RunProperty>, Atomics), Vec<Dia
         let c = Compiler {
             project,
             atoms: &project.atoms,
+            agents,
         };
         match c.property(p, &mut atomics) {
             Ok(instances) => out.push(RunProperty {
@@ -195,6 +210,8 @@ pub fn compile(project: &Project) -> Result<(Vec<RunProperty>, Atomics), Vec<Dia
 struct Compiler<'a> {
     project: &'a Project,
     atoms: &'a AtomTable,
+    /// The agents of a project of several (empty for one).
+    agents: &'a [String],
 }
 
 type Env<'e> = BTreeMap<&'e str, ObjectId>;
@@ -308,7 +325,7 @@ impl Compiler<'_> {
         types: &mut BTreeMap<String, TypeId>,
     ) -> Result<(), Diagnostic> {
         if !is_modal(e) {
-            return infer_types(e, self.atoms, &self.project.universe, &[], types);
+            return infer_types(e, self.atoms, &self.project.universe, self.agents, types);
         }
         match &e.kind {
             ExprKind::Not(a) => self.infer_state(a, types),
@@ -317,7 +334,7 @@ impl Compiler<'_> {
                 self.infer_state(b, types)
             }
             ExprKind::Literal(l) if MODALITIES.contains(&l.functor.as_str()) => {
-                let (what, arg) = self.modal_arg(l)?;
+                let (what, _, arg) = self.modal_arg(l)?;
                 match what {
                     "believes" | "holds" => self.infer_state(arg, types),
                     "did" => {
@@ -384,9 +401,9 @@ impl Compiler<'_> {
         Ok(())
     }
 
-    /// The modality's name (`.intend` read as `intends`) and its formula argument, after
-    /// the agent argument if one is given.
-    fn modal_arg<'l>(&self, l: &'l Literal) -> Result<(&'static str, &'l Expr), Diagnostic> {
+    /// The modality's name (`.intend` read as `intends`), its agent (index among the
+    /// project's agents; 0 in a project of one) and its formula argument.
+    fn modal_arg<'l>(&self, l: &'l Literal) -> Result<(&'static str, u8, &'l Expr), Diagnostic> {
         let what = match l.functor.as_str() {
             "believes" => "believes",
             "holds" => "holds",
@@ -404,24 +421,55 @@ impl Compiler<'_> {
         };
         let agent_arg = matches!(what, "believes" | "desires" | "intends" | "did")
             && !l.functor.starts_with('.');
-        let arg = match (l.args.as_slice(), agent_arg) {
-            ([f], _) => f,
+        let several = !self.agents.is_empty();
+        let (agent, arg) = match (l.args.as_slice(), agent_arg) {
+            ([f], true) if several => {
+                return Err(Diagnostic::error(
+                    "input",
+                    format!(
+                    "`{}` must name its agent in a project of several: `{}(agent, ...)`, one of {}",
+                    l.functor,
+                    l.functor,
+                    self.agents
+                        .iter()
+                        .map(|a| format!("`{a}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                )
+                .with_label(l.span, "whose?"))
+            }
+            ([f], _) => (0, f),
             ([ag, f], true) => {
                 let named = match &ag.kind {
                     ExprKind::Literal(a) if a.args.is_empty() => Some(a.functor.as_str()),
                     _ => None,
                 };
-                if named != Some(self.project.name.as_str()) {
+                let found = if several {
+                    self.agents.iter().position(|a| Some(a.as_str()) == named)
+                } else {
+                    (named == Some(self.project.name.as_str())).then_some(0)
+                };
+                let Some(k) = found else {
+                    let have = if several {
+                        self.agents
+                            .iter()
+                            .map(|a| format!("`{a}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    } else {
+                        format!("`{}`", self.project.name)
+                    };
                     return Err(Diagnostic::error(
                         "input",
                         format!(
-                            "`{}` names an agent this project does not have: its agent is `{}`",
-                            l.functor, self.project.name
+                            "`{}` names an agent this project does not have: its agents are {have}",
+                            l.functor
                         ),
                     )
                     .with_label(ag.span, "no such agent"));
-                }
-                f
+                };
+                (k as u8, f)
             }
             _ => {
                 let how = if agent_arg {
@@ -436,7 +484,7 @@ impl Compiler<'_> {
                 .with_label(l.span, "wrong number of arguments"));
             }
         };
-        Ok((what, arg))
+        Ok((what, agent, arg))
     }
 
     fn ground_shape(&self, s: &Shape, env: &Env, atomics: &mut Atomics) -> Result<Ltl, Diagnostic> {
@@ -470,7 +518,7 @@ impl Compiler<'_> {
 
     fn ground_state(&self, e: &Expr, env: &Env, atomics: &mut Atomics) -> Result<Ltl, Diagnostic> {
         if !is_modal(e) {
-            let c = ground_with(e, self.atoms, &self.project.universe, &[], env)?;
+            let c = ground_with(e, self.atoms, &self.project.universe, self.agents, env)?;
             return Ok(atomics.intern(Atomic::Beliefs(c)));
         }
         Ok(match &e.kind {
@@ -484,21 +532,36 @@ impl Compiler<'_> {
                 self.ground_state(b, env, atomics)?,
             ),
             ExprKind::Literal(l) if MODALITIES.contains(&l.functor.as_str()) => {
-                let (what, arg) = self.modal_arg(l)?;
+                let (what, agent, arg) = self.modal_arg(l)?;
                 match what {
                     "believes" | "holds" => {
                         if is_modal(arg) {
                             return Err(modal_inside(arg));
                         }
-                        let c = ground_with(arg, self.atoms, &self.project.universe, &[], env)?;
+                        let c =
+                            ground_with(arg, self.atoms, &self.project.universe, self.agents, env)?;
+                        // Among several agents a belief is an atom of the agent's own part
+                        // (`formula::agent_stride`); the environment's atoms are the plain ones.
+                        let c = if what == "believes" && !self.agents.is_empty() {
+                            let stride = super::formula::agent_stride(self.atoms) as u32;
+                            map_atoms(&c, &|a| {
+                                if a.0 < stride {
+                                    super::atoms::AtomId(a.0 + (u32::from(agent) + 1) * stride)
+                                } else {
+                                    a
+                                }
+                            })
+                        } else {
+                            c
+                        };
                         atomics.intern(Atomic::Beliefs(c))
                     }
                     _ => {
                         let t = self.ground_term(arg, env)?;
                         atomics.intern(match what {
-                            "desires" => Atomic::Desires(t),
-                            "intends" => Atomic::Intends(t),
-                            "did" => Atomic::Did(t),
+                            "desires" => Atomic::Desires(agent, t),
+                            "intends" => Atomic::Intends(agent, t),
+                            "did" => Atomic::Did(agent, t),
                             _ => Atomic::Requested(t),
                         })
                     }
@@ -535,6 +598,23 @@ impl Compiler<'_> {
             );
         }
         Ok(t)
+    }
+}
+
+/// `c` with every atom `a` read as `f(a)`.
+fn map_atoms(c: &Cond, f: &impl Fn(super::atoms::AtomId) -> super::atoms::AtomId) -> Cond {
+    match c {
+        Cond::True => Cond::True,
+        Cond::False => Cond::False,
+        Cond::Atom(a) => Cond::Atom(f(*a)),
+        Cond::Not(x) => Cond::Not(Box::new(map_atoms(x, f))),
+        Cond::And(xs) => Cond::And(xs.iter().map(|x| map_atoms(x, f)).collect()),
+        Cond::Or(xs) => Cond::Or(xs.iter().map(|x| map_atoms(x, f)).collect()),
+        Cond::Count { atoms, cmp, n } => Cond::Count {
+            atoms: atoms.iter().map(|a| f(*a)).collect(),
+            cmp: *cmp,
+            n: *n,
+        },
     }
 }
 

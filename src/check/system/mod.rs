@@ -28,7 +28,7 @@ use crate::model::project::Project;
 use crate::semantics::{Note, Step, System, SystemState};
 use crate::syntax::manifest::PropertyKind;
 use crate::syntax::{Diagnostic, Severity, Span};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 mod deadlock;
 mod liveness;
@@ -167,6 +167,8 @@ struct Summary {
     pending: u64,
     /// The `eventually` properties that hold, one bit each.
     holds: u64,
+    /// The run properties' propositions that hold ([`super::runs::RunAtoms`]).
+    letter: super::runs::Letter,
     /// Under symmetry: a renaming of instances that changes what the system does here.
     unequal: Option<String>,
 }
@@ -212,18 +214,18 @@ pub fn verify_system(
     }
     // `eventually` properties: decided on runs ([`liveness`]).
     let mut eventually: Vec<(String, Cond, Span)> = Vec::new();
+    // `ltl` properties and those with modalities: decided on runs (`check::runs`).
+    let (run_props, atomics) = match crate::model::property::compile_in(project, system.names()) {
+        Ok(x) => x,
+        Err(ds) => {
+            errors.extend(ds);
+            Default::default()
+        }
+    };
+    let run_atoms =
+        (!run_props.is_empty()).then(|| super::runs::RunAtoms::new(&atomics, &system.agents[0]));
     for p in &project.manifest.properties {
         if crate::model::property::is_run_property(p) {
-            errors.push(
-                Diagnostic::error(
-                    "input",
-                    format!(
-                        "property `{}`: `ltl` formulas and modalities (`believes`, `.intend`, ...) are checked in projects of one agent only, for now",
-                        p.name.value
-                    ),
-                )
-                .with_label(p.formula.span, "not supported with several agents"),
-            );
             continue;
         }
         match formula::compile_in(
@@ -290,7 +292,9 @@ pub fn verify_system(
         sample: options.sample,
         shard: None,
     };
-    let instances = options.symmetry.then(|| {
+    // The run properties read the exact graph: no reduction when there are any.
+    let exact = run_atoms.is_some();
+    let instances = (options.symmetry && !exact).then(|| {
         let named: Vec<(&str, &Cond)> = conds
             .iter()
             .map(|c| (c.0.as_str(), &c.3))
@@ -302,7 +306,7 @@ pub fn verify_system(
     let mut unequal: Option<String> = None;
     let model = Interleavings {
         system: &system,
-        partial_order: options.partial_order.then(|| {
+        partial_order: (options.partial_order && !exact).then(|| {
             let read = conds.iter().map(|c| &c.3);
             PartialOrder::new(&system, read.chain(eventually.iter().map(|e| &e.1)))
         }),
@@ -325,6 +329,10 @@ pub fn verify_system(
                     .fold(0, |b, (j, _)| b | 1 << j),
                 None => 0,
             },
+            letter: run_atoms
+                .as_ref()
+                .map(|r| r.system_letter(&system.everything(s), &s.agents))
+                .unwrap_or_default(),
             // Every stored state is checked: reduction is exact only where renaming a
             // state renames its successors.
             unequal: active
@@ -333,6 +341,12 @@ pub fn verify_system(
         }
     };
     let started = std::time::Instant::now();
+    // Per state: an index into `letter_table`; per transition doing a `did` action: those
+    // propositions (when there are run properties).
+    let mut letters: Vec<u32> = Vec::new();
+    let mut letter_table: Vec<super::runs::Letter> = Vec::new();
+    let mut letter_ids: HashMap<super::runs::Letter, u32> = HashMap::new();
+    let mut did: HashMap<(u32, u32), super::runs::Letter> = HashMap::new();
     let graph: Graph<SystemState> = explore_with(
         &model,
         limits,
@@ -351,11 +365,25 @@ pub fn verify_system(
             facts
                 .borrow_mut()
                 .state(i, sum.busy, sum.pending, sum.holds);
+            if run_atoms.is_some() {
+                let next = letter_table.len() as u32;
+                let id = *letter_ids.entry(sum.letter.clone()).or_insert(next);
+                if id == next {
+                    letter_table.push(sum.letter);
+                }
+                letters.push(id);
+            }
             if unequal.is_none() {
                 unequal = sum.unequal;
             }
         },
         |src, k, label, fp| {
+            if let Some(l) = run_atoms
+                .as_ref()
+                .and_then(|r| r.step_letter(label.agent, label.notes.iter()))
+            {
+                did.insert((src, k), l);
+            }
             steps.transition(src, label, fp);
             facts.borrow_mut().transition(src, label.mover());
             for n in &label.notes {
@@ -406,6 +434,7 @@ pub fn verify_system(
     };
     let n = graph.len();
     let mut findings = Vec::new();
+    let mut ltl_phase = None;
     for (j, (name, check, kind, _, span)) in conds.iter().enumerate() {
         let f = match (kind, first_fails[j]) {
             (PropertyKind::Reachable, _) => match first_holds[j] {
@@ -480,6 +509,61 @@ pub fn verify_system(
     // steps no check sees; symmetry, a run of every class of runs), and its runs that end
     // stand for all of them (the conditions read are visible to the reduction, and
     // symmetric): the checks are made on it.
+    if !run_props.is_empty() {
+        let t = std::time::Instant::now();
+        let f = facts.borrow();
+        let fair = project.manifest.bounds.fair_agents;
+        let succ = |i: u32| graph.successors(i);
+        // A run ends where nothing can happen, or where every agent is done (the user may
+        // stop asking).
+        let may_end = |i: u32| {
+            graph.successors(i).is_some_and(|e| e.is_empty())
+                || f.busy.get(i as usize).is_some_and(|&b| b == 0)
+        };
+        let enabled = |i: u32| {
+            f.moves
+                .get(i as usize)
+                .map_or(0, |m| m.iter().flatten().fold(0u64, |b, &a| b | 1 << a))
+        };
+        let mover = |i: u32, k: u32| {
+            f.moves
+                .get(i as usize)
+                .and_then(|m| m.get(k as usize).copied().flatten())
+        };
+        let recorded = super::runs::RunFacts {
+            len: graph.len() as u32,
+            initial: graph.initial as u32,
+            successors: &succ,
+            may_end: &may_end,
+            letters: &letters,
+            letter_table: &letter_table,
+            steps: &did,
+            fairness: fair.then_some(super::runs::Fairness {
+                agents: system.names().len() as u8,
+                enabled: &enabled,
+                mover: &mover,
+            }),
+        };
+        let runs = if fair {
+            "every run fair to the agents (and to each one's intentions)"
+        } else {
+            "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
+        };
+        let mut reached = 0;
+        for p in &run_props {
+            let (status, message, v) =
+                super::runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
+            let mut x = cx.finding("property", &p.name, p.span, status, String::new());
+            x.message = message;
+            x.counterexample = v.map(|v| cx.counterexample_via(&v));
+            findings.push(x);
+        }
+        ltl_phase = Some(crate::findings::Phase {
+            name: "ltl product".into(),
+            seconds: t.elapsed().as_secs_f64(),
+            states: Some(reached),
+        });
+    }
     let reduced = graph.reduced > 0 || active.is_some();
     if reduced && !(graph.complete() && liveness::acyclic(&graph)) {
         let full = Interleavings {
@@ -655,6 +739,7 @@ pub fn verify_system(
         super::explanation::verify_among(projects, &system, left, &explore_opts, &mut progress)?;
     all.extend(explained);
     let mut v = Verification::of(&graph, project, all);
+    v.stats.phases.extend(ltl_phase);
     if let Some((states, seconds)) = liveness_search {
         let st = &mut v.stats;
         st.liveness_states = Some(states);
@@ -884,6 +969,34 @@ impl Cx<'_> {
             }
         }
         run
+    }
+
+    /// The run of a run property's violation: each step the transition at the position the
+    /// product took (the search was exact), then its loop if it has one.
+    fn counterexample_via(&self, v: &super::runs::Violation) -> Counterexample {
+        let mut run = Run {
+            states: Vec::new(),
+            steps: Vec::new(),
+        };
+        let Some(mut walk) = v
+            .path
+            .first()
+            .and_then(|&i| Walk::start(self.model, self.graph, i))
+        else {
+            return Counterexample::default();
+        };
+        run.states.push(walk.state.clone());
+        let path = v.path[1..].iter().zip(&v.path_via);
+        let cycle = v.cycle.get(1..).unwrap_or(&[]).iter().zip(&v.cycle_via);
+        let loop_from = path.len();
+        for (&j, &k) in path.chain(cycle) {
+            let Some(l) = walk.step_by(k, self.graph.fingerprint(j), |_| true) else {
+                break;
+            };
+            run.steps.push(l.step);
+            run.states.push(walk.state.clone());
+        }
+        self.counterexample_looping(&run, (!v.cycle.is_empty()).then_some(loop_from))
     }
 
     /// A run as a counterexample: every step names its agent.
