@@ -293,10 +293,24 @@ impl Loops<'_> {
             {
                 continue;
             }
-            // One transition of each agent that must move, in the order met.
+            // One transition of each agent that must move, in the order met; and, for each
+            // agent that can move at the entry but not everywhere in the component, a
+            // transition into a state where it cannot (so that the loop itself is fair:
+            // a loop that never leaves the states where such an agent can move would have
+            // to move it too).
             let mut waypoints: Vec<(u32, u32)> = Vec::new();
             for a in must {
                 if let Some(&(i, j, _)) = edges.iter().find(|(_, _, x)| *x == Some(a)) {
+                    waypoints.push((i, j));
+                }
+            }
+            for a in (0..self.agents as u8).filter(|&a| {
+                self.fair && everywhere >> a & 1 == 0 && self.enabled(entry) >> a & 1 == 1
+            }) {
+                if let Some(&(i, j, _)) = edges
+                    .iter()
+                    .find(|(_, j, _)| self.enabled(*j) >> a & 1 == 0)
+                {
                     waypoints.push((i, j));
                 }
             }
