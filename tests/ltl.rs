@@ -260,7 +260,7 @@ fn unsupported_and_malformed_formulas_are_refused_with_their_place() {
     let cases = [
         (
             "[] explained(owner, wipe(table))",
-            "`explained` cannot be used",
+            "names a user of `[explanation.users]`",
         ),
         (
             "[] believes(robot, dirty(table))",
@@ -345,4 +345,56 @@ fn a_formula_too_long_to_translate_is_undecided() {
     assert_eq!(f["status"], "unknown", "{f:#}");
     assert!(f["message"].as_str().unwrap().contains("too long"), "{f:#}");
     assert_eq!(code, 3, "{r:#}");
+}
+
+/// `explained(user, a)` is decided on the user's explanation search: the newcomer is told
+/// of every pick-up as it happens; the owner is told of one on a detour, a run that
+/// replays (on the owner's search too: without the explanations it would not).
+#[test]
+fn explained_is_decided_on_the_users_explanation_search() {
+    let extra = [
+        property(
+            "newcomer_told",
+            "ltl",
+            "[] (did(pickUp(C)) -> explained(newcomer, pickUp(C)))",
+        ),
+        property(
+            "owner_never_told",
+            "ltl",
+            "[] not explained(owner, pickUp(C))",
+        ),
+    ]
+    .concat();
+    let dir = project_with("ltl-explained", "specs/kitchen", &extra);
+    let (code, r, file) = verify_json(dir.to_str().unwrap(), "ltl-explained-report");
+    assert_eq!(code, 1, "{r:#}");
+    assert_eq!(finding(&r, "property:newcomer_told")["status"], "pass");
+    let f = finding(&r, "property:owner_never_told");
+    assert_eq!(f["status"], "fail", "{f:#}");
+    let told = f["counterexample"]["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|s| s["kind"] == "explanation" && s["text"].as_str().unwrap().contains("pick up"));
+    assert!(told, "the run shows the explanation: {f:#}");
+    let (rc, out) = replay(&file, "property:owner_never_told");
+    assert_eq!(rc, 1, "{out}");
+    let phases: Vec<&str> = r["stats"]["phases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert!(phases.contains(&"ltl search:owner"), "{phases:?}");
+    // Two users in one property cannot be decided on one search.
+    let two = property(
+        "both",
+        "ltl",
+        "[] (explained(owner, pickUp(C)) -> explained(newcomer, pickUp(C)))",
+    );
+    let dir = project_with("ltl-explained-two", "specs/kitchen", &two);
+    let o = bdi_check(&["verify", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let out = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert!(out.contains("may name one user"), "{out}");
 }

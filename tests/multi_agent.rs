@@ -2038,3 +2038,55 @@ fn ltl_among_agents_names_them_and_assumes_the_fairness_the_manifest_says() {
     assert!(err.contains("must name its agent"), "{err}");
     assert!(err.contains("bdi-check.toml:"), "{err}");
 }
+
+#[test]
+fn explained_among_agents_is_decided_on_the_users_search_of_every_interleaving() {
+    // specs/two-robots-explaining: the owner watches the fetcher; carrying a cup to the
+    // counter and putting it there surprise them, picking it up does not.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let d = common::temp_dir("ltl-explained-among");
+    let src = root.join("specs/two-robots-explaining");
+    for e in std::fs::read_dir(&src).unwrap().flatten() {
+        std::fs::copy(e.path(), d.join(e.file_name())).unwrap();
+    }
+    let toml = d.join("bdi-check.toml");
+    let text = std::fs::read_to_string(&toml).unwrap().replace(
+        "\"../two-robots/",
+        &format!("\"{}/", root.join("specs/two-robots").display()),
+    );
+    let props = "[[property]]\nname = \"told_of_puts\"\nltl = \"[] (did(fetcher, put(fetcher, C)) -> explained(owner, put(fetcher, C)))\"\n\
+                 [[property]]\nname = \"never_told_of_picks\"\nltl = \"[] not explained(owner, pick(fetcher, C))\"\n\
+                 [[property]]\nname = \"never_told_of_puts\"\nltl = \"[] not explained(owner, put(fetcher, C))\"\n";
+    let text = text.replacen(
+        "\n[explanation]\n",
+        &format!("\n{props}\n[explanation]\n"),
+        1,
+    );
+    std::fs::write(&toml, text).unwrap();
+    let (code, r, file) = verify_json(d.to_str().unwrap(), "ltl-explained-among-report");
+    assert_eq!(code, 1, "{r:#}");
+    let status = |id: &str| {
+        r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["id"] == id)
+            .unwrap_or_else(|| panic!("{id}: {r:#}"))["status"]
+            .clone()
+    };
+    assert_eq!(status("property:told_of_puts"), "pass");
+    assert_eq!(status("property:never_told_of_picks"), "pass");
+    assert_eq!(status("property:never_told_of_puts"), "fail");
+    let o = bdi_check(&[
+        "replay",
+        file.to_str().unwrap(),
+        "--finding",
+        "property:never_told_of_puts",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+}

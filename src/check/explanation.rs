@@ -1448,6 +1448,86 @@ pub fn counterexample<W: Runs>(
     }
 }
 
+/// The run of a run property's violation on a user's explanation search (`check::runs`):
+/// each step the transition at the position the product took, then the loop if there is
+/// one, with the explanations the user got in place. Among several agents, every step
+/// names its agent (an explanation, the robot).
+pub(crate) fn counterexample_via<W: Runs>(
+    project: &Project,
+    model: &Explained<W>,
+    graph: &Graph<ExplainedState<W::State>>,
+    v: &super::runs::Violation,
+) -> Counterexample {
+    let user = model.user;
+    let agents = model.runs.agents();
+    let names = model.runs.names();
+    let name = |k: usize| names.map(|n| n[k].clone());
+    let mut labels: Vec<Step<W::Notes>> = Vec::new();
+    let mut initial = Vec::new();
+    let mut loop_label = None;
+    if let Some(mut walk) = v.path.first().and_then(|&i| Walk::start(model, graph, i)) {
+        initial = model
+            .runs
+            .world(&walk.state.state)
+            .iter()
+            .map(|a| project.atoms.display(a, &project.universe))
+            .collect();
+        for (&j, &k) in v.path[1..].iter().zip(&v.path_via) {
+            labels.extend(walk.step_by(k, graph.fingerprint(j), |_| true));
+        }
+        if v.cycle.len() >= 2 {
+            loop_label = Some(labels.len());
+            for (&j, &k) in v.cycle[1..].iter().zip(&v.cycle_via) {
+                labels.extend(walk.step_by(k, graph.fingerprint(j), |_| true));
+            }
+        }
+    }
+    let mut builders: Vec<Builder> = agents
+        .iter()
+        .map(|sem| Builder::new(sem.project, sem))
+        .collect();
+    let mut steps: Vec<TraceStep> = Vec::new();
+    let mut requests = Vec::new();
+    let mut loop_start = None;
+    for (at, l) in labels.iter().enumerate() {
+        if Some(at) == loop_label {
+            loop_start = Some(steps.len());
+        }
+        let mover = l.agent as usize;
+        for (i, note) in l.notes.notes().enumerate() {
+            if let Note::Request { index } = note {
+                requests.push(agents[mover].requests[*index as usize].to_string());
+            }
+            if let Some(g) = l.given_at(i) {
+                let text = g.text(model.ex);
+                steps.push(TraceStep {
+                    kind: StepKindTag::Explanation,
+                    text: format!("to {}: {text} {}", user.name, g.content),
+                    intention: None,
+                    plan: None,
+                    added: Vec::new(),
+                    removed: Vec::new(),
+                    explanation: Some(text),
+                    agent: name(model.runs.robot()),
+                });
+            }
+            let b = &mut builders[mover];
+            let before = b.steps().len();
+            b.push(vec![note.clone()]);
+            for mut st in b.steps()[before..].iter().cloned() {
+                st.agent = name(mover);
+                steps.push(st);
+            }
+        }
+    }
+    Counterexample {
+        initial,
+        requests,
+        steps,
+        loop_start,
+    }
+}
+
 /// The explanation properties for every user of the manifest, on the runs of one agent:
 /// one finding per property and user when it holds (or is undecided), one per property,
 /// user and place when it fails. Nothing when the manifest has no `[explanation]` users.

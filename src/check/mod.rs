@@ -330,6 +330,30 @@ pub fn verify_with(
             });
         }
     }
+    // Run properties about explanations: on their user's explanation search, exact.
+    let mut user_phases = Vec::new();
+    if let Some(atoms) = &run_atoms {
+        let mut users: Vec<&str> = run_props.iter().filter_map(|p| p.user.as_deref()).collect();
+        users.sort_unstable();
+        users.dedup();
+        for u in users {
+            let props: Vec<&crate::model::property::RunProperty> = run_props
+                .iter()
+                .filter(|p| p.user.as_deref() == Some(u))
+                .collect();
+            let (found, phase) = user_runs(
+                project,
+                &sem,
+                u,
+                &props,
+                atoms,
+                (limits, &search),
+                &mut progress,
+            )?;
+            findings.extend(found);
+            user_phases.push(phase);
+        }
+    }
     // The explanation properties: one more search per user, each state paired with the
     // user's expected successors.
     let explore_opts = explore::Options {
@@ -363,11 +387,99 @@ pub fn verify_with(
     };
     v.stats.phases.extend(exact_phase);
     v.stats.phases.extend(run_phase);
+    v.stats.phases.extend(user_phases);
     v.stats.phases.extend(phases);
     if unchecked {
         v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
     }
     Ok(v)
+}
+
+/// The run properties `props` about the explanations `user` gets: decided on that user's
+/// explanation search (exact, with its edges), with one finding each, and the phase.
+fn user_runs(
+    project: &Project,
+    sem: &Semantics,
+    user: &str,
+    props: &[&crate::model::property::RunProperty],
+    atoms: &runs::RunAtoms,
+    (limits, opts): (Limits, &Options),
+    progress: &mut impl FnMut(&str, usize, u32, f64),
+) -> Result<(Vec<Finding>, crate::findings::Phase), Vec<Diagnostic>> {
+    use std::collections::HashMap;
+    let t = std::time::Instant::now();
+    let users = crate::explain::agent::users(project, Some(user))?;
+    let ex = crate::explain::agent::Explainer::new(project, sem);
+    let model = explanation::Explained::new(sem, &ex, &users[0], None);
+    let mut letters: Vec<u32> = Vec::new();
+    let mut letter_table: Vec<runs::Letter> = Vec::new();
+    let mut letter_ids: HashMap<runs::Letter, u32> = HashMap::new();
+    let mut idle: Vec<u64> = Vec::new();
+    let mut steps: HashMap<(u32, u32), runs::Letter> = HashMap::new();
+    let phase = format!("ltl search:{user}");
+    let graph = explore::explore_with(
+        &model,
+        limits,
+        opts,
+        |s: &explanation::ExplainedState| (atoms.state_letter(&s.state), s.state.is_idle()),
+        |i, (letter, is_idle)| {
+            let next = letter_table.len() as u32;
+            let id = *letter_ids.entry(letter.clone()).or_insert(next);
+            if id == next {
+                letter_table.push(letter);
+            }
+            letters.push(id);
+            search::set_bit(&mut idle, i, is_idle);
+        },
+        |src, k, label: &explanation::Step, _| {
+            let did = atoms.step_letter(0, label.notes.iter());
+            let told = atoms.explained_letter(
+                (0..label.notes.len()).filter_map(|i| label.given_at(i).map(|g| &g.action)),
+            );
+            let l = match (did, told) {
+                (Some(mut a), Some(b)) => {
+                    a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
+                    Some(a)
+                }
+                (a, b) => a.or(b),
+            };
+            if let Some(l) = l {
+                steps.insert((src, k), l);
+            }
+        },
+        |n, d, t| progress(&phase, n, d, t),
+    );
+    let succ = |i: u32| graph.successors(i);
+    let may_end =
+        |i: u32| search::bit(&idle, i) || graph.successors(i).is_some_and(|e| e.is_empty());
+    let recorded = runs::RunFacts {
+        len: graph.len() as u32,
+        initial: graph.initial as u32,
+        successors: &succ,
+        may_end: &may_end,
+        letters: &letters,
+        letter_table: &letter_table,
+        steps: &steps,
+        fairness: None,
+    };
+    let runs = "every run (each fair to the intentions: Jason's round-robin selection)";
+    let mut reached = 0;
+    let mut out = Vec::new();
+    for p in props {
+        let (status, message, v) =
+            runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
+        let at = (p.span, project.map.location(p.span));
+        let mut f = checker::dynamic_finding("property", &p.name, at, status, String::new());
+        f.message = message;
+        f.counterexample = v.map(|v| explanation::counterexample_via(project, &model, &graph, &v));
+        out.push(f);
+    }
+    let phase = crate::findings::Phase {
+        name: phase,
+        seconds: t.elapsed().as_secs_f64(),
+        states: Some(graph.len()),
+    };
+    Ok((out, phase))
 }
 
 /// The agent's search, on the compiled cycle when there is one, with `agent`'s symmetry.

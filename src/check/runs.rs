@@ -43,6 +43,8 @@ enum Eval {
     Requested(u64),
     /// An action pattern of an agent.
     Did(u8, Term),
+    /// An action pattern an explanation to the user is about.
+    Explained(Term),
 }
 
 impl RunAtoms {
@@ -63,6 +65,7 @@ impl RunAtoms {
                         .fold(0u64, |m, (i, _)| m | 1 << i),
                 ),
                 Atomic::Did(k, a) => Eval::Did(*k, a.clone()),
+                Atomic::Explained(a) => Eval::Explained(a.clone()),
             })
             .collect::<Vec<_>>();
         RunAtoms {
@@ -108,13 +111,32 @@ impl RunAtoms {
                         .any(|t| unifier(g, t).is_some())
                 }),
                 Eval::Requested(mask) => pending & mask != 0,
-                Eval::Did(..) => false,
+                Eval::Did(..) | Eval::Explained(_) => false,
             };
             if holds {
                 out[j / 64] |= 1 << (j % 64);
             }
         }
         out
+    }
+
+    /// The `explained` propositions a transition that explained these actions to the user
+    /// makes true, if any.
+    pub(crate) fn explained_letter<'t>(
+        &self,
+        actions: impl Iterator<Item = &'t Term>,
+    ) -> Option<Letter> {
+        let mut out: Letter = smallvec::smallvec![0; self.words];
+        let mut any = false;
+        for t in actions {
+            for (j, e) in self.evals.iter().enumerate() {
+                if matches!(e, Eval::Explained(a) if unifier(a, t).is_some()) {
+                    out[j / 64] |= 1 << (j % 64);
+                    any = true;
+                }
+            }
+        }
+        any.then_some(out)
     }
 
     /// The `did` propositions a transition of `agent` (0 when there is one) with these
@@ -801,7 +823,8 @@ impl Checker<'_> {
     /// One finding per property decided on runs; returns the product states searched.
     pub(super) fn runs(&self, out: &mut Vec<Finding>, props: &[RunProperty]) -> usize {
         let mut reached = 0;
-        for p in props {
+        // Those about explanations are decided on their user's search (`verify_with`).
+        for p in props.iter().filter(|p| p.user.is_none()) {
             out.push(self.run_property(p, &mut reached));
         }
         reached

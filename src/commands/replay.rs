@@ -422,6 +422,9 @@ fn replay_one(
     }
     if f.check == "property" {
         if let Some(p) = run_property(project, f) {
+            if p.user.is_some() {
+                return replay_run_explained(project, sem, f, c, &p, state);
+            }
             return replay_run(project, sem, f, c, &p, state, walked);
         }
     }
@@ -539,10 +542,6 @@ fn run_property(project: &Project, f: &FindingIn) -> Option<crate::model::proper
     props.into_iter().find(|p| p.name == name)
 }
 
-/// Most steps a replayed run of a run property is extended by (first successors) to close
-/// a loop after its recorded steps.
-const MAX_EXTENSION: usize = 10_000;
-
 /// Replays a finding of a property decided on runs: follows the recorded steps, then
 /// closes the run into a lasso (the recorded loop when the run comes back to its entry;
 /// otherwise the run ends where the agent is idle or stuck, or goes on by first successors
@@ -557,7 +556,7 @@ fn replay_run(
     start: State,
     walked: &mut Vec<Walked>,
 ) -> Replayed {
-    use crate::check::runs::{violated_on, RunAtoms};
+    use crate::check::runs::RunAtoms;
     let no = |detail: &str| Replayed::missed(&f.id, detail);
     if p.kind == crate::syntax::manifest::PropertyKind::Reachable {
         return no("a `reachable` property's run is a witness, not a violation");
@@ -581,59 +580,166 @@ fn replay_run(
         shown(project, sem, n)
     })
     .unwrap_or_default();
-    let mut letters = vec![atoms.state_letter(&start)];
+    let lasso = close_lasso(
+        start,
+        &picks,
+        &next,
+        &|s: &State, succ: usize| s.is_idle() || succ == 0,
+        &|s: &State| atoms.state_letter(s),
+        &|n: &Vec<Note>| atoms.step_letter(0, n.iter()),
+        &mut |n: &Vec<Note>, s: &State| {
+            walked.push(Walked {
+                notes: n.clone(),
+                state: s.clone(),
+            })
+        },
+    );
+    decide_lasso(f, p, lasso)
+}
+
+/// Replays a run property about a user's explanations (`explained`) on that user's
+/// explanation search, as [`replay_run`] does on the agent's.
+fn replay_run_explained(
+    project: &Project,
+    sem: &Semantics,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    p: &crate::model::property::RunProperty,
+    start: State,
+) -> Replayed {
+    use crate::check::explanation::{Explained, ExplainedState};
+    use crate::check::model::Model;
+    use crate::check::runs::RunAtoms;
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    let Some(user) = p.user.as_deref() else {
+        return no("the property names no user");
+    };
+    let (Ok(users), Ok((_, atomics))) = (
+        crate::explain::agent::users(project, Some(user)),
+        crate::model::property::compile(project),
+    ) else {
+        return no("the project no longer has the property's user or properties");
+    };
+    let atoms = RunAtoms::new(&atomics, sem);
+    let ex = crate::explain::agent::Explainer::new(project, sem);
+    let model = Explained::new(sem, &ex, &users[0], None);
+    let Some(first) = model.init_states().find(|s| s.state == start) else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    // Explanations are the checker's: follow the agent's steps only.
+    let recorded: Vec<(&str, &str)> = c
+        .steps
+        .iter()
+        .filter(|s| s.kind != "explanation")
+        .map(|s| (s.kind.as_str(), s.text.as_str()))
+        .collect();
+    let next = |s: &ExplainedState| model.next_states(s);
+    let picks = find_run(&first, &recorded, &next, &|step: &ExplainedStep| {
+        shown(project, sem, &step.notes)
+    })
+    .unwrap_or_default();
+    let step_letter = |l: &ExplainedStep| {
+        let did = atoms.step_letter(0, l.notes.iter());
+        let given = (0..l.notes.len()).filter_map(|i| l.given_at(i).map(|g| &g.action));
+        let told = atoms.explained_letter(given);
+        match (did, told) {
+            (Some(mut a), Some(b)) => {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
+                Some(a)
+            }
+            (a, b) => a.or(b),
+        }
+    };
+    let lasso = close_lasso(
+        first,
+        &picks,
+        &next,
+        &|s: &ExplainedState, succ: usize| s.state.is_idle() || succ == 0,
+        &|s: &ExplainedState| atoms.state_letter(&s.state),
+        &step_letter,
+        &mut |_, _| {},
+    );
+    decide_lasso(f, p, lasso)
+}
+
+/// Most steps a replayed run of a run property is extended by (first successors) to close
+/// a loop after its recorded steps.
+const MAX_EXTENSION: usize = 10_000;
+
+/// A run of a run property replayed: from `start`, the transitions `picks` (positions among
+/// `next`'s), then closed into a lasso: the run comes back to a state it was in (the
+/// recorded loop), or ends where `ends` says a run may (it repeats its last state), or goes
+/// on by first successors until a state repeats. The letters of its positions (each
+/// state's with its step's) and the position the repetition starts at.
+#[allow(clippy::type_complexity)]
+fn close_lasso<S: Clone + std::hash::Hash, L>(
+    start: S,
+    picks: &[usize],
+    next: &dyn Fn(&S) -> Vec<(L, S)>,
+    ends: &dyn Fn(&S, usize) -> bool,
+    letter: &dyn Fn(&S) -> crate::check::runs::Letter,
+    step: &dyn Fn(&L) -> Option<crate::check::runs::Letter>,
+    on_step: &mut dyn FnMut(&L, &S),
+) -> Result<(Vec<crate::check::runs::Letter>, usize), &'static str> {
+    let mut letters = vec![letter(&start)];
     let mut seen: HashMap<u64, usize> = HashMap::from([(fingerprint(&start), 0)]);
     let mut state = start;
     let mut taken = 0usize;
     let followed = picks.len();
-    let loop_at = loop {
-        let pick = if taken < followed {
-            Some(picks[taken])
-        } else {
-            None
-        };
-        let succ = sem.successors(&state);
-        let pick = match pick {
-            Some(k) => k,
+    loop {
+        let mut succ = next(&state);
+        let pick = match picks.get(taken) {
+            Some(&k) => k,
             None => {
-                if state.is_idle() || succ.is_empty() {
+                if ends(&state, succ.len()) {
                     // The run ends here and stays: its last state repeats.
-                    letters.push(atoms.state_letter(&state));
-                    break letters.len() - 1;
+                    letters.push(letter(&state));
+                    let at = letters.len() - 1;
+                    return Ok((letters, at));
                 }
                 if taken >= followed + MAX_EXTENSION {
-                    return no("the run does not close into a loop within the replay's bound");
+                    return Err("the run does not close into a loop within the replay's bound");
                 }
                 0
             }
         };
-        let Some(t) = succ.get(pick) else {
-            return no("the recorded run is no longer possible");
-        };
-        let mut l = atoms.state_letter(&t.next);
-        if let Some(d) = atoms.step_letter(0, t.notes.iter()) {
+        if pick >= succ.len() {
+            return Err("the recorded run is no longer possible");
+        }
+        let (label, t) = succ.swap_remove(pick);
+        let mut l = letter(&t);
+        if let Some(d) = step(&label) {
             for (w, x) in l.iter_mut().zip(d) {
                 *w |= x;
             }
         }
         letters.push(l);
-        walked.push(Walked {
-            notes: t.notes.clone(),
-            state: t.next.clone(),
-        });
-        state = t.next.clone();
+        on_step(&label, &t);
+        state = t;
         taken += 1;
         let fp = fingerprint(&state);
         if let Some(&e) = seen.get(&fp) {
             if taken >= followed {
                 // Back in the state of position `e`: from here the run repeats positions
                 // e+1 ..= this one (the step into this one is the loop's last).
-                break e + 1;
+                return Ok((letters, e + 1));
             }
         }
         seen.entry(fp).or_insert(letters.len() - 1);
+    }
+}
+
+/// Whether the replayed lasso violates the run property.
+fn decide_lasso(
+    f: &FindingIn,
+    p: &crate::model::property::RunProperty,
+    lasso: Result<(Vec<crate::check::runs::Letter>, usize), &'static str>,
+) -> Replayed {
+    let (letters, loop_at) = match lasso {
+        Ok(x) => x,
+        Err(why) => return Replayed::missed(&f.id, why),
     };
-    match violated_on(p, &letters, loop_at) {
+    match crate::check::runs::violated_on(p, &letters, loop_at) {
         Some(binding) => Replayed {
             id: f.id.clone(),
             reached: true,
@@ -646,7 +752,7 @@ fn replay_run(
                 )
             },
         },
-        None => no("the property now holds on this run"),
+        None => Replayed::missed(&f.id, "the property now holds on this run"),
     }
 }
 
@@ -737,6 +843,92 @@ fn replay_system_explained(
             .collect()
     };
     replay_explained_in(project, &model, f, start, &recorded, &shown, |_, _| {})
+}
+
+/// [`replay_run_explained`] among several agents: on the user's explanation search of
+/// every interleaving. (The loop's fairness to the agents is the search's; it is not
+/// checked again here.)
+fn replay_system_run_explained(
+    agents: &[Project],
+    system: &crate::semantics::System,
+    f: &FindingIn,
+    c: &CounterexampleIn,
+    p: &crate::model::property::RunProperty,
+    start: crate::semantics::SystemState,
+) -> Replayed {
+    use crate::check::explanation::{robot_of, Among, Explained, ExplainedState};
+    use crate::check::model::Model;
+    use crate::check::runs::RunAtoms;
+    use crate::semantics::SystemState;
+    let no = |detail: &str| Replayed::missed(&f.id, detail);
+    let Some(user) = p.user.as_deref() else {
+        return no("the property names no user");
+    };
+    let robot = robot_of(agents);
+    let (Ok(users), Ok((_, atomics))) = (
+        crate::explain::agent::users(&agents[robot], Some(user)),
+        crate::model::property::compile_in(&agents[0], system.names()),
+    ) else {
+        return no("the project no longer has the property's user or properties");
+    };
+    let atoms = RunAtoms::new(&atomics, &system.agents[0]);
+    let ex = crate::explain::agent::Explainer::new(&agents[robot], &system.agents[robot]);
+    let model = Explained::watching(Among { system, robot }, &ex, &users[0]);
+    let Some(first) = model.init_states().find(|s| s.state == start) else {
+        return no("its initial state is no longer an initial state of the project");
+    };
+    let kinds: Vec<String> = c
+        .steps
+        .iter()
+        .filter(|s| s.kind != "explanation")
+        .map(|s| format!("{}:{}", s.agent.as_deref().unwrap_or(""), s.kind))
+        .collect();
+    let recorded: Vec<(&str, &str)> = kinds
+        .iter()
+        .zip(c.steps.iter().filter(|s| s.kind != "explanation"))
+        .map(|(k, s)| (k.as_str(), s.text.as_str()))
+        .collect();
+    let shown = |step: &ExplainedStep| {
+        let k = step.agent as usize;
+        let name = &system.names()[k];
+        let mut b = Builder::new(&agents[k], &system.agents[k]);
+        b.push(step.notes.clone());
+        b.steps()
+            .iter()
+            .map(|s| (format!("{name}:{}", s.kind.name()), s.text.clone()))
+            .collect()
+    };
+    let next = |s: &ExplainedState<SystemState>| model.next_states(s);
+    let picks = find_run(&first, &recorded, &next, &shown).unwrap_or_default();
+    let step_letter = |l: &ExplainedStep| {
+        let did = atoms.step_letter(l.agent, l.notes.iter());
+        let given = (0..l.notes.len()).filter_map(|i| l.given_at(i).map(|g| &g.action));
+        let told = atoms.explained_letter(given);
+        match (did, told) {
+            (Some(mut a), Some(b)) => {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
+                Some(a)
+            }
+            (a, b) => a.or(b),
+        }
+    };
+    let done = |s: &ExplainedState<SystemState>, succ: usize| {
+        succ == 0
+            || (s.state.agents.iter().all(|a| a.is_idle())
+                && s.state.mail.iter().all(|m| m.is_empty()))
+    };
+    let lasso = close_lasso(
+        first,
+        &picks,
+        &next,
+        &done,
+        &|s: &ExplainedState<SystemState>| {
+            atoms.system_letter(&system.everything(&s.state), &s.state.agents)
+        },
+        &step_letter,
+        &mut |_, _| {},
+    );
+    decide_lasso(f, p, lasso)
 }
 
 /// A transition of the runs as a user sees them.
@@ -1309,6 +1501,13 @@ fn replay_system_one(
     };
     if crate::check::explanation::CHECKS.contains(&f.check.as_str()) {
         return replay_system_explained(agents, system, f, c, state);
+    }
+    if let Some(p) = (f.check == "property")
+        .then(|| system_run_property(project, system, f))
+        .flatten()
+        .filter(|p| p.user.is_some())
+    {
+        return replay_system_run_explained(agents, system, f, c, &p, state);
     }
     let check = Check::of(project, f, system.names());
     let kinds: Vec<String> = c

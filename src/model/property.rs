@@ -19,8 +19,12 @@
 //!
 //! The agent argument (`believes(ag, f)`) may be given in a project of one agent (it must
 //! name that agent) and must be given in a project of several ([`compile_in`]), where
-//! `ag::b` in a state formula is agent `ag`'s belief too. `explained(user, a)` is refused:
-//! the explanations are checked by their own searches.
+//! `ag::b` in a state formula is agent `ag`'s belief too.
+//!
+//! `explained(user, a)`: the step into this state gave the user `user` (of the manifest's
+//! `[explanation.users]`) an explanation of the action `a`. A property that uses it is
+//! decided on that user's explanation search (the runs with the user's expected
+//! successors), so it may name one user only.
 
 use super::atoms::AtomTable;
 use super::cond::Cond;
@@ -70,6 +74,9 @@ pub enum Atomic {
     /// The step into the state was the agent's, and executed an action that unifies with
     /// this one.
     Did(u8, Term),
+    /// The step into the state gave the user an explanation of an action that unifies
+    /// with this one.
+    Explained(Term),
 }
 
 /// The atomic propositions of every property of a project, numbered.
@@ -129,6 +136,8 @@ pub struct RunProperty {
     /// conjunction over the assignments), which `always`, `eventually` or `reachable`
     /// applies to.
     pub instances: Vec<Instance>,
+    /// The user whose explanation search decides it, when it uses `explained`.
+    pub user: Option<String>,
 }
 
 /// Whether a state formula uses a modality (and so is decided on runs).
@@ -190,12 +199,14 @@ pub fn compile_in(
             atoms: &project.atoms,
             agents,
         };
-        match c.property(p, &mut atomics) {
+        let mut user = None;
+        match c.property(p, &mut atomics, &mut user) {
             Ok(instances) => out.push(RunProperty {
                 name: p.name.value.clone(),
                 kind: p.kind,
                 span: p.formula.span,
                 instances,
+                user,
             }),
             Err(d) => errors.push(d),
         }
@@ -236,6 +247,7 @@ impl Compiler<'_> {
         &self,
         p: &crate::syntax::manifest::Property,
         atomics: &mut Atomics,
+        user: &mut Option<String>,
     ) -> Result<Vec<Instance>, Diagnostic> {
         let s = match &p.ltl {
             Some(l) => shape(l),
@@ -265,7 +277,7 @@ impl Compiler<'_> {
                 .map(|n| n.as_str())
                 .zip(objs.iter().copied())
                 .collect();
-            let formula = self.ground_shape(&s, &env, atomics)?;
+            let formula = self.ground_shape(&s, &env, atomics, user)?;
             let binding = names
                 .iter()
                 .zip(&objs)
@@ -333,22 +345,15 @@ impl Compiler<'_> {
                 self.infer_state(a, types)?;
                 self.infer_state(b, types)
             }
+            ExprKind::Literal(l) if l.functor == "explained" => {
+                let (_, a) = self.explained_args(l)?;
+                self.infer_action(a, types)
+            }
             ExprKind::Literal(l) if MODALITIES.contains(&l.functor.as_str()) => {
                 let (what, _, arg) = self.modal_arg(l)?;
                 match what {
                     "believes" | "holds" => self.infer_state(arg, types),
-                    "did" => {
-                        let ExprKind::Literal(a) = &arg.kind else {
-                            return Ok(());
-                        };
-                        if let Some((_, sig)) = self.project.vocabulary.action(&a.functor) {
-                            for (i, x) in a.args.iter().enumerate() {
-                                let ty = sig.params.get(sig.param_of_arg(i)).copied();
-                                self.type_var(x, ty, types)?;
-                            }
-                        }
-                        Ok(())
-                    }
+                    "did" => self.infer_action(arg, types),
                     _ => {
                         let ExprKind::Literal(g) = &arg.kind else {
                             return Ok(());
@@ -365,6 +370,65 @@ impl Compiler<'_> {
                 }
             }
             _ => Err(modal_inside(e)),
+        }
+    }
+
+    /// Types the variables of an action pattern from the PDDL action's parameters.
+    fn infer_action(
+        &self,
+        arg: &Expr,
+        types: &mut BTreeMap<String, TypeId>,
+    ) -> Result<(), Diagnostic> {
+        let ExprKind::Literal(a) = &arg.kind else {
+            return Ok(());
+        };
+        if let Some((_, sig)) = self.project.vocabulary.action(&a.functor) {
+            for (i, x) in a.args.iter().enumerate() {
+                let ty = sig.params.get(sig.param_of_arg(i)).copied();
+                self.type_var(x, ty, types)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `explained(user, a)`: the user (one of the manifest's) and the action pattern.
+    fn explained_args<'l>(&self, l: &'l Literal) -> Result<(String, &'l Expr), Diagnostic> {
+        let users: Vec<&str> = self
+            .project
+            .manifest
+            .explanation
+            .iter()
+            .flat_map(|e| e.users.iter().map(|u| u.name.value.as_str()))
+            .collect();
+        let [u, a] = l.args.as_slice() else {
+            return Err(Diagnostic::error(
+                "input",
+                "`explained` takes a user and an action: `explained(user, a)`",
+            )
+            .with_label(l.span, "wrong number of arguments"));
+        };
+        let named = match &u.kind {
+            ExprKind::Literal(x) if x.args.is_empty() => Some(x.functor.as_str()),
+            _ => None,
+        };
+        match named.filter(|n| users.contains(n)) {
+            Some(n) => Ok((n.to_string(), a)),
+            None => Err(Diagnostic::error(
+                "input",
+                format!(
+                    "`explained` names a user of `[explanation.users]`: {}",
+                    if users.is_empty() {
+                        "this project has none".to_string()
+                    } else {
+                        users
+                            .iter()
+                            .map(|u| format!("`{u}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    }
+                ),
+            )
+            .with_label(u.span, "no such user")),
         }
     }
 
@@ -487,11 +551,17 @@ impl Compiler<'_> {
         Ok((what, agent, arg))
     }
 
-    fn ground_shape(&self, s: &Shape, env: &Env, atomics: &mut Atomics) -> Result<Ltl, Diagnostic> {
+    fn ground_shape(
+        &self,
+        s: &Shape,
+        env: &Env,
+        atomics: &mut Atomics,
+        user: &mut Option<String>,
+    ) -> Result<Ltl, Diagnostic> {
         Ok(match s {
-            Shape::State(e) => self.ground_state(e, env, atomics)?,
+            Shape::State(e) => self.ground_state(e, env, atomics, user)?,
             Shape::Unary(op, a) => {
-                let a = self.ground_shape(a, env, atomics)?;
+                let a = self.ground_shape(a, env, atomics, user)?;
                 match op {
                     LtlUnary::Not => Ltl::not(a),
                     LtlUnary::Next => Ltl::next(a),
@@ -500,8 +570,8 @@ impl Compiler<'_> {
                 }
             }
             Shape::Binary(op, a, b) => {
-                let a = self.ground_shape(a, env, atomics)?;
-                let b = self.ground_shape(b, env, atomics)?;
+                let a = self.ground_shape(a, env, atomics, user)?;
+                let b = self.ground_shape(b, env, atomics, user)?;
                 match op {
                     LtlBinary::And => Ltl::and(a, b),
                     LtlBinary::Or => Ltl::or(a, b),
@@ -516,21 +586,40 @@ impl Compiler<'_> {
         })
     }
 
-    fn ground_state(&self, e: &Expr, env: &Env, atomics: &mut Atomics) -> Result<Ltl, Diagnostic> {
+    fn ground_state(
+        &self,
+        e: &Expr,
+        env: &Env,
+        atomics: &mut Atomics,
+        user: &mut Option<String>,
+    ) -> Result<Ltl, Diagnostic> {
         if !is_modal(e) {
             let c = ground_with(e, self.atoms, &self.project.universe, self.agents, env)?;
             return Ok(atomics.intern(Atomic::Beliefs(c)));
         }
         Ok(match &e.kind {
-            ExprKind::Not(a) => Ltl::not(self.ground_state(a, env, atomics)?),
+            ExprKind::Not(a) => Ltl::not(self.ground_state(a, env, atomics, user)?),
             ExprKind::And(a, b) => Ltl::and(
-                self.ground_state(a, env, atomics)?,
-                self.ground_state(b, env, atomics)?,
+                self.ground_state(a, env, atomics, user)?,
+                self.ground_state(b, env, atomics, user)?,
             ),
             ExprKind::Or(a, b) => Ltl::or(
-                self.ground_state(a, env, atomics)?,
-                self.ground_state(b, env, atomics)?,
+                self.ground_state(a, env, atomics, user)?,
+                self.ground_state(b, env, atomics, user)?,
             ),
+            ExprKind::Literal(l) if l.functor == "explained" => {
+                let (u, a) = self.explained_args(l)?;
+                if user.as_ref().is_some_and(|x| *x != u) {
+                    return Err(Diagnostic::error(
+                        "input",
+                        "a property may name one user in `explained`: it is decided on that user's explanation search",
+                    )
+                    .with_label(l.span, "a second user"));
+                }
+                *user = Some(u);
+                let t = self.ground_term(a, env)?;
+                atomics.intern(Atomic::Explained(t))
+            }
             ExprKind::Literal(l) if MODALITIES.contains(&l.functor.as_str()) => {
                 let (what, agent, arg) = self.modal_arg(l)?;
                 match what {

@@ -550,7 +550,8 @@ pub fn verify_system(
             "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
         };
         let mut reached = 0;
-        for p in &run_props {
+        // Those about explanations are decided on their user's search (below).
+        for p in run_props.iter().filter(|p| p.user.is_none()) {
             let (status, message, v) =
                 super::runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
             let mut x = cx.finding("property", &p.name, p.span, status, String::new());
@@ -563,6 +564,29 @@ pub fn verify_system(
             seconds: t.elapsed().as_secs_f64(),
             states: Some(reached),
         });
+    }
+    let mut user_phases = Vec::new();
+    if let Some(atoms) = &run_atoms {
+        let mut users: Vec<&str> = run_props.iter().filter_map(|p| p.user.as_deref()).collect();
+        users.sort_unstable();
+        users.dedup();
+        for u in users {
+            let props: Vec<&crate::model::property::RunProperty> = run_props
+                .iter()
+                .filter(|p| p.user.as_deref() == Some(u))
+                .collect();
+            let (found, phase) = user_runs_among(
+                projects,
+                &system,
+                u,
+                &props,
+                atoms,
+                (limits, &opts),
+                &mut progress,
+            )?;
+            findings.extend(found);
+            user_phases.push(phase);
+        }
     }
     let reduced = graph.reduced > 0 || active.is_some();
     if reduced && !(graph.complete() && liveness::acyclic(&graph)) {
@@ -740,6 +764,7 @@ pub fn verify_system(
     all.extend(explained);
     let mut v = Verification::of(&graph, project, all);
     v.stats.phases.extend(ltl_phase);
+    v.stats.phases.extend(user_phases);
     if let Some((states, seconds)) = liveness_search {
         let st = &mut v.stats;
         st.liveness_states = Some(states);
@@ -775,6 +800,135 @@ struct Cx<'a> {
 struct Run {
     states: Vec<SystemState>,
     steps: Vec<Step>,
+}
+
+/// The run properties `props` about the explanations `user` gets, watching the robot among
+/// the agents: decided on that user's explanation search of every interleaving (exact,
+/// with its edges; loops fair to the agents as the manifest says).
+#[allow(clippy::type_complexity)]
+fn user_runs_among(
+    projects: &[Project],
+    system: &System,
+    user: &str,
+    props: &[&crate::model::property::RunProperty],
+    atoms: &super::runs::RunAtoms,
+    (limits, opts): (Limits, &Options),
+    progress: &mut impl FnMut(&str, usize, u32, f64),
+) -> Result<(Vec<Finding>, crate::findings::Phase), Vec<Diagnostic>> {
+    use super::explanation::{Among, Explained, ExplainedState, Step};
+    let t = std::time::Instant::now();
+    let robot = super::explanation::robot_of(projects);
+    let users = crate::explain::agent::users(&projects[robot], Some(user))?;
+    let ex = crate::explain::agent::Explainer::new(&projects[robot], &system.agents[robot]);
+    let model = Explained::watching(Among { system, robot }, &ex, &users[0]);
+    let mut letters: Vec<u32> = Vec::new();
+    let mut letter_table: Vec<super::runs::Letter> = Vec::new();
+    let mut letter_ids: HashMap<super::runs::Letter, u32> = HashMap::new();
+    let mut busy: Vec<u64> = Vec::new();
+    let mut moves: Vec<Vec<Option<u8>>> = Vec::new();
+    let mut steps: HashMap<(u32, u32), super::runs::Letter> = HashMap::new();
+    let phase = format!("ltl search:{user}");
+    let opts = Options {
+        keep_edges: true,
+        ..*opts
+    };
+    let graph = explore_with(
+        &model,
+        limits,
+        &opts,
+        |s: &ExplainedState<SystemState>| {
+            (
+                atoms.system_letter(&system.everything(&s.state), &s.state.agents),
+                busy_agents(&s.state),
+            )
+        },
+        |i, (letter, b)| {
+            let next = letter_table.len() as u32;
+            let id = *letter_ids.entry(letter.clone()).or_insert(next);
+            if id == next {
+                letter_table.push(letter);
+            }
+            letters.push(id);
+            if busy.len() <= i as usize {
+                busy.resize(i as usize + 1, 0);
+            }
+            busy[i as usize] = b;
+        },
+        |src, k, label: &Step, _| {
+            let at = src as usize;
+            if moves.len() <= at {
+                moves.resize(at + 1, Vec::new());
+            }
+            moves[at].push(match label.notes.as_slice() {
+                [Note::Request { .. }] => None,
+                _ => Some(label.agent),
+            });
+            let did = atoms.step_letter(label.agent, label.notes.iter());
+            let given = (0..label.notes.len()).filter_map(|i| label.given_at(i).map(|g| &g.action));
+            let told = atoms.explained_letter(given);
+            let l = match (did, told) {
+                (Some(mut a), Some(b)) => {
+                    a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
+                    Some(a)
+                }
+                (a, b) => a.or(b),
+            };
+            if let Some(l) = l {
+                steps.insert((src, k), l);
+            }
+        },
+        |n, d, t| progress(&phase, n, d, t),
+    );
+    moves.resize(graph.len(), Vec::new());
+    busy.resize(graph.len(), 0);
+    let fair = projects[0].manifest.bounds.fair_agents;
+    let succ = |i: u32| graph.successors(i);
+    let may_end =
+        |i: u32| graph.successors(i).is_some_and(|e| e.is_empty()) || busy[i as usize] == 0;
+    let enabled = |i: u32| {
+        moves[i as usize]
+            .iter()
+            .flatten()
+            .fold(0u64, |b, &a| b | 1 << a)
+    };
+    let mover = |i: u32, k: u32| moves[i as usize].get(k as usize).copied().flatten();
+    let recorded = super::runs::RunFacts {
+        len: graph.len() as u32,
+        initial: graph.initial as u32,
+        successors: &succ,
+        may_end: &may_end,
+        letters: &letters,
+        letter_table: &letter_table,
+        steps: &steps,
+        fairness: fair.then_some(super::runs::Fairness {
+            agents: system.names().len() as u8,
+            enabled: &enabled,
+            mover: &mover,
+        }),
+    };
+    let runs = if fair {
+        "every run fair to the agents (and to each one's intentions)"
+    } else {
+        "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
+    };
+    let mut reached = 0;
+    let mut out = Vec::new();
+    for p in props {
+        let (status, message, v) =
+            super::runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
+        let at = (p.span, projects[0].map.location(p.span));
+        let mut f = super::checker::dynamic_finding("property", &p.name, at, status, String::new());
+        f.message = message;
+        f.counterexample =
+            v.map(|v| super::explanation::counterexample_via(&projects[robot], &model, &graph, &v));
+        out.push(f);
+    }
+    let phase = crate::findings::Phase {
+        name: phase,
+        seconds: t.elapsed().as_secs_f64(),
+        states: Some(graph.len()),
+    };
+    Ok((out, phase))
 }
 
 /// The key a failure is reported under, per agent (its index first): the file, start and
