@@ -1143,3 +1143,145 @@ mod tests {
         assert!(found > 300 && held > 300, "{found} violated, {held} held");
     }
 }
+
+/// On a project rather than random graphs: `verify`'s verdict on each `ltl` property equals
+/// a check of every lasso of the agent's runs, each judged by LTL's own semantics (the
+/// project is small enough to enumerate every run up to its loops).
+#[cfg(test)]
+mod on_a_project {
+    use super::*;
+    use crate::semantics::State;
+
+    const FORMULAS: &[&str] = &[
+        "[] .count(robotAt(_), 1)",
+        "[] robotAt(table)",
+        "<> not dirty(table)",
+        "requested(wipeTable) ~> not dirty(table)",
+        "requested(rest) ~> not dirty(table)",
+        "dirty(table) U did(wipe(table))",
+        "dirty(table) W did(wipe(table))",
+        "did(wipe(table)) R dirty(table)",
+        "X robotAt(table)",
+        "[] (did(navigateTo(table)) -> X robotAt(cupboard))",
+        "[] (intends(wipeTable) -> requested(wipeTable))",
+        "<> intends(rest)",
+        "[] not desires(rest)",
+        "<> [] (robotAt(table) | robotAt(cupboard))",
+    ];
+
+    /// A patrol that never ends: its runs loop.
+    const LOOPING: &[&str] = &[
+        "<> [] robotAt(table)",
+        "[] <> robotAt(dishwasher)",
+        "[] (did(navigateTo(table)) -> X did(navigateTo(dishwasher)))",
+        "[] (robotAt(table) -> <> robotAt(dishwasher))",
+        "requested(patrol) U did(navigateTo(dishwasher))",
+        "<> not requested(patrol)",
+        "[] (intends(patrol) | not requested(patrol))",
+    ];
+
+    #[test]
+    fn verify_agrees_with_every_lasso_of_a_projects_runs() {
+        // Runs that end, and runs that loop for ever.
+        assert!(lassos_agree("tests/verify/ltl_table", FORMULAS) >= 3);
+        assert!(lassos_agree("tests/verify/livelock", LOOPING) >= 2);
+    }
+
+    /// Checks `formulas` on the project `base` both ways; the lassos enumerated.
+    fn lassos_agree(base: &str, formulas: &[&str]) -> usize {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let dir = std::env::temp_dir().join(format!(
+            "bdi-check-runs-lassos-{}-{}",
+            std::process::id(),
+            base.replace('/', "-")
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        let base = root.join(base);
+        std::fs::copy(base.join("agent.asl"), dir.join("agent.asl")).unwrap();
+        let manifest = std::fs::read_to_string(base.join("bdi-check.toml"))
+            .unwrap()
+            .replace("\"../../../specs/", &format!("\"{}/specs/", root.display()));
+        let props: String = formulas
+            .iter()
+            .enumerate()
+            .map(|(i, f)| format!("[[property]]\nname = \"p{i}\"\nltl = \"{f}\"\n"))
+            .collect();
+        std::fs::write(dir.join("bdi-check.toml"), format!("{manifest}\n{props}")).unwrap();
+        let project = crate::model::project::load_project(&dir).unwrap_or_else(|e| panic!("{e:?}"));
+        let limits = super::super::explore::Limits {
+            max_states: 100_000,
+            max_depth: 1_000,
+            timeout: None,
+        };
+        let v =
+            super::super::verify_with(&project, limits, &Default::default(), |_, _, _, _| {}, &[])
+                .unwrap_or_else(|e| panic!("{e:?}"));
+        let sem = crate::semantics::Semantics::new(&project).unwrap_or_else(|e| panic!("{e:?}"));
+        let (props, atomics) = crate::model::property::compile(&project).unwrap();
+        let atoms = RunAtoms::new(&atomics, &sem);
+        let mut violated = vec![false; props.len()];
+        let mut judge = |letters: &[Letter], at: usize| {
+            for (j, p) in props.iter().enumerate() {
+                if violated_on(p, letters, at).is_some() {
+                    violated[j] = true;
+                }
+            }
+        };
+        // Depth first over runs; a run closes where it may end (it stays) or where a state
+        // repeats (the path since repeats).
+        let mut stack: Vec<(Vec<State>, Vec<Letter>)> = sem
+            .initial_states()
+            .into_iter()
+            .map(|s| {
+                let l = atoms.state_letter(&s);
+                (vec![s], vec![l])
+            })
+            .collect();
+        let mut lassos = 0;
+        while let Some((states, letters)) = stack.pop() {
+            let last = states.last().expect("a state");
+            let succ = sem.successors(last);
+            if last.is_idle() || succ.is_empty() {
+                let mut l = letters.clone();
+                l.push(atoms.state_letter(last));
+                let at = l.len() - 1;
+                judge(&l, at);
+                lassos += 1;
+            }
+            assert!(states.len() < 64, "runs this long: the project has grown");
+            for t in succ {
+                let mut l = letters.clone();
+                let mut x = atoms.state_letter(&t.next);
+                if let Some(d) = atoms.step_letter(0, t.notes.iter()) {
+                    x.iter_mut().zip(d).for_each(|(w, y)| *w |= y);
+                }
+                l.push(x);
+                if let Some(e) = states.iter().position(|s| *s == t.next) {
+                    judge(&l, e + 1);
+                    lassos += 1;
+                    continue;
+                }
+                let mut s2 = states.clone();
+                s2.push(t.next);
+                stack.push((s2, l));
+            }
+        }
+        for (j, p) in props.iter().enumerate() {
+            let f = v
+                .findings
+                .iter()
+                .find(|f| f.id == format!("property:{}", p.name))
+                .expect("a finding per property");
+            assert_eq!(
+                f.status == Status::Fail,
+                violated[j],
+                "{}: verify says {}",
+                formulas[j],
+                f.message
+            );
+        }
+        assert!(violated.iter().any(|&x| x) && violated.iter().any(|&x| !x));
+        let _ = std::fs::remove_dir_all(&dir);
+        lassos
+    }
+}
