@@ -1383,10 +1383,6 @@ pub fn counterexample<W: Runs>(
     (src, k, fp): Shown,
     v: &Violation,
 ) -> Counterexample {
-    let user = model.user;
-    let agents = model.runs.agents();
-    let names = model.runs.names();
-    let name = |k: usize| names.map(|n| n[k].clone());
     let path = graph.path_to(src);
     let mut labels: Vec<Step<W::Notes>> = Vec::new();
     let mut initial = Vec::new();
@@ -1406,40 +1402,7 @@ pub fn counterexample<W: Runs>(
                 .any(|w| w.check == v.check && w.span == v.span)
         }));
     }
-    let mut builders: Vec<Builder> = agents
-        .iter()
-        .map(|sem| Builder::new(sem.project, sem))
-        .collect();
-    let mut steps: Vec<TraceStep> = Vec::new();
-    let mut requests = Vec::new();
-    for l in labels {
-        let mover = l.agent as usize;
-        for (i, note) in l.notes.notes().enumerate() {
-            if let Note::Request { index } = note {
-                requests.push(agents[mover].requests[*index as usize].to_string());
-            }
-            if let Some(g) = l.given_at(i) {
-                let text = g.text(model.ex);
-                steps.push(TraceStep {
-                    kind: StepKindTag::Explanation,
-                    text: format!("to {}: {text} {}", user.name, g.content),
-                    intention: None,
-                    plan: None,
-                    added: Vec::new(),
-                    removed: Vec::new(),
-                    explanation: Some(text),
-                    agent: name(model.runs.robot()),
-                });
-            }
-            let b = &mut builders[mover];
-            let before = b.steps().len();
-            b.push(vec![note.clone()]);
-            for mut st in b.steps()[before..].iter().cloned() {
-                st.agent = name(mover);
-                steps.push(st);
-            }
-        }
-    }
+    let (requests, steps, _) = render(model, &labels, None);
     Counterexample {
         initial,
         requests,
@@ -1458,10 +1421,6 @@ pub(crate) fn counterexample_via<W: Runs>(
     graph: &Graph<ExplainedState<W::State>>,
     v: &super::runs::Violation,
 ) -> Counterexample {
-    let user = model.user;
-    let agents = model.runs.agents();
-    let names = model.runs.names();
-    let name = |k: usize| names.map(|n| n[k].clone());
     let mut labels: Vec<Step<W::Notes>> = Vec::new();
     let mut initial = Vec::new();
     let mut loop_label = None;
@@ -1482,6 +1441,27 @@ pub(crate) fn counterexample_via<W: Runs>(
             }
         }
     }
+    let (requests, steps, loop_start) = render(model, &labels, loop_label);
+    Counterexample {
+        initial,
+        requests,
+        steps,
+        loop_start,
+    }
+}
+
+/// The requests and trace steps of the transitions `labels` of a user's search, with the
+/// explanations the user got in place (among several agents every step names its agent),
+/// and where the steps of the transition `loop_label` begin.
+fn render<W: Runs>(
+    model: &Explained<W>,
+    labels: &[Step<W::Notes>],
+    loop_label: Option<usize>,
+) -> (Vec<String>, Vec<TraceStep>, Option<usize>) {
+    let user = model.user;
+    let agents = model.runs.agents();
+    let names = model.runs.names();
+    let name = |k: usize| names.map(|n| n[k].clone());
     let mut builders: Vec<Builder> = agents
         .iter()
         .map(|sem| Builder::new(sem.project, sem))
@@ -1520,12 +1500,7 @@ pub(crate) fn counterexample_via<W: Runs>(
             }
         }
     }
-    Counterexample {
-        initial,
-        requests,
-        steps,
-        loop_start,
-    }
+    (requests, steps, loop_start)
 }
 
 /// The explanation properties for every user of the manifest, on the runs of one agent:

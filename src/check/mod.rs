@@ -432,17 +432,7 @@ fn user_runs(
             search::set_bit(&mut idle, i, is_idle);
         },
         |src, k, label: &explanation::Step, _| {
-            let did = atoms.step_letter(0, label.notes.iter());
-            let told = atoms.explained_letter(
-                (0..label.notes.len()).filter_map(|i| label.given_at(i).map(|g| &g.action)),
-            );
-            let l = match (did, told) {
-                (Some(mut a), Some(b)) => {
-                    a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
-                    Some(a)
-                }
-                (a, b) => a.or(b),
-            };
+            let l = atoms.explained_step_letter(label);
             if let Some(l) = l {
                 steps.insert((src, k), l);
             }

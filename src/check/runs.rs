@@ -120,6 +120,25 @@ impl RunAtoms {
         out
     }
 
+    /// The propositions a transition of a user's explanation search makes true (`did` and
+    /// `explained`), if any.
+    pub(crate) fn explained_step_letter<N: super::model::CycleNotes>(
+        &self,
+        step: &super::explanation::Step<N>,
+    ) -> Option<Letter> {
+        let did = self.step_letter(step.agent, step.notes.notes());
+        let n = step.notes.notes().count();
+        let told =
+            self.explained_letter((0..n).filter_map(|i| step.given_at(i).map(|g| &g.action)));
+        match (did, told) {
+            (Some(mut a), Some(b)) => {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
+                Some(a)
+            }
+            (a, b) => a.or(b),
+        }
+    }
+
     /// The `explained` propositions a transition that explained these actions to the user
     /// makes true, if any.
     pub(crate) fn explained_letter<'t>(

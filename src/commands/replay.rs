@@ -638,18 +638,7 @@ fn replay_run_explained(
         shown(project, sem, &step.notes)
     })
     .unwrap_or_default();
-    let step_letter = |l: &ExplainedStep| {
-        let did = atoms.step_letter(0, l.notes.iter());
-        let given = (0..l.notes.len()).filter_map(|i| l.given_at(i).map(|g| &g.action));
-        let told = atoms.explained_letter(given);
-        match (did, told) {
-            (Some(mut a), Some(b)) => {
-                a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
-                Some(a)
-            }
-            (a, b) => a.or(b),
-        }
-    };
+    let step_letter = |l: &ExplainedStep| atoms.explained_step_letter(l);
     let lasso = close_lasso(
         first,
         &picks,
@@ -900,18 +889,7 @@ fn replay_system_run_explained(
     };
     let next = |s: &ExplainedState<SystemState>| model.next_states(s);
     let picks = find_run(&first, &recorded, &next, &shown).unwrap_or_default();
-    let step_letter = |l: &ExplainedStep| {
-        let did = atoms.step_letter(l.agent, l.notes.iter());
-        let given = (0..l.notes.len()).filter_map(|i| l.given_at(i).map(|g| &g.action));
-        let told = atoms.explained_letter(given);
-        match (did, told) {
-            (Some(mut a), Some(b)) => {
-                a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
-                Some(a)
-            }
-            (a, b) => a.or(b),
-        }
-    };
+    let step_letter = |l: &ExplainedStep| atoms.explained_step_letter(l);
     let done = |s: &ExplainedState<SystemState>, succ: usize| {
         succ == 0
             || (s.state.agents.iter().all(|a| a.is_idle())

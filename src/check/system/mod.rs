@@ -863,16 +863,7 @@ fn user_runs_among(
                 [Note::Request { .. }] => None,
                 _ => Some(label.agent),
             });
-            let did = atoms.step_letter(label.agent, label.notes.iter());
-            let given = (0..label.notes.len()).filter_map(|i| label.given_at(i).map(|g| &g.action));
-            let told = atoms.explained_letter(given);
-            let l = match (did, told) {
-                (Some(mut a), Some(b)) => {
-                    a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
-                    Some(a)
-                }
-                (a, b) => a.or(b),
-            };
+            let l = atoms.explained_step_letter(label);
             if let Some(l) = l {
                 steps.insert((src, k), l);
             }
