@@ -69,7 +69,10 @@ impl Checker<'_> {
                 "all",
                 span,
                 self.held(),
-                "every request ends (completed or reported as a goal failure) on every run (each fair to the intentions: Jason's round-robin selection)".into(),
+                format!(
+                    "every request ends (completed or reported as a goal failure) on {}",
+                    super::runs::ONE_AGENT_RUNS
+                ),
             )),
         }
         use crate::syntax::manifest::PropertyKind;
@@ -139,8 +142,9 @@ impl Checker<'_> {
                     p.span,
                     self.held(),
                     format!(
-                        "`{}` eventually holds on every run (each fair to the intentions: Jason's round-robin selection)",
-                        p.name
+                        "`{}` eventually holds on {}",
+                        p.name,
+                        super::runs::ONE_AGENT_RUNS
                     ),
                 ));
             }

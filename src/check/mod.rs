@@ -333,10 +333,7 @@ pub fn verify_with(
     // Run properties about explanations: on their user's explanation search, exact.
     let mut user_phases = Vec::new();
     if let Some(atoms) = &run_atoms {
-        let mut users: Vec<&str> = run_props.iter().filter_map(|p| p.user.as_deref()).collect();
-        users.sort_unstable();
-        users.dedup();
-        for u in users {
+        for u in crate::model::property::explained_users(&run_props) {
             let props: Vec<&crate::model::property::RunProperty> = run_props
                 .iter()
                 .filter(|p| p.user.as_deref() == Some(u))
@@ -452,7 +449,7 @@ fn user_runs(
         steps: &steps,
         fairness: None,
     };
-    let runs = "every run (each fair to the intentions: Jason's round-robin selection)";
+    let runs = runs::ONE_AGENT_RUNS;
     let mut reached = 0;
     let mut out = Vec::new();
     for p in props {

@@ -26,6 +26,21 @@ use crate::semantics::{Note, Semantics};
 use crate::syntax::manifest::PropertyKind;
 use std::collections::{HashMap, VecDeque};
 
+/// Which runs a passing property of one agent held on: Jason's round-robin selection
+/// makes every run fair to the intentions.
+pub(crate) const ONE_AGENT_RUNS: &str =
+    "every run (each fair to the intentions: Jason's round-robin selection)";
+
+/// Which runs a passing property of several agents held on, with weak fairness of agents
+/// (`[bounds] fairness`) or without.
+pub(crate) fn agents_runs(fair: bool) -> &'static str {
+    if fair {
+        "every run fair to the agents (and to each one's intentions)"
+    } else {
+        "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
+    }
+}
+
 /// The propositions that hold in one state (or one step), one bit per [`Atomic`].
 pub(crate) type Letter = smallvec::SmallVec<[u64; 1]>;
 
@@ -875,7 +890,7 @@ impl Checker<'_> {
             steps: &self.facts.steps,
             fairness: None,
         };
-        let runs = "every run (each fair to the intentions: Jason's round-robin selection)";
+        let runs = ONE_AGENT_RUNS;
         let (status, message, v) = decide(&facts, p, (graph.complete(), runs), reached);
         let mut f = self.finding("property", &p.name, p.span, status, String::new());
         // A formula too long is undecided for itself, not for the search: no caveat.

@@ -140,6 +140,15 @@ pub struct RunProperty {
     pub user: Option<String>,
 }
 
+/// The users whose explanation searches decide some of `props` (`explained`), each once,
+/// in name order.
+pub fn explained_users(props: &[RunProperty]) -> Vec<&str> {
+    let mut users: Vec<&str> = props.iter().filter_map(|p| p.user.as_deref()).collect();
+    users.sort_unstable();
+    users.dedup();
+    users
+}
+
 /// Whether a state formula uses a modality (and so is decided on runs).
 pub fn is_modal(e: &Expr) -> bool {
     match &e.kind {

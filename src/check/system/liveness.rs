@@ -106,11 +106,7 @@ pub(super) fn liveness(
         fair,
     };
     // What the runs that go on for ever are assumed to be.
-    let runs = if fair {
-        "every run fair to the agents (and to each one's intentions)"
-    } else {
-        "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
-    };
+    let runs = super::super::runs::agents_runs(fair);
     for (k, name) in names.iter().enumerate() {
         let bit = 1u64 << k;
         // Where the agent is named.

@@ -544,11 +544,7 @@ pub fn verify_system(
                 mover: &mover,
             }),
         };
-        let runs = if fair {
-            "every run fair to the agents (and to each one's intentions)"
-        } else {
-            "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
-        };
+        let runs = super::runs::agents_runs(fair);
         let mut reached = 0;
         // Those about explanations are decided on their user's search (below).
         for p in run_props.iter().filter(|p| p.user.is_none()) {
@@ -567,10 +563,7 @@ pub fn verify_system(
     }
     let mut user_phases = Vec::new();
     if let Some(atoms) = &run_atoms {
-        let mut users: Vec<&str> = run_props.iter().filter_map(|p| p.user.as_deref()).collect();
-        users.sort_unstable();
-        users.dedup();
-        for u in users {
+        for u in crate::model::property::explained_users(&run_props) {
             let props: Vec<&crate::model::property::RunProperty> = run_props
                 .iter()
                 .filter(|p| p.user.as_deref() == Some(u))
@@ -897,11 +890,7 @@ fn user_runs_among(
             mover: &mover,
         }),
     };
-    let runs = if fair {
-        "every run fair to the agents (and to each one's intentions)"
-    } else {
-        "every run, fair to each agent's intentions but not to the agents (`[bounds] fairness`)"
-    };
+    let runs = super::runs::agents_runs(fair);
     let mut reached = 0;
     let mut out = Vec::new();
     for p in props {
