@@ -197,14 +197,28 @@ pub fn verify_with(
         })
         .collect();
     // Under symmetry the stored graph follows one object under different names from state
-    // to state, which a formula naming an object cannot be checked on: the run properties
-    // then have an exact search of their own (below).
-    let runs_here = agent.symmetry.is_none();
+    // to state: it decides the run properties that no renaming changes, and the others
+    // have searches reduced by the renamings that fix what they name (symmetry::RunPlan).
+    let plan = agent
+        .symmetry
+        .as_ref()
+        .filter(|_| run_atoms.is_some())
+        .map(|sym| {
+            let mine: Vec<_> = run_props
+                .iter()
+                .filter(|p| p.user.is_none())
+                .cloned()
+                .collect();
+            sym.plan_runs(&atomics, &mine)
+        });
+    let whole_atoms = plan
+        .as_ref()
+        .map(|plan| runs::RunAtoms::for_props(&atomics, &sem, &plan.whole));
     let conditions = Conditions {
         invariants: project.invariants.iter().map(|(_, c)| c).collect(),
         props: props.iter().map(|p| &p.cond).collect(),
         overlaps,
-        runs: run_atoms.as_ref().filter(|_| runs_here),
+        runs: whole_atoms.as_ref().or(run_atoms.as_ref()),
     };
     let n_conds = conditions.len();
     let eventually: Vec<usize> = props
@@ -266,69 +280,38 @@ pub fn verify_with(
     note_handled_gaps(&mut findings, project, &goal_failures);
     c.failures(&mut findings, action_failures, goal_failures);
     c.liveness(&mut findings, &props);
-    let mut run_phase = None;
-    let mut exact_phase = None;
-    if let Some(atoms) = &run_atoms {
-        if runs_here {
-            let t = std::time::Instant::now();
-            let reached = c.runs(&mut findings, &run_props);
-            run_phase = Some(crate::findings::Phase {
-                name: "ltl product".into(),
-                seconds: t.elapsed().as_secs_f64(),
-                states: Some(reached),
-            });
-        } else {
-            let t = std::time::Instant::now();
-            let exact = Agent {
-                sem: &sem,
-                symmetry: None,
-            };
-            let conditions = Conditions {
-                invariants: Vec::new(),
-                props: Vec::new(),
-                overlaps: Vec::new(),
-                runs: Some(atoms),
-            };
-            let mut facts = Facts::default();
-            let (graph, _, _) = agent_search(
-                &exact,
-                compiled.as_ref(),
-                &conditions,
+    let mut run_phases = Vec::new();
+    let mut caveat = not_equivariant;
+    if run_atoms.is_some() {
+        let t = std::time::Instant::now();
+        let mut found = Vec::new();
+        let mut reached = match &plan {
+            Some(plan) => c.runs_numbered(&mut found, &plan.whole),
+            None => c.runs_numbered(
+                &mut found,
+                &run_props.iter().cloned().enumerate().collect::<Vec<_>>(),
+            ),
+        };
+        let mut seconds = t.elapsed().as_secs_f64();
+        for fixing in plan.iter().flat_map(|p| &p.fixing) {
+            let ran = fixing_runs(
+                (project, &sem, &agent, compiled.as_ref()),
+                (&atomics, fixing),
                 (limits, &search),
-                (&mut facts, &[], &mut Failures::default()),
-                &mut |n, d, t| progress("ltl search", n, d, t),
+                &mut found,
+                &mut progress,
             );
-            let c = Checker {
-                project,
-                agent: &exact,
-                graph: &graph,
-                facts: &facts,
-                conditions: &conditions,
-            };
-            let searched = t.elapsed().as_secs_f64();
-            let states = graph.len();
-            let t = std::time::Instant::now();
-            let mut found = Vec::new();
-            let reached = c.runs(&mut found, &run_props);
-            if !graph.complete() && !found.iter().any(|f| f.status == Status::Fail) {
-                for f in &mut found {
-                    if f.status == Status::Pass && f.counterexample.is_none() {
-                        f.status = Status::Unknown;
-                    }
-                }
-            }
-            findings.extend(found);
-            exact_phase = Some(crate::findings::Phase {
-                name: "ltl search".into(),
-                seconds: searched,
-                states: Some(states),
-            });
-            run_phase = Some(crate::findings::Phase {
-                name: "ltl product".into(),
-                seconds: t.elapsed().as_secs_f64(),
-                states: Some(reached),
-            });
+            run_phases.push(ran.phase);
+            reached += ran.reached;
+            seconds += ran.product_seconds;
+            caveat = caveat.or(ran.not_equivariant);
         }
+        findings.extend(runs::merge(found));
+        run_phases.push(crate::findings::Phase {
+            name: "ltl product".into(),
+            seconds,
+            states: Some(reached),
+        });
     }
     // Run properties about explanations: on their user's explanation search, exact.
     let mut user_phases = Vec::new();
@@ -379,17 +362,88 @@ pub fn verify_with(
     findings.extend(explained);
     let mut v = Verification {
         symmetric_types,
-        symmetry_caveat: not_equivariant,
+        symmetry_caveat: caveat,
         ..Verification::of(&graph, project, findings)
     };
-    v.stats.phases.extend(exact_phase);
-    v.stats.phases.extend(run_phase);
+    v.stats.phases.extend(run_phases);
     v.stats.phases.extend(user_phases);
     v.stats.phases.extend(phases);
     if unchecked {
         v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
     }
     Ok(v)
+}
+
+/// What deciding some run properties on a search of their own gave.
+struct FixingRuns {
+    /// The search's phase.
+    phase: crate::findings::Phase,
+    /// Product states and seconds.
+    reached: usize,
+    product_seconds: f64,
+    /// As [`Verification::symmetry_caveat`].
+    not_equivariant: Option<String>,
+}
+
+/// Decides the run properties of `fixing` on a search reduced by the renamings that leave
+/// its objects in place (exact, phase `ltl search`, when no type keeps two objects to
+/// rename), adding one numbered finding per property to `found`.
+fn fixing_runs(
+    (project, sem, agent, compiled): (&Project, &Semantics, &Agent, Option<&Compiled>),
+    (atomics, fixing): (&crate::model::property::Atomics, &symmetry::Fixing),
+    (limits, search): (Limits, &Options),
+    found: &mut Vec<(usize, Finding)>,
+    progress: &mut dyn FnMut(&str, usize, u32, f64),
+) -> FixingRuns {
+    let t = std::time::Instant::now();
+    let fixed = Agent {
+        sem,
+        symmetry: agent
+            .symmetry
+            .as_ref()
+            .and_then(|s| s.fixing(project, sem, &fixing.objects)),
+    };
+    let atoms = runs::RunAtoms::for_props(atomics, sem, &fixing.props);
+    let conditions = Conditions {
+        invariants: Vec::new(),
+        props: Vec::new(),
+        overlaps: Vec::new(),
+        runs: Some(&atoms),
+    };
+    let name = if fixed.symmetry.is_some() {
+        format!("ltl search ({} fixed)", fixing.names.join(", "))
+    } else {
+        "ltl search".to_string()
+    };
+    let mut facts = Facts::default();
+    let (graph, not_equivariant, _) = agent_search(
+        &fixed,
+        compiled,
+        &conditions,
+        (limits, search),
+        (&mut facts, &[], &mut Failures::default()),
+        &mut |n, d, t| progress(&name, n, d, t),
+    );
+    let searched = t.elapsed().as_secs_f64();
+    let c = Checker {
+        project,
+        agent: &fixed,
+        graph: &graph,
+        facts: &facts,
+        conditions: &conditions,
+    };
+    let t = std::time::Instant::now();
+    let reached = c.runs_numbered(found, &fixing.props);
+    FixingRuns {
+        phase: crate::findings::Phase {
+            name,
+            seconds: searched,
+            states: Some(graph.len()),
+        },
+        reached,
+        product_seconds: t.elapsed().as_secs_f64(),
+        not_equivariant,
+    }
 }
 
 /// The run properties `props` about the explanations `user` gets: decided on that user's

@@ -60,15 +60,38 @@ enum Eval {
     Did(u8, Term),
     /// An action pattern an explanation to the user is about.
     Explained(Term),
+    /// Not read by the properties at hand: never set.
+    Unread,
 }
 
 impl RunAtoms {
     /// The evaluation of `atomics` for the agent of `sem` (the one requests go to).
     pub(crate) fn new(atomics: &Atomics, sem: &Semantics) -> RunAtoms {
+        RunAtoms::reading(atomics, sem, |_| true)
+    }
+
+    /// [`RunAtoms::new`] for the propositions of `props` alone, the others never set: a
+    /// graph reduced by symmetry gives the right letters for these only.
+    pub(crate) fn for_props(
+        atomics: &Atomics,
+        sem: &Semantics,
+        props: &[(usize, RunProperty)],
+    ) -> RunAtoms {
+        let read: std::collections::HashSet<u32> = props
+            .iter()
+            .flat_map(|(_, p)| &p.instances)
+            .flat_map(|i| i.formula.named_props())
+            .collect();
+        RunAtoms::reading(atomics, sem, |p| read.contains(&p))
+    }
+
+    fn reading(atomics: &Atomics, sem: &Semantics, read: impl Fn(u32) -> bool) -> RunAtoms {
         let evals = atomics
             .list
             .iter()
-            .map(|a| match a {
+            .enumerate()
+            .map(|(p, a)| match a {
+                _ if !read(p as u32) => Eval::Unread,
                 Atomic::Beliefs(c) => Eval::Beliefs(c.clone()),
                 Atomic::Intends(k, g) => Eval::Goal(*k, g.clone(), false),
                 Atomic::Desires(k, g) => Eval::Goal(*k, g.clone(), true),
@@ -126,7 +149,7 @@ impl RunAtoms {
                         .any(|t| unifier(g, t).is_some())
                 }),
                 Eval::Requested(mask) => pending & mask != 0,
-                Eval::Did(..) | Eval::Explained(_) => false,
+                Eval::Did(..) | Eval::Explained(_) | Eval::Unread => false,
             };
             if holds {
                 out[j / 64] |= 1 << (j % 64);
@@ -251,6 +274,24 @@ pub(crate) struct Violation {
     pub(crate) cycle_via: Vec<u32>,
     /// The run ends at the last state of `path` and stays there.
     pub(crate) ends: bool,
+    /// The assignment of the instance it violates (`C = cup1`; empty when none).
+    pub(crate) binding: String,
+}
+
+impl Violation {
+    /// The loop followed `rounds` times (under symmetry the loop of the reduced graph may
+    /// come back to a renaming of its entry, and the real run goes round until the state
+    /// itself comes back).
+    pub(crate) fn unroll(&mut self, rounds: usize) {
+        if self.cycle.len() < 2 || rounds < 2 {
+            return;
+        }
+        let (cycle, via) = (self.cycle.clone(), self.cycle_via.clone());
+        for _ in 1..rounds {
+            self.cycle.extend_from_slice(&cycle[1..]);
+            self.cycle_via.extend_from_slice(&via);
+        }
+    }
 }
 
 /// What the product reads of the explored graph, in the local numbering of one formula's
@@ -509,6 +550,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
             cycle: Vec::new(),
             cycle_via: Vec::new(),
             ends: false,
+            binding: String::new(),
         }
     }
 
@@ -559,6 +601,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
                 cycle: Vec::new(),
                 cycle_via: Vec::new(),
                 ends: true,
+                binding: String::new(),
             });
         }
         // From the entry, for each agent, through a step of it when it can move everywhere
@@ -594,6 +637,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
             cycle,
             cycle_via,
             ends: false,
+            binding: String::new(),
         })
     }
 
@@ -800,32 +844,50 @@ pub(crate) fn decide(
         let Ok(found) = violation(facts, &formula_of(p.kind, &i.formula), reached) else {
             return too_long();
         };
-        let Some(v) = found else {
+        let Some(mut v) = found else {
             continue;
         };
-        let who = if i.binding.is_empty() {
-            String::new()
-        } else {
-            format!(" for {}", i.binding)
-        };
-        let steps = v.path.len().saturating_sub(1);
-        let how = if !v.cycle.is_empty() {
-            format!(
-                "a run of {steps} steps enters a loop of {} steps on which it is violated",
-                v.cycle.len() - 1
-            )
-        } else if v.ends {
-            format!("a run ends after {steps} steps, and staying there violates it")
-        } else {
-            format!("it is violated after {steps} steps, whatever happens next")
-        };
-        return (
-            Status::Fail,
-            format!("`{}` does not hold{who}: {how}", p.name),
-            Some(v),
-        );
+        v.binding = i.binding.clone();
+        let message = failure(&p.name, &v);
+        return (Status::Fail, message, Some(v));
     }
     (held, format!("`{}` holds on {runs}", p.name), None)
+}
+
+/// What a violation of the property `name` is.
+fn failure(name: &str, v: &Violation) -> String {
+    let who = if v.binding.is_empty() {
+        String::new()
+    } else {
+        format!(" for {}", v.binding)
+    };
+    let steps = v.path.len().saturating_sub(1);
+    let how = if !v.cycle.is_empty() {
+        format!(
+            "a run of {steps} steps enters a loop of {} steps on which it is violated",
+            v.cycle.len() - 1
+        )
+    } else if v.ends {
+        format!("a run ends after {steps} steps, and staying there violates it")
+    } else {
+        format!("it is violated after {steps} steps, whatever happens next")
+    };
+    format!("`{name}` does not hold{who}: {how}")
+}
+
+/// One finding per property from the findings of its instances decided on several
+/// searches (each numbered by its property): a violation if any, else undecided if any,
+/// else the first.
+pub(crate) fn merge(mut found: Vec<(usize, Finding)>) -> Vec<Finding> {
+    let rank = |f: &Finding| match f.status {
+        Status::Fail => 0,
+        Status::Unknown => 1,
+        _ => 2,
+    };
+    // Stable: the first of equal rank stays first.
+    found.sort_by_key(|(k, f)| (*k, rank(f)));
+    found.dedup_by_key(|(k, _)| *k);
+    found.into_iter().map(|(_, f)| f).collect()
 }
 
 /// The formula of one instance as the property's kind reads it (`always f` is `[] f`).
@@ -855,23 +917,35 @@ pub(crate) fn violated_on(p: &RunProperty, letters: &[Letter], loop_at: usize) -
 
 impl Checker<'_> {
     /// One finding per property decided on runs; returns the product states searched.
-    pub(super) fn runs(&self, out: &mut Vec<Finding>, props: &[RunProperty]) -> usize {
+    pub(super) fn runs_numbered(
+        &self,
+        out: &mut Vec<(usize, Finding)>,
+        props: &[(usize, RunProperty)],
+    ) -> usize {
         let mut reached = 0;
         // Those about explanations are decided on their user's search (`verify_with`).
-        for p in props.iter().filter(|p| p.user.is_none()) {
-            out.push(self.run_property(p, &mut reached));
+        for (k, p) in props.iter().filter(|(_, p)| p.user.is_none()) {
+            out.push((*k, self.run_property(p, &mut reached)));
         }
         reached
     }
 
     /// The run of a violation, each step the transition the product took.
-    fn counterexample_of(&self, v: &Violation) -> crate::findings::Counterexample {
+    /// The run of a violation, and how many times it goes round the loop.
+    fn counterexample_of(&self, v: &Violation) -> (crate::findings::Counterexample, usize) {
+        // The transition taken makes the `did` propositions the product read true.
+        let want = |src: u32, k: u32, notes: &Vec<Note>| {
+            self.conditions.runs.is_none_or(|r| {
+                r.step_letter(0, notes.iter()) == self.facts.steps.get(&(src, k)).cloned()
+            })
+        };
         super::trace::counterexample_via(
             self.project,
             self.agent,
             self.graph,
             (&v.path, &v.path_via),
             (&v.cycle, &v.cycle_via),
+            &want,
         )
     }
 
@@ -900,7 +974,15 @@ impl Checker<'_> {
         } else {
             message
         };
-        f.counterexample = v.map(|v| self.counterexample_of(&v));
+        if let Some(mut v) = v {
+            let (cx, rounds) = self.counterexample_of(&v);
+            if rounds > 1 {
+                // The message counts the steps of the run shown.
+                v.unroll(rounds);
+                f.message = failure(&p.name, &v);
+            }
+            f.counterexample = Some(cx);
+        }
         f
     }
 }

@@ -97,35 +97,54 @@ pub fn counterexample(
 /// The run from the initial state `path[0]` that takes, to each next state of `path`, the
 /// transition at position `path_via[s]` among those exploration numbered (several may lead
 /// to one state and do different things), then likewise the loop `cycle` (from its entry
-/// back to it) if not empty.
+/// back to it) if not empty. Each transition taken satisfies `want` (given the stored
+/// source, the position and the notes): under symmetry the concrete state's transitions
+/// may come in another order, and `want` tells the one the search took. Under symmetry the
+/// loop is followed until the concrete state comes back, so the lasso is a real lasso.
 pub fn counterexample_via(
     project: &Project,
     agent: &Agent,
     graph: &Graph,
     (path, path_via): (&[u32], &[u32]),
     (cycle, cycle_via): (&[u32], &[u32]),
-) -> Counterexample {
+    want: &dyn Fn(u32, u32, &Vec<Note>) -> bool,
+) -> (Counterexample, usize) {
     let Some((mut b, mut walk, initial)) = start(project, agent, graph, path) else {
-        return Counterexample::default();
+        return (Counterexample::default(), 1);
     };
-    for (&j, &k) in path[1..].iter().zip(path_via) {
+    for (s, (&j, &k)) in path[1..].iter().zip(path_via).enumerate() {
         let fp = graph.fingerprint(j);
-        b.push(walk.step_by(k, fp, |_| true).unwrap_or_default());
+        b.push(
+            walk.step_by(k, fp, |n| want(path[s], k, n))
+                .unwrap_or_default(),
+        );
     }
     let mut loop_start = None;
+    let mut rounds = 1;
     if cycle.len() >= 2 {
         loop_start = Some(b.steps.len());
-        for (&j, &k) in cycle[1..].iter().zip(cycle_via) {
-            let fp = graph.fingerprint(j);
-            b.push(walk.step_by(k, fp, |_| true).unwrap_or_default());
+        let entry = fingerprint(&walk.state);
+        for round in 1..=MAX_LOOP_ROUNDS {
+            rounds = round;
+            for (s, (&j, &k)) in cycle[1..].iter().zip(cycle_via).enumerate() {
+                let fp = graph.fingerprint(j);
+                b.push(
+                    walk.step_by(k, fp, |n| want(cycle[s], k, n))
+                        .unwrap_or_default(),
+                );
+            }
+            if fingerprint(&walk.state) == entry {
+                break;
+            }
         }
     }
-    Counterexample {
+    let cx = Counterexample {
         initial,
         requests: b.requests,
         steps: b.steps,
         loop_start,
-    }
+    };
+    (cx, rounds)
 }
 
 /// Renders the notes of consecutive transitions as trace steps, numbering intentions in

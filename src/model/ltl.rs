@@ -173,6 +173,26 @@ impl Ltl {
         }
     }
 
+    /// The propositions the formula names, each once, sorted.
+    pub fn named_props(&self) -> Vec<u32> {
+        fn walk(f: &Ltl, out: &mut Vec<u32>) {
+            match f {
+                Ltl::True | Ltl::False => {}
+                Ltl::Prop(p) => out.push(*p),
+                Ltl::Not(a) | Ltl::Next(a) => walk(a, out),
+                Ltl::And(a, b) | Ltl::Or(a, b) | Ltl::Until(a, b) | Ltl::Release(a, b) => {
+                    walk(a, out);
+                    walk(b, out);
+                }
+            }
+        }
+        let mut out = Vec::new();
+        walk(self, &mut out);
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
     /// Whether the formula holds on the word `prefix · cycle^ω` (at its first position).
     ///
     /// The word has the positions `0..prefix.len() + cycle.len()`, each followed by the next

@@ -735,20 +735,5 @@ fn modal_inside(e: &Expr) -> Diagnostic {
 }
 
 fn count_props(f: &Ltl) -> usize {
-    fn walk(f: &Ltl, seen: &mut std::collections::BTreeSet<u32>) {
-        match f {
-            Ltl::True | Ltl::False => {}
-            Ltl::Prop(p) => {
-                seen.insert(*p);
-            }
-            Ltl::Not(a) | Ltl::Next(a) => walk(a, seen),
-            Ltl::And(a, b) | Ltl::Or(a, b) | Ltl::Until(a, b) | Ltl::Release(a, b) => {
-                walk(a, seen);
-                walk(b, seen);
-            }
-        }
-    }
-    let mut seen = Default::default();
-    walk(f, &mut seen);
-    seen.len()
+    f.named_props().len()
 }

@@ -26,10 +26,12 @@
 mod agents;
 mod canonical;
 mod rename;
+mod runs;
 mod soundness;
 
 pub use agents::{AgentPerm, Instances};
 pub use rename::Renaming;
+pub use runs::{Fixing, RunPlan};
 
 use crate::model::atoms::AtomId;
 use crate::model::project::Project;
@@ -84,6 +86,32 @@ impl Symmetry {
     /// type has two objects. Fails, naming the place, when something names an object of a
     /// symmetric type in a way that renaming would not preserve.
     pub fn new(project: &Project, sem: &Semantics) -> Result<Option<Symmetry>, Vec<Diagnostic>> {
+        let Some((sym, type_names)) = Symmetry::build(project, sem, &[]) else {
+            return Ok(None);
+        };
+        let mut errors = sym.check_sources(project, &type_names);
+        errors.extend(sym.check_manifest(project, &type_names));
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        Ok(Some(sym))
+    }
+
+    /// The renamings that leave each object of `fixed` in place (a subgroup: sound
+    /// wherever the whole group is, so nothing is checked again), or `None` when no type
+    /// keeps two objects to rename.
+    pub fn fixing(&self, project: &Project, sem: &Semantics, fixed: &[u16]) -> Option<Symmetry> {
+        let fixed: Vec<ObjectId> = fixed.iter().map(|&s| self.objects[s as usize]).collect();
+        Symmetry::build(project, sem, &fixed).map(|(sym, _)| sym)
+    }
+
+    /// The symmetry of the `[bounds] symmetry` types with the objects `fixed` left out,
+    /// with the types' names and places, unchecked.
+    fn build(
+        project: &Project,
+        sem: &Semantics,
+        fixed: &[ObjectId],
+    ) -> Option<(Symmetry, Vec<(String, crate::syntax::Span)>)> {
         let u = &project.universe;
         let mut groups = Vec::new();
         let mut objects = Vec::new();
@@ -98,7 +126,7 @@ impl Symmetry {
                 .objects_of(ty)
                 .iter()
                 .copied()
-                .filter(|&o| u.object_type(o) == ty)
+                .filter(|&o| u.object_type(o) == ty && !fixed.contains(&o))
                 .collect();
             if objs.len() < 2 {
                 continue;
@@ -109,7 +137,7 @@ impl Symmetry {
             type_names.push((t.value.clone(), t.span));
         }
         if groups.is_empty() {
-            return Ok(None);
+            return None;
         }
         let names: Vec<Arc<str>> = objects.iter().map(|&o| u.object_name_arc(o)).collect();
         let by_name = names
@@ -178,15 +206,10 @@ impl Symmetry {
         sym.involves = (0..atoms.len() as u32)
             .map(|a| sym.atom_involves(AtomId(a)))
             .collect();
-        let mut errors = sym.check_sources(project, &type_names);
-        errors.extend(sym.check_manifest(project, &type_names));
-        if !errors.is_empty() {
-            return Err(errors);
-        }
         sym.request_involves = (0..sym.requests.len())
             .map(|r| sym.request_key(r))
             .collect();
-        Ok(Some(sym))
+        Some((sym, type_names))
     }
 
     /// The symmetric types' names and object counts, for reports.

@@ -173,7 +173,8 @@ impl Symmetry {
             let what = format!("invariant `{}`", i.name.value);
             formulas.push((&i.formula.text, i.formula.span, &i.formula.expr, what));
         }
-        // Properties decided on runs have an exact search of their own.
+        // Properties decided on runs are planned apart (`Symmetry::plan_runs`): those that
+        // name objects are decided on a search that fixes them.
         for p in m
             .properties
             .iter()
