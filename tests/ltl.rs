@@ -516,3 +516,26 @@ fn run_properties_under_symmetry_agree_with_the_exact_search() {
     assert_eq!(picked.len(), 2, "{f:#}");
     assert!(failed >= 8, "{failed}");
 }
+
+/// `graph --states` marks the states an `always` with a modality fails in, as it marks
+/// those of a plain `always`, and says which it cannot mark (those reading steps).
+#[test]
+fn the_state_graph_marks_where_a_modal_always_fails() {
+    let marked = |extra: &str, tag: &str| {
+        let dir = project_with(tag, "tests/verify/ltl_table", extra);
+        let o = bdi_check(&["graph", dir.to_str().unwrap(), "--states"]);
+        assert_eq!(o.status.code(), Some(0));
+        let dot = String::from_utf8_lossy(&o.stdout).into_owned();
+        let note = String::from_utf8_lossy(&o.stderr).into_owned();
+        (dot.matches("fillcolor=\"#f4cccc\"").count(), note)
+    };
+    let (none, _) = marked("", "graph-modal-none");
+    assert_eq!(none, 0);
+    let intends = property("never_wipes", "always", "not .intend(wipeTable)");
+    let (some, note) = marked(&intends, "graph-modal-intend");
+    assert!(some > 0, "{note}");
+    assert!(note.is_empty(), "{note}");
+    let did = property("no_wiping", "always", "not did(wipe(table))");
+    let (_, note) = marked(&format!("{intends}{did}"), "graph-modal-did");
+    assert!(note.contains("`no_wiping` fails are not marked"), "{note}");
+}

@@ -227,6 +227,40 @@ impl RunAtoms {
     }
 }
 
+/// Whether the formula `f`, without temporal operators, holds where the propositions of
+/// `letter` do (LTL's semantics on the run that stays there).
+pub(crate) fn holds_in(f: &Ltl, letter: &Letter) -> bool {
+    let mut map = Vec::new();
+    let f = localize(f, &mut map);
+    f.holds_on_lasso(&[], &[local(letter, &map)])
+}
+
+/// The formulas of the `always` properties among `props` that read states only (no `did`,
+/// no `explained`), one per instance, and the names of those that read steps, which no
+/// state shows: how a drawing of the state graph marks the states they fail in.
+pub(crate) fn always_on_states(
+    props: &[RunProperty],
+    atomics: &Atomics,
+) -> (Vec<Ltl>, Vec<String>) {
+    let (mut formulas, mut skipped) = (Vec::new(), Vec::new());
+    for p in props.iter().filter(|p| p.kind == PropertyKind::Always) {
+        let steps = p.instances.iter().any(|i| {
+            i.formula.named_props().iter().any(|&a| {
+                matches!(
+                    atomics.list[a as usize],
+                    Atomic::Did(..) | Atomic::Explained(_)
+                )
+            })
+        });
+        if steps {
+            skipped.push(p.name.clone());
+        } else {
+            formulas.extend(p.instances.iter().map(|i| i.formula.clone()));
+        }
+    }
+    (formulas, skipped)
+}
+
 /// The formula of one instance over local proposition numbers, and the global number of
 /// each local one.
 fn localize(f: &Ltl, map: &mut Vec<u32>) -> Ltl {

@@ -6,6 +6,7 @@
 use super::Output;
 use crate::check::explore::{explore_with, Graph, Limits, Options};
 use crate::check::model::Model;
+use crate::check::runs;
 use crate::check::trace::Builder;
 use crate::commands::verify::limits;
 use crate::model::project::{load_project, Project};
@@ -98,14 +99,21 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
         .properties
         .iter()
         .filter(|x| x.kind == PropertyKind::Always)
+        .filter(|x| !crate::model::property::is_run_property(x))
         .filter_map(|x| crate::model::formula::compile(&x.formula.expr, &p.atoms, &p.universe).ok())
         .collect();
-    Ok(draw(
+    // `always` with a modality (`.intend`, `believes`, ...): on the state's propositions.
+    let (run_props, atomics) = crate::model::property::compile(p)?;
+    let (modal, skipped) = runs::always_on_states(&run_props, &atomics);
+    let atoms = runs::RunAtoms::new(&atomics, &sem);
+    let mut sg = draw(
         &sem,
         limits,
         |s: &State| {
+            let letter = (!modal.is_empty()).then(|| atoms.state_letter(s));
             let bad = invariants.iter().any(|c| !c.eval(&s.beliefs))
-                || always.iter().any(|c| !c.eval(&s.beliefs));
+                || always.iter().any(|c| !c.eval(&s.beliefs))
+                || letter.is_some_and(|l| modal.iter().any(|f| !runs::holds_in(f, &l)));
             (bad, s.is_idle())
         },
         |notes: &Vec<Note>| notes.iter().any(is_failure),
@@ -130,7 +138,31 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
             }
             label
         },
-    ))
+    );
+    note_unmarked(&mut sg, &skipped);
+    Ok(sg)
+}
+
+/// Adds to the drawing's note the `always` properties whose failing states it cannot mark
+/// (they read the step into a state, `did` or `explained`, not the state).
+fn note_unmarked(sg: &mut StateGraph, skipped: &[String]) {
+    if skipped.is_empty() {
+        return;
+    }
+    let names: Vec<String> = skipped.iter().map(|n| format!("`{n}`")).collect();
+    let (verb, who) = if names.len() == 1 {
+        ("fails", "it reads")
+    } else {
+        ("fail", "they read")
+    };
+    let what = format!(
+        "the states where {} {verb} are not marked: {who} the step into a state, not the state (`verify` checks them)",
+        names.join(", ")
+    );
+    sg.note = Some(match sg.note.take() {
+        Some(n) => format!("{n}; {what}"),
+        None => what,
+    });
 }
 
 /// The drawing of the state graph of `model` within `limits`: `summary` says of a state
@@ -318,19 +350,25 @@ pub fn system_state_graph(
                 .properties
                 .iter()
                 .filter(|x| x.kind == PropertyKind::Always)
+                .filter(|x| !crate::model::property::is_run_property(x))
                 .filter_map(|x| {
                     crate::model::formula::compile_in(&x.formula.expr, &p.atoms, &p.universe, names)
                         .ok()
                 }),
         )
         .collect();
+    let (run_props, atomics) = crate::model::property::compile_in(p, names)?;
+    let (modal, skipped) = runs::always_on_states(&run_props, &atomics);
+    let atoms = runs::RunAtoms::new(&atomics, &system.agents[0]);
     let busy = |s: &SystemState, k: usize| !s.agents[k].is_idle() || !s.mail[k].is_empty();
-    Ok(draw(
+    let mut sg = draw(
         &system,
         limits,
         |s: &SystemState| {
             let all = system.everything(s);
-            let bad = conds.iter().any(|c| !c.eval(&all));
+            let letter = (!modal.is_empty()).then(|| atoms.system_letter(&all, &s.agents));
+            let bad = conds.iter().any(|c| !c.eval(&all))
+                || letter.is_some_and(|l| modal.iter().any(|f| !runs::holds_in(f, &l)));
             (bad, (0..s.agents.len()).all(|k| !busy(s, k)))
         },
         |step: &Step| step.notes.iter().any(is_failure),
@@ -360,7 +398,9 @@ pub fn system_state_graph(
             }
             label
         },
-    ))
+    );
+    note_unmarked(&mut sg, &skipped);
+    Ok(sg)
 }
 
 /// Whether a transition's note is a failure a check reports.
