@@ -479,7 +479,15 @@ fn run_properties_under_symmetry_agree_with_the_exact_search() {
             }
             let s = finding(&sym, id);
             assert_eq!(s["status"], e["status"], "{s:#} {e:#}");
-            assert_eq!(s["message"], e["message"], "{s:#} {e:#}");
+            // A passing `always` counts the states of the graph it was decided on.
+            let said = |f: &serde_json::Value| {
+                let m = f["message"].as_str().unwrap().to_string();
+                match m.split_once(" holds in all ") {
+                    Some((name, _)) => format!("{name} holds in all reached states"),
+                    None => m,
+                }
+            };
+            assert_eq!(said(s), said(e), "{s:#} {e:#}");
             let cx = |f: &serde_json::Value| {
                 let c = &f["counterexample"];
                 (c["steps"].as_array().map(Vec::len), c["loop_start"].clone())

@@ -147,12 +147,26 @@ pub fn verify_with(
 ) -> Result<Verification, Vec<Diagnostic>> {
     let started = std::time::Instant::now();
     let sem = Semantics::new(project)?;
+    let symmetry = if opts.symmetry {
+        symmetry::Symmetry::new(project, &sem)?
+    } else {
+        None
+    };
+    // Decided on runs: properties with a modality or temporal operators, and under symmetry
+    // the state properties that name objects unlike (a search that fixes them decides
+    // those: see symmetry::RunPlan).
+    let on_runs = |p: &crate::syntax::manifest::Property| {
+        crate::model::property::is_run_property(p)
+            || symmetry
+                .as_ref()
+                .is_some_and(|s| !s.is_symmetric(project, &p.formula.text, &p.formula.expr))
+    };
     let mut errors = Vec::new();
     let props: Vec<Prop> = project
         .manifest
         .properties
         .iter()
-        .filter(|p| !crate::model::property::is_run_property(p))
+        .filter(|p| !on_runs(p))
         .filter_map(|p| {
             match formula::compile(&p.formula.expr, &project.atoms, &project.universe) {
                 Ok(cond) => Some(Prop {
@@ -171,13 +185,8 @@ pub fn verify_with(
     if !errors.is_empty() {
         return Err(errors);
     }
-    let (run_props, atomics) = crate::model::property::compile(project)?;
+    let (run_props, atomics) = crate::model::property::compile_where(project, &[], on_runs)?;
     let run_atoms = (!run_props.is_empty()).then(|| runs::RunAtoms::new(&atomics, &sem));
-    let symmetry = if opts.symmetry {
-        symmetry::Symmetry::new(project, &sem)?
-    } else {
-        None
-    };
     let symmetric_types = symmetry
         .as_ref()
         .map(|s| s.describe(project))

@@ -882,31 +882,46 @@ pub(crate) fn decide(
             continue;
         };
         v.binding = i.binding.clone();
-        let message = failure(&p.name, &v);
+        let message = failure(p, &v);
         return (Status::Fail, message, Some(v));
     }
-    (held, format!("`{}` holds on {runs}", p.name), None)
+    // The state kinds say what their checks on states say (check/safety.rs, liveness.rs).
+    let message = match p.kind {
+        PropertyKind::Always => format!("`{}` holds in all {} reached states", p.name, facts.len),
+        PropertyKind::Eventually => format!("`{}` eventually holds on {runs}", p.name),
+        _ => format!("`{}` holds on {runs}", p.name),
+    };
+    (held, message, None)
 }
 
-/// What a violation of the property `name` is.
-fn failure(name: &str, v: &Violation) -> String {
+/// What a violation of the property `p` is (for `always` and `eventually`, as their checks
+/// on states say it).
+fn failure(p: &RunProperty, v: &Violation) -> String {
+    let (name, steps) = (&p.name, v.path.len().saturating_sub(1));
     let who = if v.binding.is_empty() {
         String::new()
     } else {
         format!(" for {}", v.binding)
     };
-    let steps = v.path.len().saturating_sub(1);
-    let how = if !v.cycle.is_empty() {
-        format!(
-            "a run of {steps} steps enters a loop of {} steps on which it is violated",
+    match p.kind {
+        PropertyKind::Always => {
+            format!("`{name}` does not always hold: it is false after {steps} steps")
+        }
+        PropertyKind::Eventually if v.ends => {
+            format!("`{name}` may never hold: a run ends without it")
+        }
+        PropertyKind::Eventually if !v.cycle.is_empty() => {
+            format!("`{name}` may never hold: a run loops forever without it")
+        }
+        _ if !v.cycle.is_empty() => format!(
+            "`{name}` does not hold{who}: a run of {steps} steps enters a loop of {} steps on which it is violated",
             v.cycle.len() - 1
-        )
-    } else if v.ends {
-        format!("a run ends after {steps} steps, and staying there violates it")
-    } else {
-        format!("it is violated after {steps} steps, whatever happens next")
-    };
-    format!("`{name}` does not hold{who}: {how}")
+        ),
+        _ if v.ends => format!(
+            "`{name}` does not hold{who}: a run ends after {steps} steps, and staying there violates it"
+        ),
+        _ => format!("`{name}` does not hold{who}: it is violated after {steps} steps, whatever happens next"),
+    }
 }
 
 /// One finding per property from the findings of its instances decided on several
@@ -1013,7 +1028,7 @@ impl Checker<'_> {
             if rounds > 1 {
                 // The message counts the steps of the run shown.
                 v.unroll(rounds);
-                f.message = failure(&p.name, &v);
+                f.message = failure(p, &v);
             }
             f.counterexample = Some(cx);
         }

@@ -196,11 +196,21 @@ pub fn compile_in(
     project: &Project,
     agents: &[String],
 ) -> Result<(Vec<RunProperty>, Atomics), Vec<Diagnostic>> {
+    compile_where(project, agents, is_run_property)
+}
+
+/// [`compile_in`] for the properties `select` picks (those decided on runs and more: a
+/// state property a symmetric search cannot decide on its reduced graph).
+pub fn compile_where(
+    project: &Project,
+    agents: &[String],
+    select: impl Fn(&crate::syntax::manifest::Property) -> bool,
+) -> Result<(Vec<RunProperty>, Atomics), Vec<Diagnostic>> {
     let mut atomics = Atomics::default();
     let mut out = Vec::new();
     let mut errors = Vec::new();
     for p in &project.manifest.properties {
-        if !is_run_property(p) {
+        if !select(p) {
             continue;
         }
         let c = Compiler {

@@ -18,10 +18,11 @@
 //! never soundness.
 //!
 //! Soundness needs the model itself to treat the objects alike: [`Symmetry::new`] refuses a
-//! plan library, PDDL domain, explanation pattern or phrase that names one of them, and a
-//! manifest formula or request that names one unless it is symmetric (`cupAt(cup1, c) &
-//! cupAt(cup2, c)` with two cups is), and checks that the initial states and the requests
-//! are closed under renaming.
+//! plan library, PDDL domain, explanation pattern or phrase that names one of them, and an
+//! initial fact or constraint, invariant or request that names one unless it is symmetric
+//! (`cupAt(cup1, c) & cupAt(cup2, c)` with two cups is), and checks that the initial states
+//! and the requests are closed under renaming. Properties that name objects are decided on
+//! a search that fixes them ([`RunPlan`]).
 
 mod agents;
 mod canonical;

@@ -102,6 +102,30 @@ impl Symmetry {
         })
     }
 
+    /// Whether the manifest formula `expr` (written as `text`) means the same under every
+    /// renaming: it names no symmetric object, or names them alike (`cupAt(cup1, c) &
+    /// cupAt(cup2, c)` with two cups).
+    pub fn is_symmetric(
+        &self,
+        project: &Project,
+        text: &str,
+        expr: &crate::syntax::ast::Expr,
+    ) -> bool {
+        if !words(text, false)
+            .into_iter()
+            .any(|(_, w)| self.by_name.contains_key(w))
+        {
+            return true;
+        }
+        let gens = self.generators();
+        crate::model::formula::compile(expr, &project.atoms, &project.universe)
+            .map(|c| {
+                let base = self.normal(&c, &self.identity());
+                gens.iter().all(|g| self.normal(&c, g) == base)
+            })
+            .unwrap_or(false)
+    }
+
     fn refuse(&self, span: Span, name: &str, what: &str, types: &[(String, Span)]) -> Diagnostic {
         let s = self.by_name[name];
         let (ty, ty_span) = &types[self.group_of[s as usize] as usize];
@@ -173,26 +197,12 @@ impl Symmetry {
             let what = format!("invariant `{}`", i.name.value);
             formulas.push((&i.formula.text, i.formula.span, &i.formula.expr, what));
         }
-        // Properties decided on runs are planned apart (`Symmetry::plan_runs`): those that
-        // name objects are decided on a search that fixes them.
-        for p in m
-            .properties
-            .iter()
-            .filter(|p| !crate::model::property::is_run_property(p))
-        {
-            let what = format!("property `{}`", p.name.value);
-            formulas.push((&p.formula.text, p.formula.span, &p.formula.expr, what));
-        }
+        // Properties are not refused: those not symmetric are decided on runs, on a search
+        // that fixes the objects they name (`Symmetry::is_symmetric`, `plan_runs`).
         let gens = self.generators();
         for (text, span, expr, what) in formulas {
             let Some(name) = named(text) else { continue };
-            let symmetric = crate::model::formula::compile(expr, &project.atoms, &project.universe)
-                .map(|c| {
-                    let base = self.normal(&c, &self.identity());
-                    gens.iter().all(|g| self.normal(&c, g) == base)
-                })
-                .unwrap_or(false);
-            if !symmetric {
+            if !self.is_symmetric(project, text, expr) {
                 let what = format!("{what}, which is not symmetric in these objects,");
                 out.push(self.refuse(span, name, &what, types));
             }
