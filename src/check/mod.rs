@@ -330,15 +330,34 @@ pub fn verify_with(
                 .iter()
                 .filter(|p| p.user.as_deref() == Some(u))
                 .collect();
-            let (found, phase) = user_runs(
-                project,
-                &sem,
-                u,
-                &props,
-                atoms,
-                (limits, &search),
-                &mut progress,
-            )?;
+            let users = crate::explain::agent::users(project, Some(u))?;
+            let ex = crate::explain::agent::Explainer::new(project, &sem);
+            let (found, phase) = match compiled.as_ref() {
+                Some(compiled) => user_runs(
+                    project,
+                    (
+                        u,
+                        explanation::Explained::watching(
+                            explanation::AloneCompiled {
+                                compiled,
+                                symmetry: None,
+                            },
+                            &ex,
+                            &users[0],
+                        ),
+                    ),
+                    (&props, atoms),
+                    (limits, &search),
+                    &mut progress,
+                ),
+                None => user_runs(
+                    project,
+                    (u, explanation::Explained::new(&sem, &ex, &users[0], None)),
+                    (&props, atoms),
+                    (limits, &search),
+                    &mut progress,
+                ),
+            };
             findings.extend(found);
             user_phases.push(phase);
         }
@@ -455,22 +474,22 @@ fn fixing_runs(
     }
 }
 
-/// The run properties `props` about the explanations `user` gets: decided on that user's
-/// explanation search (exact, with its edges), with one finding each, and the phase.
-fn user_runs(
+/// The run properties `props` about the explanations `user` gets: decided on `model`, that
+/// user's explanation search (exact, with its edges; on the compiled cycle when the agent
+/// has one), with one finding each, and the phase.
+fn user_runs<W: explanation::Runs>(
     project: &Project,
-    sem: &Semantics,
-    user: &str,
-    props: &[&crate::model::property::RunProperty],
-    atoms: &runs::RunAtoms,
+    (user, model): (&str, explanation::Explained<W>),
+    (props, atoms): (&[&crate::model::property::RunProperty], &runs::RunAtoms),
     (limits, opts): (Limits, &Options),
     progress: &mut impl FnMut(&str, usize, u32, f64),
-) -> Result<(Vec<Finding>, crate::findings::Phase), Vec<Diagnostic>> {
+) -> (Vec<Finding>, crate::findings::Phase)
+where
+    W::State: model::AgentState,
+{
+    use model::AgentState;
     use std::collections::HashMap;
     let t = std::time::Instant::now();
-    let users = crate::explain::agent::users(project, Some(user))?;
-    let ex = crate::explain::agent::Explainer::new(project, sem);
-    let model = explanation::Explained::new(sem, &ex, &users[0], None);
     let mut letters: Vec<u32> = Vec::new();
     let mut letter_table: Vec<runs::Letter> = Vec::new();
     let mut letter_ids: HashMap<runs::Letter, u32> = HashMap::new();
@@ -481,7 +500,9 @@ fn user_runs(
         &model,
         limits,
         opts,
-        |s: &explanation::ExplainedState| (atoms.state_letter(&s.state), s.state.is_idle()),
+        |s: &explanation::ExplainedState<W::State>| {
+            (atoms.state_letter(&s.state), s.state.is_idle())
+        },
         |i, (letter, is_idle)| {
             let next = letter_table.len() as u32;
             let id = *letter_ids.entry(letter.clone()).or_insert(next);
@@ -491,7 +512,7 @@ fn user_runs(
             letters.push(id);
             search::set_bit(&mut idle, i, is_idle);
         },
-        |src, k, label: &explanation::Step, _| {
+        |src, k, label: &explanation::Step<W::Notes>, _| {
             let l = atoms.explained_step_letter(label);
             if let Some(l) = l {
                 steps.insert((src, k), l);
@@ -529,7 +550,7 @@ fn user_runs(
         seconds: t.elapsed().as_secs_f64(),
         states: Some(graph.len()),
     };
-    Ok((out, phase))
+    (out, phase)
 }
 
 /// The agent's search, on the compiled cycle when there is one, with `agent`'s symmetry.
