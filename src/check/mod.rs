@@ -490,9 +490,7 @@ where
     use model::AgentState;
     use std::collections::HashMap;
     let t = std::time::Instant::now();
-    let mut letters: Vec<u32> = Vec::new();
-    let mut letter_table: Vec<runs::Letter> = Vec::new();
-    let mut letter_ids: HashMap<runs::Letter, u32> = HashMap::new();
+    let mut letters = runs::Letters::default();
     let mut idle: Vec<u64> = Vec::new();
     let mut steps: HashMap<(u32, u32), runs::Letter> = HashMap::new();
     let phase = format!("ltl search:{user}");
@@ -504,12 +502,7 @@ where
             (atoms.state_letter(&s.state), s.state.is_idle())
         },
         |i, (letter, is_idle)| {
-            let next = letter_table.len() as u32;
-            let id = *letter_ids.entry(letter.clone()).or_insert(next);
-            if id == next {
-                letter_table.push(letter);
-            }
-            letters.push(id);
+            letters.push(letter);
             search::set_bit(&mut idle, i, is_idle);
         },
         |src, k, label: &explanation::Step<W::Notes>, _| {
@@ -528,8 +521,8 @@ where
         initial: graph.initial as u32,
         successors: &succ,
         may_end: &may_end,
-        letters: &letters,
-        letter_table: &letter_table,
+        letters: &letters.ids,
+        letter_table: &letters.table,
         steps: &steps,
         fairness: None,
     };

@@ -44,6 +44,29 @@ pub(crate) fn agents_runs(fair: bool) -> &'static str {
 /// The propositions that hold in one state (or one step), one bit per [`Atomic`].
 pub(crate) type Letter = smallvec::SmallVec<[u64; 1]>;
 
+/// The letters of a search's states in the order the search stored them, each distinct
+/// letter kept once (few differ: a search has far more states than letters).
+#[derive(Default)]
+pub(crate) struct Letters {
+    /// Per state: an index into `table`.
+    pub(crate) ids: Vec<u32>,
+    /// The distinct letters.
+    pub(crate) table: Vec<Letter>,
+    index: HashMap<Letter, u32>,
+}
+
+impl Letters {
+    /// The letter of the next state stored.
+    pub(crate) fn push(&mut self, letter: Letter) {
+        let next = self.table.len() as u32;
+        let id = *self.index.entry(letter.clone()).or_insert(next);
+        if id == next {
+            self.table.push(letter);
+        }
+        self.ids.push(id);
+    }
+}
+
 /// How each atomic proposition is evaluated on a state of the search.
 pub(crate) struct RunAtoms {
     evals: Vec<Eval>,
@@ -1008,8 +1031,8 @@ impl Checker<'_> {
             initial: graph.initial as u32,
             successors: &succ,
             may_end: &may_end,
-            letters: &self.facts.letters,
-            letter_table: &self.facts.letter_table,
+            letters: &self.facts.letters.ids,
+            letter_table: &self.facts.letters.table,
             steps: &self.facts.steps,
             fairness: None,
         };

@@ -79,11 +79,9 @@ pub(super) struct Facts {
     pub(super) mask_ids: HashMap<u64, u32>,
     /// Per `eventually` property: bit per state, set when the property does not hold.
     pub(super) bad: Vec<Vec<u64>>,
-    /// Per state: an index into `letter_table` (the run properties' propositions that hold
-    /// there); empty when no property is decided on runs.
-    pub(super) letters: Vec<u32>,
-    pub(super) letter_table: Vec<Letter>,
-    pub(super) letter_ids: HashMap<Letter, u32>,
+    /// Per state: the run properties' propositions that hold there; empty when no property
+    /// is decided on runs.
+    pub(super) letters: super::runs::Letters,
     /// Per transition (source, position) that did an action some `did` names: those
     /// propositions.
     pub(super) steps: HashMap<(u32, u32), Letter>,
@@ -125,12 +123,7 @@ impl Facts {
             set_bit(b, i, !bit(&s.holds, j as u32));
         }
         if !s.letter.is_empty() {
-            let next = self.letter_table.len() as u32;
-            let id = *self.letter_ids.entry(s.letter.clone()).or_insert(next);
-            if id == next {
-                self.letter_table.push(s.letter);
-            }
-            self.letters.push(id);
+            self.letters.push(s.letter);
         }
     }
 

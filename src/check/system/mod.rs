@@ -341,11 +341,9 @@ pub fn verify_system(
         }
     };
     let started = std::time::Instant::now();
-    // Per state: an index into `letter_table`; per transition doing a `did` action: those
-    // propositions (when there are run properties).
-    let mut letters: Vec<u32> = Vec::new();
-    let mut letter_table: Vec<super::runs::Letter> = Vec::new();
-    let mut letter_ids: HashMap<super::runs::Letter, u32> = HashMap::new();
+    // Per state: its letter; per transition doing a `did` action: those propositions (when
+    // there are run properties).
+    let mut letters = super::runs::Letters::default();
     let mut did: HashMap<(u32, u32), super::runs::Letter> = HashMap::new();
     let graph: Graph<SystemState> = explore_with(
         &model,
@@ -366,12 +364,7 @@ pub fn verify_system(
                 .borrow_mut()
                 .state(i, sum.busy, sum.pending, sum.holds);
             if run_atoms.is_some() {
-                let next = letter_table.len() as u32;
-                let id = *letter_ids.entry(sum.letter.clone()).or_insert(next);
-                if id == next {
-                    letter_table.push(sum.letter);
-                }
-                letters.push(id);
+                letters.push(sum.letter);
             }
             if unequal.is_none() {
                 unequal = sum.unequal;
@@ -535,8 +528,8 @@ pub fn verify_system(
             initial: graph.initial as u32,
             successors: &succ,
             may_end: &may_end,
-            letters: &letters,
-            letter_table: &letter_table,
+            letters: &letters.ids,
+            letter_table: &letters.table,
             steps: &did,
             fairness: fair.then_some(super::runs::Fairness {
                 agents: system.names().len() as u8,
@@ -814,9 +807,7 @@ fn user_runs_among(
     let users = crate::explain::agent::users(&projects[robot], Some(user))?;
     let ex = crate::explain::agent::Explainer::new(&projects[robot], &system.agents[robot]);
     let model = Explained::watching(Among { system, robot }, &ex, &users[0]);
-    let mut letters: Vec<u32> = Vec::new();
-    let mut letter_table: Vec<super::runs::Letter> = Vec::new();
-    let mut letter_ids: HashMap<super::runs::Letter, u32> = HashMap::new();
+    let mut letters = super::runs::Letters::default();
     let mut busy: Vec<u64> = Vec::new();
     let mut moves: Vec<Vec<Option<u8>>> = Vec::new();
     let mut steps: HashMap<(u32, u32), super::runs::Letter> = HashMap::new();
@@ -836,12 +827,7 @@ fn user_runs_among(
             )
         },
         |i, (letter, b)| {
-            let next = letter_table.len() as u32;
-            let id = *letter_ids.entry(letter.clone()).or_insert(next);
-            if id == next {
-                letter_table.push(letter);
-            }
-            letters.push(id);
+            letters.push(letter);
             if busy.len() <= i as usize {
                 busy.resize(i as usize + 1, 0);
             }
@@ -881,8 +867,8 @@ fn user_runs_among(
         initial: graph.initial as u32,
         successors: &succ,
         may_end: &may_end,
-        letters: &letters,
-        letter_table: &letter_table,
+        letters: &letters.ids,
+        letter_table: &letters.table,
         steps: &steps,
         fairness: fair.then_some(super::runs::Fairness {
             agents: system.names().len() as u8,
