@@ -146,6 +146,13 @@ pub fn verify_with(
     lint: &[Finding],
 ) -> Result<Verification, Vec<Diagnostic>> {
     let started = std::time::Instant::now();
+    // `--timeout` bounds the whole run: each search after the agent's has what is left.
+    let remaining = || Limits {
+        timeout: limits
+            .timeout
+            .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
+        ..limits
+    };
     let sem = Semantics::new(project)?;
     let symmetry = if opts.symmetry {
         symmetry::Symmetry::new(project, &sem)?
@@ -306,7 +313,7 @@ pub fn verify_with(
             let ran = fixing_runs(
                 (project, &sem, &agent, compiled.as_ref()),
                 (&atomics, fixing),
-                (limits, &search),
+                (remaining(), &search),
                 &mut found,
                 &mut progress,
             );
@@ -347,14 +354,14 @@ pub fn verify_with(
                         ),
                     ),
                     (&props, atoms),
-                    (limits, &search),
+                    (remaining(), &search),
                     &mut progress,
                 ),
                 None => user_runs(
                     project,
                     (u, explanation::Explained::new(&sem, &ex, &users[0], None)),
                     (&props, atoms),
-                    (limits, &search),
+                    (remaining(), &search),
                     &mut progress,
                 ),
             };
@@ -371,13 +378,7 @@ pub fn verify_with(
         shard: opts.shard,
         sample: opts.sample,
     };
-    // `--timeout` bounds the whole run: the explanation searches have what is left.
-    let left = Limits {
-        timeout: limits
-            .timeout
-            .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
-        ..limits
-    };
+    let left = remaining();
     let (explained, _, phases) = explanation::verify(
         project,
         &sem,
