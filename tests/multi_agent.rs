@@ -2040,6 +2040,64 @@ fn ltl_among_agents_names_them_and_assumes_the_fairness_the_manifest_says() {
 }
 
 #[test]
+fn explained_among_agents_assumes_the_fairness_the_manifest_says() {
+    // The fair poll, watched by a newcomer: `a` acts once `b` tells it to, and the action
+    // is explained. Fair to the agents, every run gets there; without that fairness, `b`
+    // may never move and `a` polls for ever, unexplained (a lasso that replays).
+    let poll = "!wait.\n+!wait : not go <- .wait(100); !wait.\n+!wait : go <- a.\n";
+    let d = two_agents(
+        "ltl-explained-poll",
+        poll,
+        "!tell.\n+!tell <- .send(a, tell, go).\n",
+    );
+    let toml = d.join("bdi-check.toml");
+    let text = std::fs::read_to_string(&toml).unwrap();
+    let rest = "[[property]]\nname = \"told_of_a\"\nltl = \"<> explained(newcomer, a)\"\n\
+                [explanation]\nrobot = \"a\"\n[explanation.users.newcomer]\nexpected = []\n";
+    std::fs::write(&toml, format!("{text}{rest}")).unwrap();
+    let told = |r: &serde_json::Value| {
+        r["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["id"] == "property:told_of_a")
+            .unwrap_or_else(|| panic!("{r:#}"))
+            .clone()
+    };
+    let (_, r, _) = verify_json(d.to_str().unwrap(), "ltl-explained-poll-report");
+    let f = told(&r);
+    assert_eq!(f["status"], "pass", "{f:#}");
+    assert!(
+        f["message"]
+            .as_str()
+            .unwrap()
+            .contains("fair to the agents"),
+        "{f:#}"
+    );
+    std::fs::write(
+        &toml,
+        format!("{text}[bounds]\nfairness = [\"intentions\"]\n{rest}"),
+    )
+    .unwrap();
+    let (_, r, file) = verify_json(d.to_str().unwrap(), "ltl-explained-unfair-report");
+    let f = told(&r);
+    assert_eq!(f["status"], "fail", "{f:#}");
+    assert!(f["counterexample"]["loop_start"].is_u64(), "{f:#}");
+    let o = bdi_check(&[
+        "replay",
+        file.to_str().unwrap(),
+        "--finding",
+        "property:told_of_a",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+}
+
+#[test]
 fn explained_among_agents_is_decided_on_the_users_search_of_every_interleaving() {
     // specs/two-robots-explaining: the owner watches the fetcher; carrying a cup to the
     // counter and putting it there surprise them, picking it up does not.

@@ -37,6 +37,7 @@ pub mod system;
 pub mod trace;
 
 mod checker;
+mod explained_runs;
 mod failures;
 mod liveness;
 mod safety;
@@ -476,75 +477,33 @@ fn fixing_runs(
 }
 
 /// The run properties `props` about the explanations `user` gets: decided on `model`, that
-/// user's explanation search (exact, with its edges; on the compiled cycle when the agent
-/// has one), with one finding each, and the phase.
+/// user's explanation search (on the compiled cycle when the agent has one), with one
+/// finding each, and the phase.
 fn user_runs<W: explanation::Runs>(
     project: &Project,
     (user, model): (&str, explanation::Explained<W>),
     (props, atoms): (&[&crate::model::property::RunProperty], &runs::RunAtoms),
-    (limits, opts): (Limits, &Options),
+    bounds: (Limits, &Options),
     progress: &mut impl FnMut(&str, usize, u32, f64),
 ) -> (Vec<Finding>, crate::findings::Phase)
 where
     W::State: model::AgentState,
 {
     use model::AgentState;
-    use std::collections::HashMap;
-    let t = std::time::Instant::now();
-    let mut letters = runs::Letters::default();
-    let mut idle: Vec<u64> = Vec::new();
-    let mut steps: HashMap<(u32, u32), runs::Letter> = HashMap::new();
-    let phase = format!("ltl search:{user}");
-    let graph = explore::explore_with(
-        &model,
-        limits,
-        opts,
-        |s: &explanation::ExplainedState<W::State>| {
-            (atoms.state_letter(&s.state), s.state.is_idle())
-        },
-        |i, (letter, is_idle)| {
-            letters.push(letter);
-            search::set_bit(&mut idle, i, is_idle);
-        },
-        |src, k, label: &explanation::Step<W::Notes>, _| {
-            let l = atoms.explained_step_letter(label);
-            if let Some(l) = l {
-                steps.insert((src, k), l);
-            }
-        },
-        |n, d, t| progress(&phase, n, d, t),
-    );
-    let succ = |i: u32| graph.successors(i);
-    let may_end =
-        |i: u32| search::bit(&idle, i) || graph.successors(i).is_some_and(|e| e.is_empty());
-    let recorded = runs::RunFacts {
-        len: graph.len() as u32,
-        initial: graph.initial as u32,
-        successors: &succ,
-        may_end: &may_end,
-        letters: &letters.ids,
-        letter_table: &letters.table,
-        steps: &steps,
-        fairness: None,
+    let facts = |s: &W::State| (atoms.state_letter(s), u64::from(!s.is_idle()));
+    let reading = explained_runs::Reading {
+        facts: &facts,
+        fair_agents: None,
+        runs: runs::ONE_AGENT_RUNS,
     };
-    let runs = runs::ONE_AGENT_RUNS;
-    let mut reached = 0;
-    let mut out = Vec::new();
-    for p in props {
-        let (status, message, v) =
-            runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
-        let at = (p.span, project.map.location(p.span));
-        let mut f = checker::dynamic_finding("property", &p.name, at, status, String::new());
-        f.message = message;
-        f.counterexample = v.map(|v| explanation::counterexample_via(project, &model, &graph, &v));
-        out.push(f);
-    }
-    let phase = crate::findings::Phase {
-        name: phase,
-        seconds: t.elapsed().as_secs_f64(),
-        states: Some(graph.len()),
-    };
-    (out, phase)
+    explained_runs::decide(
+        (project, project),
+        (user, &model),
+        (props, atoms),
+        reading,
+        bounds,
+        progress,
+    )
 }
 
 /// The agent's search, on the compiled cycle when there is one, with `agent`'s symmetry.

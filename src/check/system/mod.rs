@@ -788,113 +788,43 @@ struct Run {
     steps: Vec<Step>,
 }
 
-/// The run properties `props` about the explanations `user` gets, watching the robot among
-/// the agents: decided on that user's explanation search of every interleaving (exact,
-/// with its edges; loops fair to the agents as the manifest says).
-#[allow(clippy::type_complexity)]
+/// The run properties `props` about the explanations `user` gets, among several agents:
+/// decided on that user's explanation search (the user watches `[explanation] robot`;
+/// loops fair to the agents as the manifest says).
 fn user_runs_among(
     projects: &[Project],
     system: &System,
     user: &str,
     props: &[&crate::model::property::RunProperty],
     atoms: &super::runs::RunAtoms,
-    (limits, opts): (Limits, &Options),
+    bounds: (Limits, &Options),
     progress: &mut impl FnMut(&str, usize, u32, f64),
 ) -> Result<(Vec<Finding>, crate::findings::Phase), Vec<Diagnostic>> {
-    use super::explanation::{Among, Explained, ExplainedState, Step};
-    let t = std::time::Instant::now();
+    use super::explanation::{Among, Explained};
     let robot = super::explanation::robot_of(projects);
     let users = crate::explain::agent::users(&projects[robot], Some(user))?;
     let ex = crate::explain::agent::Explainer::new(&projects[robot], &system.agents[robot]);
     let model = Explained::watching(Among { system, robot }, &ex, &users[0]);
-    let mut letters = super::runs::Letters::default();
-    let mut busy: Vec<u64> = Vec::new();
-    let mut moves: Vec<Vec<Option<u8>>> = Vec::new();
-    let mut steps: HashMap<(u32, u32), super::runs::Letter> = HashMap::new();
-    let phase = format!("ltl search:{user}");
-    let opts = Options {
-        keep_edges: true,
-        ..*opts
-    };
-    let graph = explore_with(
-        &model,
-        limits,
-        &opts,
-        |s: &ExplainedState<SystemState>| {
-            (
-                atoms.system_letter(&system.everything(&s.state), &s.state.agents),
-                busy_agents(&s.state),
-            )
-        },
-        |i, (letter, b)| {
-            letters.push(letter);
-            if busy.len() <= i as usize {
-                busy.resize(i as usize + 1, 0);
-            }
-            busy[i as usize] = b;
-        },
-        |src, k, label: &Step, _| {
-            let at = src as usize;
-            if moves.len() <= at {
-                moves.resize(at + 1, Vec::new());
-            }
-            moves[at].push(match label.notes.as_slice() {
-                [Note::Request { .. }] => None,
-                _ => Some(label.agent),
-            });
-            let l = atoms.explained_step_letter(label);
-            if let Some(l) = l {
-                steps.insert((src, k), l);
-            }
-        },
-        |n, d, t| progress(&phase, n, d, t),
-    );
-    moves.resize(graph.len(), Vec::new());
-    busy.resize(graph.len(), 0);
     let fair = projects[0].manifest.bounds.fair_agents;
-    let succ = |i: u32| graph.successors(i);
-    let may_end =
-        |i: u32| graph.successors(i).is_some_and(|e| e.is_empty()) || busy[i as usize] == 0;
-    let enabled = |i: u32| {
-        moves[i as usize]
-            .iter()
-            .flatten()
-            .fold(0u64, |b, &a| b | 1 << a)
+    let facts = |s: &SystemState| {
+        (
+            atoms.system_letter(&system.everything(s), &s.agents),
+            busy_agents(s),
+        )
     };
-    let mover = |i: u32, k: u32| moves[i as usize].get(k as usize).copied().flatten();
-    let recorded = super::runs::RunFacts {
-        len: graph.len() as u32,
-        initial: graph.initial as u32,
-        successors: &succ,
-        may_end: &may_end,
-        letters: &letters.ids,
-        letter_table: &letters.table,
-        steps: &steps,
-        fairness: fair.then_some(super::runs::Fairness {
-            agents: system.names().len() as u8,
-            enabled: &enabled,
-            mover: &mover,
-        }),
+    let reading = super::explained_runs::Reading {
+        facts: &facts,
+        fair_agents: fair.then_some(system.names().len() as u8),
+        runs: super::runs::agents_runs(fair),
     };
-    let runs = super::runs::agents_runs(fair);
-    let mut reached = 0;
-    let mut out = Vec::new();
-    for p in props {
-        let (status, message, v) =
-            super::runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
-        let at = (p.span, projects[0].map.location(p.span));
-        let mut f = super::checker::dynamic_finding("property", &p.name, at, status, String::new());
-        f.message = message;
-        f.counterexample =
-            v.map(|v| super::explanation::counterexample_via(&projects[robot], &model, &graph, &v));
-        out.push(f);
-    }
-    let phase = crate::findings::Phase {
-        name: phase,
-        seconds: t.elapsed().as_secs_f64(),
-        states: Some(graph.len()),
-    };
-    Ok((out, phase))
+    Ok(super::explained_runs::decide(
+        (&projects[0], &projects[robot]),
+        (user, &model),
+        (props, atoms),
+        reading,
+        bounds,
+        progress,
+    ))
 }
 
 /// The key a failure is reported under, per agent (its index first): the file, start and
