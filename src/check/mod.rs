@@ -216,6 +216,7 @@ pub fn verify_with(
     // Under symmetry the stored graph follows one object under different names from state
     // to state: it decides the run properties that no renaming changes, and the others
     // have searches reduced by the renamings that fix what they name (symmetry::RunPlan).
+    let on_agent_graph = run_props.iter().any(|p| p.user.is_none());
     let plan = agent
         .symmetry
         .as_ref()
@@ -235,7 +236,11 @@ pub fn verify_with(
         invariants: project.invariants.iter().map(|(_, c)| c).collect(),
         props: props.iter().map(|p| &p.cond).collect(),
         overlaps,
-        runs: whole_atoms.as_ref().or(run_atoms.as_ref()),
+        // Only for properties decided on the agent's graph (not on a user's search).
+        runs: whole_atoms
+            .as_ref()
+            .or(run_atoms.as_ref())
+            .filter(|_| on_agent_graph),
     };
     let n_conds = conditions.len();
     let eventually: Vec<usize> = props
@@ -299,7 +304,7 @@ pub fn verify_with(
     c.liveness(&mut findings, &props);
     let mut run_phases = Vec::new();
     let mut caveat = not_equivariant;
-    if run_atoms.is_some() {
+    if on_agent_graph {
         let t = std::time::Instant::now();
         let mut found = Vec::new();
         let mut reached = match &plan {

@@ -224,6 +224,11 @@ pub fn verify_system(
     };
     let run_atoms =
         (!run_props.is_empty()).then(|| super::runs::RunAtoms::new(&atomics, &system.agents[0]));
+    // The propositions read on the interleavings themselves: those of properties not about
+    // explanations (which their user's search decides).
+    let graph_atoms = run_atoms
+        .as_ref()
+        .filter(|_| run_props.iter().any(|p| p.user.is_none()));
     for p in &project.manifest.properties {
         if crate::model::property::is_run_property(p) {
             continue;
@@ -293,7 +298,7 @@ pub fn verify_system(
         shard: None,
     };
     // The run properties read the exact graph: no reduction when there are any.
-    let exact = run_atoms.is_some();
+    let exact = graph_atoms.is_some();
     let instances = (options.symmetry && !exact).then(|| {
         let named: Vec<(&str, &Cond)> = conds
             .iter()
@@ -329,8 +334,7 @@ pub fn verify_system(
                     .fold(0, |b, (j, _)| b | 1 << j),
                 None => 0,
             },
-            letter: run_atoms
-                .as_ref()
+            letter: graph_atoms
                 .map(|r| r.system_letter(&system.everything(s), &s.agents))
                 .unwrap_or_default(),
             // Every stored state is checked: reduction is exact only where renaming a
@@ -363,7 +367,7 @@ pub fn verify_system(
             facts
                 .borrow_mut()
                 .state(i, sum.busy, sum.pending, sum.holds);
-            if run_atoms.is_some() {
+            if graph_atoms.is_some() {
                 letters.push(sum.letter);
             }
             if unequal.is_none() {
@@ -371,9 +375,8 @@ pub fn verify_system(
             }
         },
         |src, k, label, fp| {
-            if let Some(l) = run_atoms
-                .as_ref()
-                .and_then(|r| r.step_letter(label.agent, label.notes.iter()))
+            if let Some(l) =
+                graph_atoms.and_then(|r| r.step_letter(label.agent, label.notes.iter()))
             {
                 did.insert((src, k), l);
             }
@@ -501,8 +504,9 @@ pub fn verify_system(
     // no run that goes on for ever (partial-order reduction keeps a run of every run, up to
     // steps no check sees; symmetry, a run of every class of runs), and its runs that end
     // stand for all of them (the conditions read are visible to the reduction, and
-    // symmetric): the checks are made on it.
-    if !run_props.is_empty() {
+    // symmetric): the checks are made on it. (Those about explanations are decided on
+    // their user's search, below.)
+    if graph_atoms.is_some() {
         let t = std::time::Instant::now();
         let f = facts.borrow();
         let fair = project.manifest.bounds.fair_agents;
