@@ -2067,6 +2067,15 @@ fn explained_among_agents_assumes_the_fairness_the_manifest_says() {
     let (_, r, _) = verify_json(d.to_str().unwrap(), "ltl-explained-poll-report");
     let f = told(&r);
     assert_eq!(f["status"], "pass", "{f:#}");
+    // The user's search decides it: the interleavings themselves read no proposition.
+    let phases: Vec<&str> = r["stats"]["phases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert!(phases.contains(&"ltl search:newcomer"), "{phases:?}");
+    assert!(!phases.contains(&"ltl product"), "{phases:?}");
     assert!(
         f["message"]
             .as_str()

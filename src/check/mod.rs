@@ -220,7 +220,7 @@ pub fn verify_with(
     let plan = agent
         .symmetry
         .as_ref()
-        .filter(|_| run_atoms.is_some())
+        .filter(|_| on_agent_graph)
         .map(|sym| {
             let mine: Vec<_> = run_props
                 .iter()

@@ -250,12 +250,27 @@ impl RunAtoms {
     }
 }
 
-/// Whether the formula `f`, without temporal operators, holds where the propositions of
-/// `letter` do (LTL's semantics on the run that stays there).
-pub(crate) fn holds_in(f: &Ltl, letter: &Letter) -> bool {
-    let mut map = Vec::new();
-    let f = localize(f, &mut map);
-    f.holds_on_lasso(&[], &[local(letter, &map)])
+/// A formula without temporal operators, read on one state's letter.
+pub(crate) struct OnState {
+    /// The formula over local proposition numbers.
+    formula: Ltl,
+    /// The global number of each local proposition.
+    map: Vec<u32>,
+}
+
+impl OnState {
+    fn new(f: &Ltl) -> OnState {
+        let mut map = Vec::new();
+        let formula = localize(f, &mut map);
+        OnState { formula, map }
+    }
+
+    /// Whether it holds where the propositions of `letter` do (LTL's semantics on the run
+    /// that stays there).
+    pub(crate) fn holds(&self, letter: &Letter) -> bool {
+        self.formula
+            .holds_on_lasso(&[], &[local(letter, &self.map)])
+    }
 }
 
 /// The formulas of the `always` properties among `props` that read states only (no `did`,
@@ -264,7 +279,7 @@ pub(crate) fn holds_in(f: &Ltl, letter: &Letter) -> bool {
 pub(crate) fn always_on_states(
     props: &[RunProperty],
     atomics: &Atomics,
-) -> (Vec<Ltl>, Vec<String>) {
+) -> (Vec<OnState>, Vec<String>) {
     let (mut formulas, mut skipped) = (Vec::new(), Vec::new());
     for p in props.iter().filter(|p| p.kind == PropertyKind::Always) {
         let steps = p.instances.iter().any(|i| {
@@ -278,7 +293,7 @@ pub(crate) fn always_on_states(
         if steps {
             skipped.push(p.name.clone());
         } else {
-            formulas.extend(p.instances.iter().map(|i| i.formula.clone()));
+            formulas.extend(p.instances.iter().map(|i| OnState::new(&i.formula)));
         }
     }
     (formulas, skipped)

@@ -113,7 +113,7 @@ pub fn state_graph(p: &Project, limits: Limits) -> Result<StateGraph, Vec<Diagno
             let letter = (!modal.is_empty()).then(|| atoms.state_letter(s));
             let bad = invariants.iter().any(|c| !c.eval(&s.beliefs))
                 || always.iter().any(|c| !c.eval(&s.beliefs))
-                || letter.is_some_and(|l| modal.iter().any(|f| !runs::holds_in(f, &l)));
+                || letter.is_some_and(|l| modal.iter().any(|f| !f.holds(&l)));
             (bad, s.is_idle())
         },
         |notes: &Vec<Note>| notes.iter().any(is_failure),
@@ -368,7 +368,7 @@ pub fn system_state_graph(
             let all = system.everything(s);
             let letter = (!modal.is_empty()).then(|| atoms.system_letter(&all, &s.agents));
             let bad = conds.iter().any(|c| !c.eval(&all))
-                || letter.is_some_and(|l| modal.iter().any(|f| !runs::holds_in(f, &l)));
+                || letter.is_some_and(|l| modal.iter().any(|f| !f.holds(&l)));
             (bad, (0..s.agents.len()).all(|k| !busy(s, k)))
         },
         |step: &Step| step.notes.iter().any(is_failure),

@@ -308,7 +308,7 @@ impl Compiler<'_> {
             }
         }
         for i in &instances {
-            let distinct = count_props(&i.formula);
+            let distinct = i.formula.named_props().len();
             if distinct > MAX_PROPS {
                 return Err(Diagnostic::error(
                     "input",
@@ -742,8 +742,4 @@ fn modal_inside(e: &Expr) -> Diagnostic {
         e.span,
         "not inside `.count`, a comparison or another modality's formula",
     )
-}
-
-fn count_props(f: &Ltl) -> usize {
-    f.named_props().len()
 }
