@@ -15,6 +15,7 @@
 //! asked) edges are kept, never whole states beyond the frontier: [`Graph::state`] and
 //! [`Walk`] rebuild them by replaying transitions.
 
+use super::chunked::Chunked;
 use super::model::Model;
 use super::store::{OutOfMemory, Store};
 use crate::semantics::State;
@@ -87,14 +88,83 @@ impl Default for Options {
     }
 }
 
-/// The successors of the expanded states, as adjacency lists in one array.
+/// The successors of the expanded states, as adjacency lists in chunks that never move
+/// (growing one array by copying had the kernel clear its fresh pages: a tenth of the
+/// merging thread). A state's list lies within one chunk.
 #[derive(Default)]
 struct Edges {
-    /// `start[i]..start[i + 1]` indexes `to` for state `i`.
-    start: Vec<u64>,
-    to: Vec<u32>,
+    /// Per state, where its list starts: chunk (high 32 bits) and offset. It ends where the
+    /// next state's starts if that is in the same chunk, else at its chunk's end.
+    start: Chunked<u64>,
+    to: Vec<Vec<u32>>,
     /// Bit `i`: state `i` was expanded completely.
     expanded: Vec<u64>,
+}
+
+/// The largest chunk of [`Edges`] (4 MiB), unless one state has more successors.
+const EDGE_CHUNK: usize = 1 << 20;
+
+impl Edges {
+    /// Where the next edge goes.
+    fn end(&self) -> u64 {
+        match self.to.last() {
+            Some(c) => ((self.to.len() as u64 - 1) << 32) | c.len() as u64,
+            None => 0,
+        }
+    }
+
+    /// Makes room for `n` more edges in the last chunk, starting a chunk if needed.
+    fn room(&mut self, n: usize) -> Result<(), OutOfMemory> {
+        if self.to.last().is_some_and(|c| c.capacity() - c.len() >= n) {
+            return Ok(());
+        }
+        let size = self
+            .to
+            .last()
+            .map_or(1024, |c| (c.capacity() * 2).min(EDGE_CHUNK))
+            .max(n);
+        let mut chunk = Vec::new();
+        chunk.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
+        self.to.try_reserve(1).map_err(|_| OutOfMemory)?;
+        self.to.push(chunk);
+        Ok(())
+    }
+
+    /// Appends an edge to the last chunk, which has room ([`Edges::room`]).
+    fn push(&mut self, target: u32) {
+        let c = self.to.last_mut().expect("room was made");
+        debug_assert!(c.len() < c.capacity());
+        c.push(target);
+    }
+
+    /// Removes the edges from `at` (a position [`Edges::end`] gave) on, in the last chunk.
+    fn truncate(&mut self, at: u64) {
+        if let Some(c) = self.to.get_mut((at >> 32) as usize) {
+            c.truncate(at as u32 as usize);
+        }
+    }
+
+    /// State `i`'s list.
+    fn list(&self, i: u32) -> &[u32] {
+        let a = self.start.get(i as usize);
+        let chunk = &self.to[(a >> 32) as usize];
+        let z = match self.start.len() > i as usize + 1 {
+            true => self.start.get(i as usize + 1),
+            false => self.end(),
+        };
+        let z = if z >> 32 == a >> 32 {
+            z as u32 as usize
+        } else {
+            chunk.len()
+        };
+        &chunk[a as u32 as usize..z]
+    }
+
+    fn bytes(&self) -> usize {
+        self.start.bytes()
+            + self.to.iter().map(Vec::capacity).sum::<usize>() * 4
+            + self.expanded.capacity() * 8
+    }
 }
 
 /// The explored graph of a model (by default, the agent's).
@@ -141,6 +211,19 @@ type Batch<S> = Vec<(u32, S)>;
 
 /// A batch and, in its order, what expanding each state produced.
 type Expansion<S, T, L> = (Batch<S>, Vec<Expanded<T, L, S>>);
+
+/// Appends `x` to the last chunk of `chunks`, or to a new chunk (a buffer from `pool` if
+/// there is one) when that one holds `JOB` states.
+fn push_chunked<S>(chunks: &mut Vec<Batch<S>>, pool: &mut Vec<Batch<S>>, x: (u32, S)) {
+    match chunks.last_mut() {
+        Some(c) if c.len() < JOB => c.push(x),
+        _ => {
+            let mut c = pool.pop().unwrap_or_else(|| Vec::with_capacity(JOB));
+            c.push(x);
+            chunks.push(c);
+        }
+    }
+}
 
 /// Jobs smaller than this are expanded by the merging thread itself.
 const SMALL_JOB: usize = 64;
@@ -480,7 +563,10 @@ fn search<M: Model, T>(
         peak_memory: 0,
         state: PhantomData,
     };
-    let mut frontier: Vec<(u32, M::State)> = Vec::new();
+    // The states of the depth to expand, in chunks of at most `JOB`.
+    let mut frontier: Vec<Batch<M::State>> = Vec::new();
+    // Chunks' buffers, back from the merge.
+    let mut pool: Vec<Batch<M::State>> = Vec::new();
     // Canonical fingerprint -> whether this shard explores it.
     let mut seen: std::collections::HashMap<u64, bool> = std::collections::HashMap::new();
     for (taken, s) in model.init_states().enumerate() {
@@ -523,7 +609,7 @@ fn search<M: Model, T>(
         }
         g.initial_covered += 1;
         match g.store.insert(fp, None) {
-            Ok((i, true)) => frontier.push((i, s)),
+            Ok((i, true)) => push_chunked(&mut frontier, &mut pool, (i, s)),
             Ok(_) => {}
             Err(OutOfMemory) => g.bound = Some(Bound::Memory),
         }
@@ -536,7 +622,7 @@ fn search<M: Model, T>(
     // A stop while the initial states were taken: those taken are only summarized.
     let mut stopped = matches!(g.bound, Some(Bound::Time | Bound::Memory));
     let mut rng = opts.sample.map(|s| super::sample::SplitMix64::new(s.seed));
-    while let Some(&(first, _)) = frontier.first() {
+    while let Some(&(first, _)) = frontier.first().and_then(|c| c.first()) {
         if depth > 0 {
             g.levels.push(first);
         }
@@ -544,40 +630,47 @@ fn search<M: Model, T>(
         if !expand && !stopped {
             g.bound.get_or_insert(Bound::Depth);
         }
+        let width = frontier.iter().map(Vec::len).sum::<usize>();
         // Following random runs: the states of this depth to expand (the others are
         // summarized only, as states beyond a bound).
         let chosen: Option<Vec<bool>> = match (opts.sample, &mut rng) {
-            (Some(s), Some(rng)) if frontier.len() > s.runs as usize => {
+            (Some(s), Some(rng)) if width > s.runs as usize => {
                 g.bound.get_or_insert(Bound::Sampled);
-                Some(rng.choose(frontier.len(), s.runs as usize))
+                Some(rng.choose(width, s.runs as usize))
             }
             _ => None,
         };
-        let chosen_at = |i: usize| chosen.as_ref().is_none_or(|c| c[i]);
-        let mut next: Vec<(u32, M::State)> = Vec::new();
+        // The next depth, in chunks whose buffers come back from the merge: one growing
+        // vector per depth had the kernel clear fresh pages each time it doubled (a third
+        // of the merging thread at 5 cups), and chunks are the jobs, handed over whole.
+        let mut next: Vec<Batch<M::State>> = Vec::new();
         // The number of the first state of the next depth.
         let next_level = g.store.len() as u32;
-        let mut level = std::mem::take(&mut frontier)
-            .into_iter()
-            .enumerate()
-            .peekable();
+        // Jobs: consecutive states that are all expanded or all not.
+        let mut jobs: std::collections::VecDeque<(Batch<M::State>, bool)> = match &chosen {
+            None => std::mem::take(&mut frontier)
+                .into_iter()
+                .map(|c| (c, true))
+                .collect(),
+            Some(chosen) => {
+                let mut jobs: std::collections::VecDeque<(Batch<M::State>, bool)> =
+                    std::collections::VecDeque::new();
+                let states = std::mem::take(&mut frontier).into_iter().flatten();
+                for (x, &expand_it) in states.zip(chosen) {
+                    match jobs.back_mut() {
+                        Some((job, e)) if *e == expand_it && job.len() < JOB => job.push(x),
+                        _ => jobs.push_back((vec![x], expand_it)),
+                    }
+                }
+                jobs
+            }
+        };
         let mut out = 0;
         loop {
             while out < expander.ahead() {
-                // A job: consecutive states that are all expanded or all not.
-                let mut job: Batch<M::State> = Vec::new();
-                let mut expand_job = true;
-                while job.len() < JOB {
-                    let Some(&(i, _)) = level.peek() else { break };
-                    if !job.is_empty() && chosen_at(i) != expand_job {
-                        break;
-                    }
-                    expand_job = chosen_at(i);
-                    job.extend(level.next().map(|(_, s)| s));
-                }
-                if job.is_empty() {
+                let Some((job, expand_job)) = jobs.pop_front() else {
                     break;
-                }
+                };
                 // After a stop, only summaries: the merge drops successors anyway.
                 expander.submit(job, expand && expand_job && !stopped);
                 out += 1;
@@ -585,7 +678,7 @@ fn search<M: Model, T>(
             if out == 0 {
                 break;
             }
-            let (states, results) = expander.take();
+            let (mut states, results) = expander.take();
             out -= 1;
             let elapsed = start.elapsed().as_secs_f64();
             progress(g.store.len(), depth, elapsed);
@@ -604,13 +697,27 @@ fn search<M: Model, T>(
             }
             // A job merged after a stop counts as not expanded, as if it had not been.
             let expanded = !stopped;
+            if expanded {
+                for (_, _, fp) in results.iter().flat_map(|r| r.successors.iter().flatten()) {
+                    g.store.prefetch(*fp);
+                }
+            }
             for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
-                let edge_start = g.edges.as_ref().map_or(0, |e| e.to.len());
                 let Some(succ) = r.successors.filter(|_| expanded) else {
-                    g.mark(*src, edge_start, false);
+                    g.mark(*src, g.edges.as_ref().map_or(0, Edges::end), false);
                     continue;
                 };
+                if let Some(e) = &mut g.edges {
+                    if e.room(succ.len()).is_err() {
+                        let end = e.end();
+                        g.bound = Some(Bound::Memory);
+                        stopped = true;
+                        g.mark(*src, end, false);
+                        continue;
+                    }
+                }
+                let edge_start = g.edges.as_ref().map_or(0, Edges::end);
                 // The cycle proviso: a reduced state's followed successors are all deeper,
                 // so no cycle of the reduced graph is reduced everywhere and no transition
                 // is put off forever.
@@ -648,7 +755,7 @@ fn search<M: Model, T>(
                         }
                         None => match g.store.insert(fp, Some(*src)) {
                             Ok((i, _)) => {
-                                next.push((i, t));
+                                push_chunked(&mut next, &mut pool, (i, t));
                                 i
                             }
                             Err(OutOfMemory) => {
@@ -660,13 +767,7 @@ fn search<M: Model, T>(
                         },
                     };
                     if let Some(e) = &mut g.edges {
-                        if e.to.try_reserve(1).is_err() {
-                            g.bound = Some(Bound::Memory);
-                            stopped = true;
-                            cut = true;
-                            continue;
-                        }
-                        e.to.push(target);
+                        e.push(target);
                     }
                 }
                 // A state some of whose successors were cut off counts as not expanded: it
@@ -674,12 +775,11 @@ fn search<M: Model, T>(
                 // run.
                 g.mark(*src, edge_start, !cut);
             }
+            states.clear();
+            pool.push(states);
         }
         frontier = next;
         depth += 1;
-    }
-    if let Some(e) = &mut g.edges {
-        e.start.push(e.to.len() as u64);
     }
     g.seconds = start.elapsed().as_secs_f64();
     if let Some(p) = peak_memory() {
@@ -710,13 +810,19 @@ impl<S> Graph<S> {
 
     /// Records state `i`'s edges (from `edge_start` on) as complete or not. States are
     /// recorded in number order.
-    fn mark(&mut self, i: u32, edge_start: usize, complete: bool) {
+    fn mark(&mut self, i: u32, edge_start: u64, complete: bool) {
         let Some(e) = &mut self.edges else { return };
         debug_assert_eq!(e.start.len(), i as usize);
         if !complete {
-            e.to.truncate(edge_start);
+            e.truncate(edge_start);
         }
-        e.start.push(edge_start as u64);
+        if e.start.push(edge_start).is_err() {
+            // Out of memory: the state counts as not expanded (its bit stays clear), and
+            // so does every later one, whose lists are not kept either.
+            self.edges = None;
+            self.bound = Some(Bound::Memory);
+            return;
+        }
         let (w, b) = (i as usize / 64, i % 64);
         if e.expanded.len() <= w {
             e.expanded.resize(w + 1, 0);
@@ -759,8 +865,7 @@ impl<S> Graph<S> {
         if e.expanded.get(w).is_none_or(|x| x >> b & 1 == 0) {
             return None;
         }
-        let (a, z) = (e.start[i as usize], e.start[i as usize + 1]);
-        Some(&e.to[a as usize..z as usize])
+        Some(e.list(i))
     }
 
     /// The shortest path from an initial state to `target`: state indices, initial first.
@@ -792,9 +897,7 @@ impl<S> Graph<S> {
 
     /// Bytes held by the edges (zero when not kept).
     pub fn edge_bytes(&self) -> usize {
-        self.edges.as_ref().map_or(0, |e| {
-            e.start.capacity() * 8 + e.to.capacity() * 4 + e.expanded.capacity() * 8
-        })
+        self.edges.as_ref().map_or(0, Edges::bytes)
     }
 
     /// State `i`, rebuilt by replaying the run to it (a member of its class under
@@ -968,6 +1071,43 @@ mod tests {
             assert_eq!(path.len() - 1, s.div_ceil(2) as usize, "state {s}");
             assert_eq!(g.depth(i) as usize, path.len() - 1);
             assert_eq!(g.successors(i).map(|e| e.len()), Some(2));
+        }
+    }
+
+    /// Counting modulo `n` by 1 to `s % 7`: from zero to six successors per state.
+    struct Uneven(u32);
+
+    impl Model for Uneven {
+        type State = u32;
+        type Label = u32;
+        fn init_states(&self) -> Box<dyn Iterator<Item = u32> + '_> {
+            Box::new(std::iter::once(1))
+        }
+        fn next_states(&self, s: &u32) -> Vec<(u32, u32)> {
+            (1..=s % 7).map(|k| (k, (s + k) % self.0)).collect()
+        }
+    }
+
+    #[test]
+    fn every_state_keeps_its_successors_across_the_edge_chunks() {
+        let m = Uneven(800_000);
+        let g = bare(&m, unbounded(), Options::default());
+        assert!(g.complete());
+        let fp: std::collections::HashMap<u64, u32> =
+            (0..g.len() as u32).map(|i| (g.fingerprint(i), i)).collect();
+        assert!(g.transitions > 2 * EDGE_CHUNK, "{} edges", g.transitions);
+        // The state of each number, through the fingerprints (replaying runs this long to
+        // each state would take minutes).
+        let state: std::collections::HashMap<u64, u32> =
+            (0..m.0).map(|s| (m.fingerprint(&s), s)).collect();
+        for i in 0..g.len() as u32 {
+            let s = state[&g.fingerprint(i)];
+            let want: Vec<u32> = m
+                .next_states(&s)
+                .iter()
+                .map(|(_, t)| fp[&m.fingerprint(t)])
+                .collect();
+            assert_eq!(g.successors(i), Some(&want[..]), "state {s}");
         }
     }
 

@@ -37,6 +37,7 @@ pub mod system;
 pub mod trace;
 
 mod checker;
+mod chunked;
 mod explained_runs;
 mod failures;
 mod liveness;

@@ -185,6 +185,12 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
 pub trait AgentState {
     /// The beliefs.
     fn beliefs(&self) -> &AtomSet;
+    /// An identity of the beliefs within one search, when they are shared between states
+    /// (equal keys, equal beliefs), so that what depends on the beliefs alone can be
+    /// computed once per belief base.
+    fn beliefs_key(&self) -> Option<usize> {
+        None
+    }
     /// The requests still being served.
     fn pending_requests(&self) -> u64;
     /// Whether the agent has nothing to do.
@@ -232,6 +238,9 @@ impl AgentState for State {
 impl AgentState for Packed<'_> {
     fn beliefs(&self) -> &AtomSet {
         Packed::beliefs(self)
+    }
+    fn beliefs_key(&self) -> Option<usize> {
+        Some(Packed::beliefs_key(self))
     }
     fn pending_requests(&self) -> u64 {
         Packed::pending_requests(self)

@@ -14,8 +14,7 @@ pub(super) type Plans = smallvec::SmallVec<[u32; 4]>;
 
 /// What the search records about one state, computed where the state is found.
 struct Summary {
-    /// Bit `j`: condition `j` of [`Conditions`] holds.
-    holds: smallvec::SmallVec<[u64; 2]>,
+    holds: Holds,
     pending: u64,
     idle: bool,
     /// The atomic propositions of the run properties that hold ([`RunAtoms`]).
@@ -37,16 +36,31 @@ impl Conditions<'_> {
         self.invariants.len() + self.props.len() + self.overlaps.len()
     }
 
-    /// `applicable`: the plans applicable to the first event of a state.
-    fn summarize<S: AgentState>(&self, s: &S, applicable: &impl Fn(&S) -> Plans) -> Summary {
-        let mut holds = smallvec::SmallVec::from_elem(0u64, self.len().div_ceil(64).max(1));
-        let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
+    /// Which invariants and properties hold on `beliefs`: bit `j` for condition `j`.
+    fn on_beliefs(&self, beliefs: &crate::model::atoms::AtomSet) -> Holds {
+        let mut holds = Holds::from_elem(0u64, self.len().div_ceil(64).max(1));
         let conds = self.invariants.iter().chain(&self.props);
         for (j, c) in conds.enumerate() {
-            if c.eval(s.beliefs()) {
-                set(j);
+            if c.eval(beliefs) {
+                holds[j / 64] |= 1 << (j % 64);
             }
         }
+        holds
+    }
+
+    /// `applicable`: the plans applicable to the first event of a state; `memo`: the
+    /// conditions' values per belief base, of this search's states.
+    fn summarize<S: AgentState>(
+        &self,
+        s: &S,
+        applicable: &impl Fn(&S) -> Plans,
+        memo: &ByBeliefs,
+    ) -> Summary {
+        let mut holds = match s.beliefs_key() {
+            Some(key) => memo.get(key, || self.on_beliefs(s.beliefs())),
+            None => self.on_beliefs(s.beliefs()),
+        };
+        let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
         if !self.overlaps.is_empty() {
             let applicable = applicable(s);
             let base = self.invariants.len() + self.props.len();
@@ -62,6 +76,41 @@ impl Conditions<'_> {
             idle: s.is_idle(),
             letter: self.runs.map(|r| r.state_letter(s)).unwrap_or_default(),
         }
+    }
+}
+
+/// Bit `j`: condition `j` of [`Conditions`] holds.
+type Holds = smallvec::SmallVec<[u64; 2]>;
+
+/// Shards of [`ByBeliefs`], each behind its own lock.
+const SHARDS: usize = 64;
+
+/// The invariants' and properties' values per belief base ([`AgentState::beliefs_key`]),
+/// for one search: far fewer belief bases than states occur, and evaluating the
+/// conditions on every state took a third of the exploring threads' time.
+struct ByBeliefs {
+    shards: Vec<std::sync::Mutex<HashMap<usize, Holds>>>,
+}
+
+impl ByBeliefs {
+    fn new() -> ByBeliefs {
+        ByBeliefs {
+            shards: (0..SHARDS).map(|_| Default::default()).collect(),
+        }
+    }
+
+    fn get(&self, key: usize, compute: impl FnOnce() -> Holds) -> Holds {
+        // Keys are addresses: their low bits are alignment, their middle bits vary.
+        let shard = &self.shards[(key >> 6) % SHARDS];
+        // A panicking search thread is re-raised by the explorer; the map it left is
+        // consistent (every insertion is one call).
+        let lock = || shard.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(h) = lock().get(&key) {
+            return h.clone();
+        }
+        let h = compute();
+        lock().insert(key, h.clone());
+        h
     }
 }
 
@@ -160,6 +209,7 @@ where
         .and_then(|d| std::time::Instant::now().checked_add(d));
     let unchecked = std::sync::atomic::AtomicBool::new(false);
     let mut steps = HashMap::new();
+    let by_beliefs = ByBeliefs::new();
     let graph = explore_with(
         model,
         limits,
@@ -170,7 +220,7 @@ where
                 unchecked.store(true, std::sync::atomic::Ordering::Relaxed);
             }
             let unequal = if late { None } else { equivariance(s) };
-            (conditions.summarize(s, &applicable), unequal)
+            (conditions.summarize(s, &applicable, &by_beliefs), unequal)
         },
         |i, (sum, unequal)| {
             if not_equivariant.is_none() {

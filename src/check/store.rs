@@ -5,10 +5,11 @@
 //! plus one 5-byte slot of an open-addressing hash table that maps fingerprints to numbers
 //! (kept between 3/8 and 3/4 full, so 6.7 to 13.3 bytes per state). A slot holds the
 //! state's number and the top byte of its fingerprint, so that probing past other states
-//! seldom reads their fingerprints (a cache miss each). The two arrays grow by a quarter
-//! at a time, so at most 25% of them is slack: 19 to 29 bytes per state. No state is
-//! kept: a state, or the run to it, is rebuilt by replaying transitions
-//! from an initial state and following the fingerprints (as stateright does). Growth uses
+//! seldom reads their fingerprints (a cache miss each). The two arrays grow by chunks
+//! that never move ([`Chunked`]: copying them into fresh memory cost more than the search
+//! did with it), with less than one chunk (2^18 states) of slack: 19 to 29 bytes per state
+//! from a million states on. No state is kept: a state, or the run to it, is rebuilt by
+//! replaying transitions from an initial state and following the fingerprints (as stateright does). Growth uses
 //! `try_reserve`, so running out of memory ends the search as `incomplete` instead of
 //! aborting the process.
 
@@ -33,6 +34,18 @@ fn number(s: &Slot) -> u32 {
     u32::from_le_bytes([s[0], s[1], s[2], s[3]])
 }
 
+use super::chunked::Chunked;
+
+/// Puts state `i` with fingerprint `fp` in the first free slot from its own.
+fn place(slots: &mut [Slot], i: u32, fp: u64) {
+    let mask = slots.len() - 1;
+    let mut at = fp as usize & mask;
+    while number(&slots[at]) != NONE {
+        at = (at + 1) & mask;
+    }
+    slots[at] = slot(i, fp);
+}
+
 /// The store could not grow: memory is exhausted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct OutOfMemory;
@@ -40,8 +53,8 @@ pub struct OutOfMemory;
 /// Fingerprints and parent links of the visited states.
 #[derive(Default)]
 pub struct Store {
-    fps: Vec<u64>,
-    parent: Vec<u32>,
+    fps: Chunked<u64>,
+    parent: Chunked<u32>,
     slots: Vec<Slot>,
 }
 
@@ -63,12 +76,12 @@ impl Store {
 
     /// The fingerprint of state `i`.
     pub fn fingerprint(&self, i: u32) -> u64 {
-        self.fps[i as usize]
+        self.fps.get(i as usize)
     }
 
     /// The state `i` was first reached from (`None` for an initial state).
     pub fn parent(&self, i: u32) -> Option<u32> {
-        let p = self.parent[i as usize];
+        let p = self.parent.get(i as usize);
         (p != NONE).then_some(p)
     }
 
@@ -86,11 +99,30 @@ impl Store {
             if i == NONE {
                 return None;
             }
-            if s[4] == t && self.fps[i as usize] == fp {
+            if s[4] == t && self.fps.get(i as usize) == fp {
                 return Some(i);
             }
             at = (at + 1) & mask;
         }
+    }
+
+    /// Asks the processor to bring the slot where a lookup of `fp` starts into its cache,
+    /// without waiting for it: the merge prefetches a whole job's successors before it
+    /// looks them up, so that their cache misses (most lookups miss, the table being far
+    /// larger than the cache) overlap instead of following one another.
+    pub fn prefetch(&self, fp: u64) {
+        if self.slots.is_empty() {
+            return;
+        }
+        let at = fp as usize & (self.slots.len() - 1);
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            // SAFETY: `at` is within `slots`, and a prefetch only reads into the cache.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(self.slots.as_ptr().add(at).cast::<i8>()) };
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = at;
     }
 
     /// Stores `fp` (reached from `parent`) unless it is there: its number, and whether it
@@ -105,29 +137,14 @@ impl Store {
         if (self.fps.len() + 1) * 4 > self.slots.len() * 3 {
             self.grow()?;
         }
-        if self.fps.len() == self.fps.capacity() {
-            // Grow by a quarter, not double: at most 25% slack in the two arrays.
-            let more = (self.fps.len() / 4).max(1024);
-            self.fps.try_reserve_exact(more).map_err(|_| OutOfMemory)?;
-            self.parent
-                .try_reserve_exact(more)
-                .map_err(|_| OutOfMemory)?;
-        }
         let i = self.fps.len() as u32;
-        self.fps.push(fp);
-        self.parent.push(parent.unwrap_or(NONE));
-        self.place(i);
-        Ok((i, true))
-    }
-
-    fn place(&mut self, i: u32) {
-        let mask = self.slots.len() - 1;
-        let fp = self.fps[i as usize];
-        let mut at = fp as usize & mask;
-        while number(&self.slots[at]) != NONE {
-            at = (at + 1) & mask;
+        self.fps.push(fp)?;
+        if let Err(e) = self.parent.push(parent.unwrap_or(NONE)) {
+            self.fps.pop();
+            return Err(e);
         }
-        self.slots[at] = slot(i, fp);
+        place(&mut self.slots, i, fp);
+        Ok((i, true))
     }
 
     fn grow(&mut self) -> Result<(), OutOfMemory> {
@@ -135,16 +152,16 @@ impl Store {
         let mut slots = Vec::new();
         slots.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
         slots.resize(cap, EMPTY);
-        self.slots = slots;
-        for i in 0..self.fps.len() as u32 {
-            self.place(i);
+        for (i, fp) in self.fps.iter().enumerate() {
+            place(&mut slots, i as u32, fp);
         }
+        self.slots = slots;
         Ok(())
     }
 
     /// Bytes held (capacity, not just length).
     pub fn bytes(&self) -> usize {
-        self.fps.capacity() * 8 + self.parent.capacity() * 4 + self.slots.capacity() * 5
+        self.fps.bytes() + self.parent.bytes() + self.slots.capacity() * 5
     }
 }
 

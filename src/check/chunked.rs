@@ -1,0 +1,156 @@
+//! Arrays that grow by adding chunks, never by copying.
+//!
+//! A `Vec` that grows reallocates: it copies itself into fresh memory, whose pages the
+//! kernel must clear first. On this project's machines clearing a page costs more than
+//! anything the search does with it, and a vector grown by a quarter at a time clears five
+//! times its final size. A [`Chunked`] array keeps its elements in chunks of doubling size
+//! up to [`MAX_CHUNK`] elements and equal size after, so every page is cleared once and
+//! an element never moves; its slack is at most half of it while it is small, and at most
+//! one chunk after.
+
+use super::store::OutOfMemory;
+
+/// The first chunk's length, as a power of two.
+const FIRST: u32 = 10;
+
+/// The length of the largest chunks, as a power of two: 2 MiB of `u64`s (the size of a
+/// huge page).
+const MAX: u32 = 18;
+
+/// The length of the largest chunks.
+pub const MAX_CHUNK: usize = 1 << MAX;
+
+/// A growable array in chunks that never move.
+#[derive(Debug)]
+pub struct Chunked<T> {
+    chunks: Vec<Vec<T>>,
+    len: usize,
+}
+
+impl<T> Default for Chunked<T> {
+    fn default() -> Chunked<T> {
+        Chunked {
+            chunks: Vec::new(),
+            len: 0,
+        }
+    }
+}
+
+/// Chunk `k` holds the elements from `start(k)` on, `capacity(k)` of them: chunks 0 and 1
+/// hold `2^FIRST` each, chunk `k` up to `MAX - FIRST + 1` holds `2^(FIRST + k - 1)`, and
+/// every later one `2^MAX`.
+fn capacity(k: usize) -> usize {
+    1 << (FIRST as usize + k.saturating_sub(1)).min(MAX as usize)
+}
+
+/// The chunk and offset of element `i`.
+fn locate(i: usize) -> (usize, usize) {
+    if i < 1 << FIRST {
+        (0, i)
+    } else if i < 1 << MAX {
+        // Chunk k >= 1 holds [2^(FIRST + k - 1), 2^(FIRST + k)).
+        let log = usize::BITS - 1 - i.leading_zeros();
+        ((log - FIRST + 1) as usize, i - (1 << log))
+    } else {
+        // Chunk MAX - FIRST + 1 starts at 2^MAX, each after it 2^MAX later.
+        (
+            (MAX - FIRST + 1) as usize + ((i >> MAX) - 1),
+            i & (MAX_CHUNK - 1),
+        )
+    }
+}
+
+impl<T: Copy> Chunked<T> {
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Element `i` (panics past the end, as slices do).
+    pub fn get(&self, i: usize) -> T {
+        assert!(i < self.len, "index {i} past the end ({})", self.len);
+        let (k, at) = locate(i);
+        self.chunks[k][at]
+    }
+
+    /// Appends `x`; a new chunk that cannot be allocated is [`OutOfMemory`].
+    pub fn push(&mut self, x: T) -> Result<(), OutOfMemory> {
+        let (k, _) = locate(self.len);
+        if k == self.chunks.len() {
+            let mut chunk = Vec::new();
+            chunk
+                .try_reserve_exact(capacity(k))
+                .map_err(|_| OutOfMemory)?;
+            self.chunks.try_reserve(1).map_err(|_| OutOfMemory)?;
+            self.chunks.push(chunk);
+        }
+        self.chunks[k].push(x);
+        self.len += 1;
+        Ok(())
+    }
+
+    /// Removes the last element.
+    pub fn pop(&mut self) -> Option<T> {
+        let last = self.len.checked_sub(1)?;
+        let (k, _) = locate(last);
+        self.len = last;
+        self.chunks[k].pop()
+    }
+
+    /// The elements in order.
+    pub fn iter(&self) -> impl Iterator<Item = T> + '_ {
+        self.chunks.iter().flatten().copied()
+    }
+
+    /// Bytes allocated.
+    pub fn bytes(&self) -> usize {
+        self.chunks.iter().map(Vec::capacity).sum::<usize>() * std::mem::size_of::<T>()
+            + self.chunks.capacity() * std::mem::size_of::<Vec<T>>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chunks_tile_the_indices_without_gaps() {
+        let mut next = 0;
+        for k in 0..(MAX - FIRST + 4) as usize {
+            assert_eq!(locate(next), (k, 0), "chunk {k} starts at {next}");
+            let last = next + capacity(k) - 1;
+            assert_eq!(locate(last), (k, capacity(k) - 1));
+            next = last + 1;
+        }
+    }
+
+    #[test]
+    fn elements_stay_where_they_were_put() {
+        let mut a = Chunked::default();
+        let n = MAX_CHUNK * 2 + 12_345;
+        for i in 0..n as u64 {
+            a.push(i * 3).unwrap();
+        }
+        assert_eq!(a.len(), n);
+        assert!((0..n).step_by(997).all(|i| a.get(i) == i as u64 * 3));
+        assert_eq!(a.get(n - 1), (n as u64 - 1) * 3);
+        assert_eq!(a.pop(), Some((n as u64 - 1) * 3));
+        assert_eq!(a.iter().count(), n - 1);
+        assert!(a.iter().enumerate().all(|(i, x)| x == i as u64 * 3));
+        // Slack: less than one largest chunk.
+        assert!(a.bytes() < (n + MAX_CHUNK) * 8 + 4096, "{}", a.bytes());
+    }
+
+    #[test]
+    #[should_panic(expected = "past the end")]
+    fn reading_past_the_end_panics() {
+        let mut a = Chunked::default();
+        a.push(1u32).unwrap();
+        a.get(1);
+    }
+}
