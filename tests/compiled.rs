@@ -291,10 +291,14 @@ fn symmetry_on_compiled_parts_agrees_with_symmetry_on_whole_states() {
                 sym.fingerprint(&whole),
                 "{dir}"
             );
-            let parts = sym.equivariance_violation_compiled(&c, &s);
+            let parts = sym.equivariance_violation_compiled(&c, &s, None);
             assert_eq!(parts, sym.equivariance_violation(&sem, &whole), "{dir}");
+            // Given the successors (as the search does), the same.
+            let succ: Vec<Packed> = c.successors(&s).into_iter().map(|(_, t)| t).collect();
+            let given = sym.equivariance_violation_compiled(&c, &s, Some(succ.clone()));
+            assert_eq!(given, parts, "{dir}");
             broken += usize::from(parts.is_some());
-            queue.extend(c.successors(&s).into_iter().map(|(_, t)| t));
+            queue.extend(succ);
         }
         assert!(compared > 5, "{dir}: {compared} states");
     }

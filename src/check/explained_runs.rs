@@ -52,7 +52,7 @@ pub(super) fn decide<W: Runs>(
         model,
         limits,
         &opts,
-        |s: &ExplainedState<W::State>| (reading.facts)(&s.state),
+        |s: &ExplainedState<W::State>, _| (reading.facts)(&s.state),
         |i, (letter, b)| {
             letters.push(letter);
             if busy.len() <= i as usize {

@@ -1351,7 +1351,7 @@ pub fn check_user<W: Runs>(
         model,
         limits,
         opts,
-        |_| (),
+        |_, _| (),
         |_, ()| {},
         |src, k, step: &Step<W::Notes>, fp| {
             given += step.given.iter().flatten().count();

@@ -193,6 +193,10 @@ pub struct Graph<S = State> {
     state: PhantomData<fn() -> S>,
 }
 
+/// A state's successors as the search has them: each with its transition's label and its
+/// fingerprint.
+pub type Successors<M> = [(<M as Model>::Label, <M as Model>::State, u64)];
+
 /// What expanding one frontier state produced (in a worker thread).
 struct Expanded<T, L, S> {
     summary: T,
@@ -251,7 +255,9 @@ struct Inline<'a, M: Model, F> {
     queue: std::collections::VecDeque<(Batch<M::State>, bool)>,
 }
 
-impl<M: Model, T, F: Fn(&M::State) -> T> Expander<M::State, T, M::Label> for Inline<'_, M, F> {
+impl<M: Model, T, F: Fn(&M::State, Option<&Successors<M>>) -> T> Expander<M::State, T, M::Label>
+    for Inline<'_, M, F>
+{
     fn ahead(&self) -> usize {
         1
     }
@@ -341,7 +347,7 @@ pub fn explore<M: Model>(
 ) -> Graph<M::State> {
     let mut inline = Inline {
         model,
-        summarize: |_: &M::State| (),
+        summarize: |_: &M::State, _: Option<&Successors<M>>| (),
         queue: Default::default(),
     };
     search(
@@ -357,14 +363,15 @@ pub fn explore<M: Model>(
 
 /// Explores a model with `opts.threads` worker threads expanding states while this thread
 /// merges their successors into the store. `summarize` runs on every stored state (in a
-/// worker thread); `on_state` then receives its summary, in state number order;
+/// worker thread), with its successors when it was expanded; `on_state` then receives its
+/// summary, in state number order;
 /// `on_transition` sees every transition with the fingerprint of its target, in a fixed
 /// order.
 pub fn explore_with<M, T>(
     model: &M,
     limits: Limits,
     opts: &Options,
-    summarize: impl Fn(&M::State) -> T + Sync,
+    summarize: impl Fn(&M::State, Option<&Successors<M>>) -> T + Sync,
     on_state: impl FnMut(u32, T),
     on_transition: impl FnMut(u32, u32, &M::Label, u64),
     progress: impl FnMut(usize, u32, f64),
@@ -451,21 +458,22 @@ fn expand_one<M: Model, T>(
     model: &M,
     s: &M::State,
     expand: bool,
-    summarize: &impl Fn(&M::State) -> T,
+    summarize: &impl Fn(&M::State, Option<&Successors<M>>) -> T,
 ) -> Expanded<T, M::Label, M::State> {
     let mut ample = None;
+    let successors: Option<Vec<_>> = expand.then(|| {
+        let succ = model.next_states(s);
+        ample = model.ample(s, &succ);
+        succ.into_iter()
+            .map(|(mut l, t)| {
+                let fp = model.fingerprint_labelled(&mut l, &t);
+                (l, t, fp)
+            })
+            .collect()
+    });
     Expanded {
-        summary: summarize(s),
-        successors: expand.then(|| {
-            let succ = model.next_states(s);
-            ample = model.ample(s, &succ);
-            succ.into_iter()
-                .map(|(mut l, t)| {
-                    let fp = model.fingerprint_labelled(&mut l, &t);
-                    (l, t, fp)
-                })
-                .collect()
-        }),
+        summary: summarize(s, successors.as_deref()),
+        successors,
         ample,
     }
 }
@@ -1000,7 +1008,7 @@ mod tests {
             m,
             limits,
             &opts,
-            |_| (),
+            |_, _| (),
             |_, ()| {},
             |_, _, _, _| {},
             |_, _, _| {},
@@ -1124,7 +1132,7 @@ mod tests {
                 &m,
                 unbounded(),
                 &opts,
-                |s| *s,
+                |s, succ: Option<&Successors<Counter>>| (*s, succ.map(|v| v.len())),
                 |i, s| seen.push((i, s)),
                 |_, _, _, _| {},
                 |_, _, _| {},

@@ -531,7 +531,7 @@ fn agent_search(
             let (g, unequal, unchecked) = search_agent(
                 &model,
                 (conditions, |s: &Packed| c.applicable_plans(s).into()),
-                |s| model.equivariance_violation(s),
+                |s, succ| model.equivariance_violation(s, succ),
                 bounds,
                 record,
                 progress,
@@ -548,7 +548,7 @@ fn agent_search(
                         .collect()
                 })
             }),
-            |s| {
+            |s, _| {
                 agent
                     .symmetry
                     .as_ref()

@@ -2,7 +2,7 @@
 //! of the checked conditions hold, its pending requests and whether it is idle (computed
 //! in the exploring threads, since no state is kept); per transition, the failures it shows.
 
-use super::explore::{explore_with, Graph, Limits, Options};
+use super::explore::{explore_with, Graph, Limits, Options, Successors};
 use super::failures::Failures;
 use super::model::{AgentState, CycleNotes, Model};
 use super::runs::{Letter, RunAtoms};
@@ -189,7 +189,7 @@ impl Facts {
 pub(super) fn search_agent<M>(
     model: &M,
     (conditions, applicable): (&Conditions, impl Fn(&M::State) -> Plans + Sync),
-    equivariance: impl Fn(&M::State) -> Option<String> + Sync,
+    equivariance: impl Fn(&M::State, Option<&Successors<M>>) -> Option<String> + Sync,
     (limits, opts): (Limits, &Options),
     (facts, eventually, failures): (&mut Facts, &[usize], &mut Failures),
     progress: impl FnMut(usize, u32, f64),
@@ -214,12 +214,12 @@ where
         model,
         limits,
         opts,
-        |s| {
+        |s, succ| {
             let late = deadline.is_some_and(|d| std::time::Instant::now() > d);
             if late {
                 unchecked.store(true, std::sync::atomic::Ordering::Relaxed);
             }
-            let unequal = if late { None } else { equivariance(s) };
+            let unequal = if late { None } else { equivariance(s, succ) };
             (conditions.summarize(s, &applicable, &by_beliefs), unequal)
         },
         |i, (sum, unequal)| {

@@ -187,7 +187,7 @@ where
         model,
         limits,
         &Options::default(),
-        summary,
+        |s, _| summary(s),
         |i, x| {
             let i = i as usize;
             if facts.len() <= i {

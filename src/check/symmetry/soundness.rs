@@ -69,17 +69,20 @@ impl Symmetry {
     /// [`Symmetry::equivariance_violation`] on the compiled reasoning cycle: the renamings
     /// of `p` and of its successors are made part by part, each part once per generator
     /// ([`Compiled::map`]), and compared by fingerprint; only where they differ is the
-    /// comparison by classes made, on whole states.
+    /// comparison by classes made, on whole states. `succ`: `p`'s successors, when the
+    /// caller has them.
     pub fn equivariance_violation_compiled<'c>(
         &self,
         c: &'c Compiled,
         p: &Packed<'c>,
+        succ: Option<Vec<Packed<'c>>>,
     ) -> Option<String> {
         let sorted = |mut v: Vec<u64>| {
             v.sort_unstable();
             v
         };
-        let succ: Vec<Packed> = c.successors(p).into_iter().map(|(_, t)| t).collect();
+        let succ: Vec<Packed> =
+            succ.unwrap_or_else(|| c.successors(p).into_iter().map(|(_, t)| t).collect());
         let alike = self.generators().iter().all(|g| {
             let r = super::Renaming { sym: self, perm: g };
             let id = c.map_id(g);

@@ -117,7 +117,7 @@ pub fn stuck_states(
             timeout: None,
         },
         &opts,
-        busy_agents,
+        |s, _| busy_agents(s),
         |i, bits| record_busy(&mut busy, i, bits),
         |src, _, label, fp| steps.transition(src, label, fp),
         |_, _, _| {},

@@ -353,7 +353,7 @@ pub fn verify_system(
         &model,
         limits,
         &opts,
-        |s| summary(s, true),
+        |s, _| summary(s, true),
         |i, sum| {
             for (j, &fails) in sum.fails.iter().enumerate() {
                 let first = if fails {
@@ -596,7 +596,7 @@ pub fn verify_system(
             &full,
             left,
             &opts,
-            |s| summary(s, false),
+            |s, _| summary(s, false),
             |i, sum| {
                 all_facts
                     .borrow_mut()
