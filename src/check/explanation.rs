@@ -370,8 +370,11 @@ struct Tables {
     seen: Table<SeenKey, Seen>,
     judged: Table<JudgedKey, (Shared, Vec<Violation>)>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
-    /// explanation and the truth of its context.
+    /// explanation and the truth of its context, one of `judgeables`.
     explained: Table<(usize, usize), Option<Judgeable>>,
+    /// Each distinct value of `explained` once, so that equal ones have one address: what
+    /// a transition makes of a view depends on the beliefs only through them.
+    judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>>>; SHARDS],
 }
 
 /// Algorithm 2's explanation, and the truth of each literal of its context when given.
@@ -381,10 +384,10 @@ type Judgeable = (Explanation, Vec<bool>);
 type Table<K, V> = [Mutex<HashMap<K, Arc<V>>>; SHARDS];
 
 /// A view after a transition's notes (by address), whether they failed, whether the robot
-/// has yet to sense, and the robot's beliefs and intentions after it (by
-/// [`Runs::beliefs_key`] and [`Runs::intentions_key`]).
+/// has yet to sense, whether each open explanation's context changed on the robot's
+/// beliefs after it, and its intentions after it (by [`Runs::intentions_key`]).
 #[derive(PartialEq, Eq, Hash)]
-struct JudgedKey(usize, bool, bool, usize, SmallVec<[usize; 8]>);
+struct JudgedKey(usize, bool, bool, SmallVec<[bool; 4]>, SmallVec<[usize; 8]>);
 
 /// The value of `key` in `table`, computed (without the lock: computing interns views)
 /// when it is new.
@@ -397,10 +400,11 @@ fn memo<K: Hash + Eq, V>(table: &Table<K, V>, key: K, compute: impl FnOnce() -> 
     shard(table, hash).entry(key).or_insert(v).clone()
 }
 
-/// A view (by address: views are interned), the notes (by [`Runs::notes_key`]), the
-/// robot's beliefs (by [`Runs::beliefs_key`]).
+/// A view (by address: views are interned), the notes (by [`Runs::notes_key`]), and the
+/// explanations the due ones get on the robot's beliefs (by address: interned), none when
+/// no explanation is due.
 #[derive(PartialEq, Eq, Hash)]
-struct SeenKey(usize, SmallVec<[usize; 4]>, usize);
+struct SeenKey(usize, SmallVec<[usize; 4]>, SmallVec<[usize; 2]>);
 
 /// What a transition's notes made of a view: the view after them, the explanations given
 /// at each, the violations, whether a failure was among them.
@@ -412,6 +416,9 @@ struct Seen {
     /// Whether the robot's beliefs were read (an explanation was due): else it is the same
     /// for every state.
     reads_beliefs: bool,
+    /// The notes (by position) whose explanation was due: the beliefs were read through
+    /// their explanations alone. Which are due depends on the view and the notes only.
+    due: SmallVec<[u32; 2]>,
 }
 
 fn shard<T>(table: &[Mutex<T>; SHARDS], hash: u64) -> MutexGuard<'_, T> {
@@ -715,11 +722,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                 .filter_map(|i| i.frames.get(o.depth as usize))
                 .find(|f| f.plan == o.plan);
             let at = frame.and_then(|f| f.cursors.iter().find(|c| c.block == o.block));
-            let changed = o
-                .gamma
-                .iter()
-                .zip(&o.truth)
-                .any(|(l, t)| self.ex.literal_holds(beliefs, l) != *t);
+            let changed = self.context_changed(&o, beliefs);
             let real = match (changed, at) {
                 // The step before the cursor ran (or waits for its sub-intention).
                 (true, Some(c)) if c.pos > o.from => c.pos - 1,
@@ -766,6 +769,15 @@ impl<'a, W: Runs> Explained<'a, W> {
         }
     }
 
+    /// Whether a literal of the context `o` explained has another truth on `beliefs` than
+    /// when the explanation was given.
+    fn context_changed(&self, o: &Obligation, beliefs: &AtomSet) -> bool {
+        o.gamma
+            .iter()
+            .zip(&o.truth)
+            .any(|(l, t)| self.ex.literal_holds(beliefs, l) != *t)
+    }
+
     /// The transition from `s` in which agent `agent` did `notes`, to `next`; `sensed`:
     /// the robot's beliefs after the sense that begins its cycle, when this is a cycle of
     /// the robot that began by perceiving or reading something.
@@ -810,19 +822,32 @@ impl<'a, W: Runs> Explained<'a, W> {
         let before = &s.state;
         let seen = match (sensed, self.runs.notes_key(&notes)) {
             (None, Some(key)) => {
-                let key = SeenKey(
-                    Arc::as_ptr(&s.view.0) as usize,
-                    key,
-                    self.runs.beliefs_key(before),
-                );
+                let at = Arc::as_ptr(&s.view.0) as usize;
+                let beliefs = Some(self.runs.beliefs_key(before));
                 // Most notes do not read the beliefs (no explanation is due): one entry for
                 // every state then.
-                let beliefs = Some(key.2);
-                let seen = memo(&self.tables.seen, SeenKey(key.0, key.1.clone(), 0), || {
-                    self.see(view, before, &notes, None, beliefs)
-                });
+                let seen = memo(
+                    &self.tables.seen,
+                    SeenKey(at, key.clone(), SmallVec::new()),
+                    || self.see(view, before, &notes, None, beliefs),
+                );
                 if seen.reads_beliefs {
-                    memo(&self.tables.seen, key, || {
+                    // The due notes are the same on every state; their explanations differ
+                    // on far fewer states than the beliefs do.
+                    let believed = self.runs.robot_beliefs(before);
+                    let given = seen
+                        .due
+                        .iter()
+                        .filter_map(|&i| match notes.notes().nth(i as usize)? {
+                            note @ Note::Action { stack, .. } => {
+                                let key = (note as *const Note as usize, beliefs?);
+                                let e = self.explained(key, believed, stack);
+                                Some(Arc::as_ptr(&e) as usize)
+                            }
+                            _ => None,
+                        })
+                        .collect();
+                    memo(&self.tables.seen, SeenKey(at, key, given), || {
                         self.see(view, before, &notes, None, beliefs)
                     })
                 } else {
@@ -842,11 +867,19 @@ impl<'a, W: Runs> Explained<'a, W> {
         let unsensed = self.runs.to_sense(&next);
         let judged = match self.runs.intentions_key(&next) {
             Some(key) => {
+                // Judging reads the beliefs only through whether each open explanation's
+                // context changed (see `judge`).
+                let beliefs = self.runs.robot_beliefs(&next);
+                let changed = after
+                    .open
+                    .iter()
+                    .map(|o| self.context_changed(o, beliefs))
+                    .collect();
                 let key = JudgedKey(
                     Arc::as_ptr(&seen.view.0) as usize,
                     seen.failed,
                     unsensed,
-                    self.runs.beliefs_key(&next),
+                    changed,
                     key,
                 );
                 memo(&self.tables.judged, key, || {
@@ -911,6 +944,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         }
         let mut failed = false;
         let mut reads_beliefs = sensed.is_some();
+        let mut due = SmallVec::new();
         for (i, note) in notes.notes().enumerate() {
             let mut given = None;
             match note {
@@ -939,8 +973,9 @@ impl<'a, W: Runs> Explained<'a, W> {
                     } else {
                         // The note (shared) and the beliefs identify the explanation.
                         let key = beliefs_key.map(|b| (note as *const Note as usize, b));
+                        let mut read = false;
                         given = self.action(
-                            (believed, &mut reads_beliefs, key),
+                            (believed, &mut read, key),
                             &mut st,
                             term,
                             stack,
@@ -949,6 +984,10 @@ impl<'a, W: Runs> Explained<'a, W> {
                             *origin,
                             &mut violations,
                         );
+                        if read {
+                            reads_beliefs = true;
+                            due.push(i as u32);
+                        }
                     }
                 }
                 Note::ActionFailed { .. } | Note::GoalFailed { .. } => failed = true,
@@ -965,6 +1004,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             violations,
             failed,
             reads_beliefs,
+            due,
         }
     }
 
@@ -1056,9 +1096,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         let emitted = st.emitted.take();
         *read |= due;
         let explained = due.then(|| match key {
-            Some(key) => memo(&self.tables.explained, key, || {
-                self.explain(believed, stack)
-            }),
+            Some(key) => self.explained(key, believed, stack),
             None => Arc::new(self.explain(believed, stack)),
         });
         let explanation = explained.as_deref().and_then(Option::as_ref);
@@ -1118,6 +1156,35 @@ impl<'a, W: Runs> Explained<'a, W> {
 
     /// Algorithm 2's explanation of the action on top of `stack`, and the truth of each
     /// literal of its `Γ` in `believed`.
+    /// [`Explained::explain`] of the action note `key.0` on the beliefs `key.1`,
+    /// memoized and interned ([`Tables::judgeables`]).
+    fn explained(
+        &self,
+        key: (usize, usize),
+        believed: &AtomSet,
+        stack: &[crate::semantics::FrameView],
+    ) -> Arc<Option<Judgeable>> {
+        let hash = fingerprint(&key);
+        if let Some(v) = shard(&self.tables.explained, hash).get(&key) {
+            return v.clone();
+        }
+        let v = Arc::new(self.explain(believed, stack));
+        let v = {
+            let mut set = shard(&self.tables.judgeables, fingerprint(&v));
+            match set.get(&v) {
+                Some(old) => old.clone(),
+                None => {
+                    set.insert(v.clone());
+                    v
+                }
+            }
+        };
+        shard(&self.tables.explained, hash)
+            .entry(key)
+            .or_insert(v)
+            .clone()
+    }
+
     fn explain(
         &self,
         believed: &AtomSet,
