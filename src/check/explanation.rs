@@ -50,7 +50,7 @@ use super::trace::Builder;
 use crate::explain::agent::{Explainer, Explanation, User};
 use crate::explain::{Content, ContextLiteral, ExpectedSuccessors, Observation, Pair, PlanStep};
 use crate::findings::{Counterexample, Finding, Phase, Status, StepKindTag, TraceStep};
-use crate::model::atoms::AtomSet;
+use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
@@ -375,6 +375,8 @@ struct Tables {
     /// Each distinct value of `explained` once, so that equal ones have one address: what
     /// a transition makes of a view depends on the beliefs only through them.
     judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>>>; SHARDS],
+    /// Per context atom, the atoms it unifies with.
+    instances: [Mutex<HashMap<Term, Arc<[AtomId]>>>; SHARDS],
 }
 
 /// Algorithm 2's explanation, and the truth of each literal of its context when given.
@@ -772,10 +774,26 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// Whether a literal of the context `o` explained has another truth on `beliefs` than
     /// when the explanation was given.
     fn context_changed(&self, o: &Obligation, beliefs: &AtomSet) -> bool {
-        o.gamma
-            .iter()
-            .zip(&o.truth)
-            .any(|(l, t)| self.ex.literal_holds(beliefs, l) != *t)
+        o.gamma.iter().zip(&o.truth).any(|(l, t)| {
+            let believed = self.instances(&l.atom).iter().any(|&a| beliefs.contains(a));
+            (believed == l.positive) != *t
+        })
+    }
+
+    /// The atoms an instance of `atom` may be ([`Explainer::instances`]), kept per atom:
+    /// every transition asks whether the open explanations' contexts changed, and finding
+    /// them anew (a term built and unified per atom of the predicate) was an eighth of a
+    /// user's search.
+    fn instances(&self, atom: &Term) -> Arc<[AtomId]> {
+        let hash = fingerprint(atom);
+        if let Some(v) = shard(&self.tables.instances, hash).get(atom) {
+            return v.clone();
+        }
+        let v: Arc<[AtomId]> = self.ex.instances(atom).into();
+        shard(&self.tables.instances, hash)
+            .entry(atom.clone())
+            .or_insert(v)
+            .clone()
     }
 
     /// The transition from `s` in which agent `agent` did `notes`, to `next`; `sensed`:
@@ -1154,8 +1172,6 @@ impl<'a, W: Runs> Explained<'a, W> {
         Some(given)
     }
 
-    /// Algorithm 2's explanation of the action on top of `stack`, and the truth of each
-    /// literal of its `Γ` in `believed`.
     /// [`Explained::explain`] of the action note `key.0` on the beliefs `key.1`,
     /// memoized and interned ([`Tables::judgeables`]).
     fn explained(
@@ -1185,6 +1201,8 @@ impl<'a, W: Runs> Explained<'a, W> {
             .clone()
     }
 
+    /// Algorithm 2's explanation of the action on top of `stack`, and the truth of each
+    /// literal of its `Γ` in `believed`.
     fn explain(
         &self,
         believed: &AtomSet,

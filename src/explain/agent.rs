@@ -10,7 +10,7 @@ use super::content::{
 };
 use super::demand::{ExpectedSuccessors, Pair};
 use super::render::{sentence, Phrases};
-use crate::model::atoms::AtomSet;
+use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::{unify, Converter, Substitution, Term};
@@ -241,6 +241,25 @@ impl<'p> Explainer<'p> {
                     &mut Substitution::new(),
                 )
         })
+    }
+
+    /// The atoms `atom` unifies with: [`Explainer::holds`] is whether `s` has one of them.
+    pub fn instances(&self, atom: &Term) -> Vec<AtomId> {
+        let p = self.project;
+        let Some(pred) = p.atoms.pred_of_literal(atom) else {
+            return Vec::new();
+        };
+        let atom = atom.without_annots();
+        p.atoms
+            .atoms_of(pred)
+            .filter(|&a| {
+                unify(
+                    &atom,
+                    &p.atoms.term(a, &p.universe),
+                    &mut Substitution::new(),
+                )
+            })
+            .collect()
     }
 
     /// Whether a context literal is believed in `s`: `not p(X)` when no instance of `p(X)` is.
