@@ -295,7 +295,7 @@ fn symmetry_on_compiled_parts_agrees_with_symmetry_on_whole_states() {
             assert_eq!(parts, sym.equivariance_violation(&sem, &whole), "{dir}");
             // Given the successors (as the search does), the same.
             let succ: Vec<Packed> = c.successors(&s).into_iter().map(|(_, t)| t).collect();
-            let given = sym.equivariance_violation_compiled(&c, &s, Some(succ.clone()));
+            let given = sym.equivariance_violation_compiled(&c, &s, Some(succ.iter().collect()));
             assert_eq!(given, parts, "{dir}");
             broken += usize::from(parts.is_some());
             queue.extend(succ);

@@ -157,7 +157,7 @@ impl<'c> CompiledAgent<'c, '_, '_> {
         succ: Option<&super::explore::Successors<Self>>,
     ) -> Option<String> {
         let sym = self.symmetry?;
-        let succ = succ.map(|v| v.iter().map(|(_, t, _)| t.clone()).collect());
+        let succ = succ.map(|v| v.iter().map(|(_, t, _)| t).collect());
         sym.equivariance_violation_compiled(self.compiled, s, succ)
     }
 }

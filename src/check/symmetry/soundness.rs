@@ -75,14 +75,20 @@ impl Symmetry {
         &self,
         c: &'c Compiled,
         p: &Packed<'c>,
-        succ: Option<Vec<Packed<'c>>>,
+        succ: Option<Vec<&Packed<'c>>>,
     ) -> Option<String> {
         let sorted = |mut v: Vec<u64>| {
             v.sort_unstable();
             v
         };
-        let succ: Vec<Packed> =
-            succ.unwrap_or_else(|| c.successors(p).into_iter().map(|(_, t)| t).collect());
+        let computed: Vec<Packed>;
+        let succ = match succ {
+            Some(succ) => succ,
+            None => {
+                computed = c.successors(p).into_iter().map(|(_, t)| t).collect();
+                computed.iter().collect()
+            }
+        };
         let alike = self.generators().iter().all(|g| {
             let r = super::Renaming { sym: self, perm: g };
             let id = c.map_id(g);
