@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 mod common;
-use common::{agent_steps, bdi_check, steps, verify_json};
+use common::{agent_steps, bdi_check, replay_finding, steps, verify_json};
 
 const CHECKS: [&str; 5] = [
     "demand-exact",
@@ -42,11 +42,6 @@ fn failures(r: &serde_json::Value) -> Vec<(&str, &serde_json::Value)> {
         .filter(|f| f["status"] == "fail")
         .map(|f| (f["check"].as_str().unwrap(), f))
         .collect()
-}
-
-fn replay(report: &std::path::Path, id: &str) -> i32 {
-    let o = bdi_check(&["replay", report.to_str().unwrap(), "--finding", id]);
-    o.status.code().unwrap()
 }
 
 #[test]
@@ -103,7 +98,7 @@ fn the_papers_algorithm_at_adoption_misses_the_action_after_a_subgoal() {
     assert!(s
         .iter()
         .any(|t| t.starts_with("explanation to owner: I go to the dishwasher")));
-    assert_eq!(replay(&file, f["id"].as_str().unwrap()), 1);
+    assert_eq!(replay_finding(&file, f["id"].as_str().unwrap()).0, 1);
     // The paper's content for navigateTo(dishwasher) covers the action that opens the door.
     assert!(
         !fails.iter().any(|(c, _)| c.starts_with("content")),
@@ -131,7 +126,7 @@ fn a_context_the_plan_falsifies_is_an_untruthful_explanation() {
         s[s.len() - 2].starts_with("explanation to newcomer: "),
         "{s:#?}"
     );
-    assert_eq!(replay(&file, f["id"].as_str().unwrap()), 1);
+    assert_eq!(replay_finding(&file, f["id"].as_str().unwrap()).0, 1);
 }
 
 #[test]
@@ -151,7 +146,7 @@ fn a_change_inside_a_subgoal_ends_the_content_there() {
         "{msg}"
     );
     assert!(!fails.iter().any(|(c, _)| *c == "content-covers"));
-    assert_eq!(replay(&file, f["id"].as_str().unwrap()), 1);
+    assert_eq!(replay_finding(&file, f["id"].as_str().unwrap()).0, 1);
 }
 
 #[test]
@@ -168,7 +163,7 @@ fn the_syntactic_test_misleads_where_the_semantic_one_does_not() {
         msg.contains("the context first changes at wipe(table)"),
         "{msg}"
     );
-    assert_eq!(replay(&file, f["id"].as_str().unwrap()), 1);
+    assert_eq!(replay_finding(&file, f["id"].as_str().unwrap()).0, 1);
 
     let (code, r, _) = verify("specs/misleading-content/semantic.toml");
     assert_eq!(code, 0, "{r:#}");
@@ -235,7 +230,7 @@ fn an_explanation_the_agent_leaves_out_or_gets_wrong_is_found() {
         msg.contains("is surprising, but the agent gives no explanation"),
         "{msg}"
     );
-    assert_eq!(replay(&file, f["id"].as_str().unwrap()), 1);
+    assert_eq!(replay_finding(&file, f["id"].as_str().unwrap()).0, 1);
 
     // It is explained without the closed door: content-conformance.
     let vague = kitchen_explaining_with("vague", |a| {
@@ -366,7 +361,11 @@ fn failing(project: &str, check: &str, user: &str) -> serde_json::Value {
             .all(|t| t.starts_with("fetcher ") || t.starts_with("loader ")),
         "{s:#?}"
     );
-    assert_eq!(replay(&file, f["id"].as_str().unwrap()), 1, "{f:#}");
+    assert_eq!(
+        replay_finding(&file, f["id"].as_str().unwrap()).0,
+        1,
+        "{f:#}"
+    );
     f
 }
 

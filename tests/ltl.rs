@@ -3,7 +3,7 @@
 //! where both can say the same; refusals with their place.
 
 mod common;
-use common::{bdi_check, temp_dir, verify_json};
+use common::{bdi_check, phase_names, replay_finding as replay, temp_dir, verify_json};
 use std::path::{Path, PathBuf};
 
 /// A copy of the project `base` with `extra` appended to its manifest (relative paths to
@@ -36,14 +36,6 @@ fn finding<'r>(r: &'r serde_json::Value, id: &str) -> &'r serde_json::Value {
         .iter()
         .find(|f| f["id"] == id)
         .unwrap_or_else(|| panic!("no {id} in {r:#}"))
-}
-
-fn replay(report: &Path, id: &str) -> (i32, String) {
-    let o = bdi_check(&["replay", report.to_str().unwrap(), "--finding", id]);
-    (
-        o.status.code().unwrap(),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-    )
 }
 
 /// Each operator and modality: a formula this agent satisfies, or one it violates.
@@ -379,12 +371,7 @@ fn explained_is_decided_on_the_users_explanation_search() {
     assert!(told, "the run shows the explanation: {f:#}");
     let (rc, out) = replay(&file, "property:owner_never_told");
     assert_eq!(rc, 1, "{out}");
-    let phases: Vec<&str> = r["stats"]["phases"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| p["name"].as_str().unwrap())
-        .collect();
+    let phases = phase_names(&r);
     assert!(phases.contains(&"ltl search:owner"), "{phases:?}");
     // Two users in one property cannot be decided on one search.
     let two = property(
@@ -459,12 +446,7 @@ fn run_properties_under_symmetry_agree_with_the_exact_search() {
             &["verify", dir, "--no-symmetry"],
             &format!("ltl-sym-exact-{k}"),
         );
-        let phases: Vec<&str> = sym["stats"]["phases"]
-            .as_array()
-            .unwrap_or_else(|| panic!("{sym:#}"))
-            .iter()
-            .map(|p| p["name"].as_str().unwrap())
-            .collect();
+        let phases = phase_names(&sym);
         let searches: Vec<&&str> = phases
             .iter()
             .filter(|p| p.starts_with("ltl search"))

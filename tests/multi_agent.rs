@@ -345,18 +345,8 @@ always = "loader::at(loader, L) | not at(loader, L)""#,
     // An agent believes where it is only from its next sense on: right after it moves,
     // the world has changed and its belief has not.
     assert_eq!(status("property:loader_lags"), "fail");
-    let o = bdi_check(&[
-        "replay",
-        file.to_str().unwrap(),
-        "--finding",
-        "property:loader_lags",
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&o.stdout)
-    );
+    let (rc, out) = common::replay_finding(&file, "property:loader_lags");
+    assert_eq!(rc, 1, "{out}");
     // A mental note without its agent, and a namespace no agent has, are bad input.
     with("[[property]]\nname = \"p\"\nreachable = \"busy\"");
     let out = verify_error(&d);
@@ -1939,13 +1929,8 @@ fn without_fairness_among_agents_a_loop_may_leave_one_out() {
     let f = failing(&r, "livelock");
     assert_eq!(f.len(), 1, "{r:#}");
     assert_eq!(f[0]["id"], "livelock:a", "{r:#}");
-    let o = bdi_check(&["replay", file.to_str().unwrap(), "--finding", "livelock:a"]);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&o.stdout)
-    );
+    let (rc, out) = common::replay_finding(&file, "livelock:a");
+    assert_eq!(rc, 1, "{out}");
     // And the fairness the passing checks assumed is said.
     let b = r["findings"]
         .as_array()
@@ -2016,18 +2001,8 @@ fn ltl_among_agents_names_them_and_assumes_the_fairness_the_manifest_says() {
         .unwrap();
     assert_eq!(acts["status"], "fail", "{acts:#}");
     assert!(acts["counterexample"]["loop_start"].is_u64(), "{acts:#}");
-    let o = bdi_check(&[
-        "replay",
-        file.to_str().unwrap(),
-        "--finding",
-        "property:acts",
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&o.stdout)
-    );
+    let (rc, out) = common::replay_finding(&file, "property:acts");
+    assert_eq!(rc, 1, "{out}");
     // A modality names its agent among several.
     std::fs::write(
         &toml,
@@ -2068,12 +2043,7 @@ fn explained_among_agents_assumes_the_fairness_the_manifest_says() {
     let f = told(&r);
     assert_eq!(f["status"], "pass", "{f:#}");
     // The user's search decides it: the interleavings themselves read no proposition.
-    let phases: Vec<&str> = r["stats"]["phases"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| p["name"].as_str().unwrap())
-        .collect();
+    let phases = common::phase_names(&r);
     assert!(phases.contains(&"ltl search:newcomer"), "{phases:?}");
     assert!(!phases.contains(&"ltl product"), "{phases:?}");
     assert!(
@@ -2092,18 +2062,8 @@ fn explained_among_agents_assumes_the_fairness_the_manifest_says() {
     let f = told(&r);
     assert_eq!(f["status"], "fail", "{f:#}");
     assert!(f["counterexample"]["loop_start"].is_u64(), "{f:#}");
-    let o = bdi_check(&[
-        "replay",
-        file.to_str().unwrap(),
-        "--finding",
-        "property:told_of_a",
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&o.stdout)
-    );
+    let (rc, out) = common::replay_finding(&file, "property:told_of_a");
+    assert_eq!(rc, 1, "{out}");
 }
 
 #[test]
@@ -2144,16 +2104,6 @@ fn explained_among_agents_is_decided_on_the_users_search_of_every_interleaving()
     assert_eq!(status("property:told_of_puts"), "pass");
     assert_eq!(status("property:never_told_of_picks"), "pass");
     assert_eq!(status("property:never_told_of_puts"), "fail");
-    let o = bdi_check(&[
-        "replay",
-        file.to_str().unwrap(),
-        "--finding",
-        "property:never_told_of_puts",
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&o.stdout)
-    );
+    let (rc, out) = common::replay_finding(&file, "property:never_told_of_puts");
+    assert_eq!(rc, 1, "{out}");
 }

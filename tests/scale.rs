@@ -225,12 +225,7 @@ fn naming_an_interchangeable_object_is_refused_where_it_is_named() {
     let (sym, code) = verify_json(&dir, &[]);
     let (exact, exact_code) = verify_json(&dir, &["--no-symmetry"]);
     assert_eq!((code, exact_code), (1, 1), "{sym:#}");
-    let phases: Vec<&str> = sym["stats"]["phases"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| p["name"].as_str().unwrap())
-        .collect();
+    let phases = common::phase_names(&sym);
     assert!(phases.contains(&"ltl search"), "{phases:?}");
     let find = |r: &Value, name: &str| -> Value {
         r["findings"]

@@ -11,6 +11,27 @@ pub fn bdi_check(args: &[&str]) -> Output {
         .expect("bdi-check runs")
 }
 
+/// `bdi-check replay REPORT --finding ID`: its exit code and its standard output.
+#[allow(dead_code)] // not every test target replays
+pub fn replay_finding(report: &std::path::Path, id: &str) -> (i32, String) {
+    let o = bdi_check(&["replay", report.to_str().unwrap(), "--finding", id]);
+    (
+        o.status.code().expect("replay exits"),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+    )
+}
+
+/// The names of a JSON report's phases (`stats.phases`), in order.
+#[allow(dead_code)] // not every test target reads phases
+pub fn phase_names(r: &serde_json::Value) -> Vec<&str> {
+    r["stats"]["phases"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no phases: {r:#}"))
+        .iter()
+        .map(|p| p["name"].as_str().expect("a phase's name"))
+        .collect()
+}
+
 /// A fresh, empty directory for one test's files, under `bdi-check-tests/PID` in the
 /// system's temporary directory. The test harness has no hook at exit, so the first call of
 /// a process removes what test processes no longer running left there.
