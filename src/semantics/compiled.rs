@@ -100,6 +100,8 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 }
 
 /// A reference to something boxed in a table of a [`Compiled`], valid as long as it.
+/// Transparent, so that a slice of them reads as a slice of references ([`Agenda`]).
+#[repr(transparent)]
 struct Held<T: ?Sized>(NonNull<T>);
 
 impl<T: ?Sized> Clone for Held<T> {
@@ -146,8 +148,18 @@ impl<T: Hash + Eq> Interner<T> {
 
     /// The part holding `value`, its read atoms computed by `reads` when it is new.
     fn intern(&self, value: T, reads: impl FnOnce(&T) -> AtomSet) -> Held<Part<T>> {
+        self.intern_hashed(part_hash(&value), value, reads)
+    }
+
+    /// [`Interner::intern`] for a `value` whose hash is already known.
+    fn intern_hashed(
+        &self,
+        hash: u64,
+        value: T,
+        reads: impl FnOnce(&T) -> AtomSet,
+    ) -> Held<Part<T>> {
         let probe = Part {
-            hash: part_hash(&value),
+            hash,
             reads: AtomSet::default(),
             value,
         };
@@ -206,18 +218,21 @@ impl Key {
         for w in &read {
             h = (h.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
         }
-        // splitmix64's finalizer: every bit of the key reaches the shard and bucket bits.
-        h ^= h >> 30;
-        h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        h ^= h >> 27;
-        h = h.wrapping_mul(0x94d0_49bb_1331_11eb);
-        h ^= h >> 31;
         Key {
             part: part as *const Part<T> as usize,
             read,
-            hash: h,
+            hash: mix(h),
         }
     }
+}
+
+/// splitmix64's finalizer: every bit of `h` reaches the shard and bucket bits.
+fn mix(mut h: u64) -> u64 {
+    h ^= h >> 30;
+    h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    h ^= h >> 27;
+    h = h.wrapping_mul(0x94d0_49bb_1331_11eb);
+    h ^ (h >> 31)
 }
 
 /// Outcomes per key, computed once (or, when two threads race, twice alike).
@@ -247,24 +262,101 @@ impl<V> Memo<V> {
     }
 }
 
+/// What a state holds besides its beliefs and requests: its events, its intentions and the
+/// intention waiting for its action's feedback, as parts. Interned whole, so that a
+/// [`Packed`] state is three words: frontiers of millions of states stay small.
+struct Agenda {
+    events: SmallVec<[Held<Part<Event>>; 4]>,
+    intentions: SmallVec<[Held<Part<Intention>>; 4]>,
+    pending: Option<Held<Part<Pending>>>,
+}
+
+/// `parts` as references, living as long as the borrow of what holds them.
+///
+/// SAFETY: the caller's `parts` must point to what lives at least as long as that borrow.
+/// (`Held` is a transparent non-null pointer, laid out as a reference.)
+unsafe fn refs<T>(parts: &[Held<T>]) -> &[&T] {
+    // SAFETY: same layout; the referents live long enough (see above).
+    unsafe { std::slice::from_raw_parts(parts.as_ptr().cast::<&T>(), parts.len()) }
+}
+
+// SAFETY (every method): an agenda's parts are in the tables of the [`Compiled`] whose table
+// holds the agenda, so they live at least as long as it.
+impl Agenda {
+    fn events(&self) -> &[&Part<Event>] {
+        // SAFETY: see above.
+        unsafe { refs(&self.events) }
+    }
+
+    fn intentions(&self) -> &[&Part<Intention>] {
+        // SAFETY: see above.
+        unsafe { refs(&self.intentions) }
+    }
+
+    fn pending(&self) -> Option<&Part<Pending>> {
+        // SAFETY: see above.
+        self.pending.map(|p| unsafe { p.0.as_ref() })
+    }
+
+    /// A hash of the parts' own hashes, cheaper than hashing them again one by one: an
+    /// agenda is interned at every transition.
+    fn mixed(&self) -> u64 {
+        let mut h = self.events.len() as u64;
+        let words = self.events().iter().map(|e| e.hash);
+        let words = words.chain(self.intentions().iter().map(|i| i.hash));
+        for w in words.chain(self.pending().map(|p| p.hash)) {
+            h = (h.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
+        }
+        mix(h)
+    }
+}
+
+// Parts are interned: the same part is the same address, so an agenda is equal to another
+// when it holds the same addresses, and hashes as the parts' own hashes.
+impl PartialEq for Agenda {
+    fn eq(&self, o: &Agenda) -> bool {
+        fn same<T>(a: &[&Part<T>], b: &[&Part<T>]) -> bool {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| std::ptr::eq(*x, *y))
+        }
+        same(self.events(), o.events())
+            && same(self.intentions(), o.intentions())
+            && self.pending.map(|p| p.0) == o.pending.map(|p| p.0)
+    }
+}
+
+impl Eq for Agenda {}
+
+impl Hash for Agenda {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        h.write_u64(self.mixed());
+    }
+}
+
+impl std::fmt::Debug for Agenda {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Agenda")
+            .field("events", &self.events())
+            .field("intentions", &self.intentions())
+            .field("pending", &self.pending())
+            .finish()
+    }
+}
+
 /// A state of the compiled search: [`State`]'s parts, shared. Hashed exactly as the
 /// [`State`] it stands for, so that its fingerprint is that state's.
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct Packed<'c> {
     beliefs: &'c Part<Base>,
-    events: SmallVec<[&'c Part<Event>; 4]>,
-    intentions: SmallVec<[&'c Part<Intention>; 4]>,
-    pending: Option<&'c Part<Pending>>,
+    agenda: &'c Part<Agenda>,
     requested: u64,
 }
 
 impl PartialEq for Packed<'_> {
     fn eq(&self, o: &Packed<'_>) -> bool {
+        // Parts are interned: equal parts are the same part.
         self.requested == o.requested
-            && self.beliefs == o.beliefs
-            && self.events == o.events
-            && self.intentions == o.intentions
-            && self.pending == o.pending
+            && std::ptr::eq(self.beliefs, o.beliefs)
+            && std::ptr::eq(self.agenda, o.agenda)
     }
 }
 
@@ -272,12 +364,13 @@ impl Eq for Packed<'_> {}
 
 impl Hash for Packed<'_> {
     fn hash<H: Hasher>(&self, h: &mut H) {
+        let a = &self.agenda.value;
         hash_parts(
             h,
             self.beliefs.hash,
-            self.events.iter().map(|e| e.hash),
-            self.intentions.iter().map(|i| i.hash),
-            self.pending.map(|p| p.hash),
+            a.events().iter().map(|e| e.hash),
+            a.intentions().iter().map(|i| i.hash),
+            a.pending().map(|p| p.hash),
             // Agents that `.wait` are not compiled (their library is not local).
             std::iter::empty(),
             self.requested,
@@ -291,7 +384,17 @@ impl Hash for Packed<'_> {
     }
 }
 
-impl Packed<'_> {
+/// A [`Packed`] state opened for a transition to change: its agenda as lists of parts.
+#[derive(Clone)]
+struct Open<'c> {
+    beliefs: &'c Part<Base>,
+    events: SmallVec<[&'c Part<Event>; 4]>,
+    intentions: SmallVec<[&'c Part<Intention>; 4]>,
+    pending: Option<&'c Part<Pending>>,
+    requested: u64,
+}
+
+impl<'c> Packed<'c> {
     /// The beliefs.
     pub fn beliefs(&self) -> &AtomSet {
         &self.beliefs.value.0
@@ -306,17 +409,18 @@ impl Packed<'_> {
     /// An identity of every intention (see [`Packed::all_intentions`]): equal for the same
     /// intentions in the same places (intentions, events and pending actions are interned).
     pub fn intentions_key(&self) -> SmallVec<[usize; 8]> {
-        let mut key: SmallVec<[usize; 8]> = self
-            .intentions
+        let a = &self.agenda.value;
+        let mut key: SmallVec<[usize; 8]> = a
+            .intentions()
             .iter()
             .map(|i| *i as *const Part<Intention> as usize)
             .collect();
         key.push(
-            self.pending
+            a.pending()
                 .map_or(0, |p| p as *const Part<Pending> as usize),
         );
         key.extend(
-            self.events
+            a.events()
                 .iter()
                 .filter(|e| e.value.intention.is_some())
                 .map(|e| *e as *const Part<Event> as usize),
@@ -330,42 +434,41 @@ impl Packed<'_> {
     }
 
     /// The events, first in first out.
-    pub fn events(&self) -> impl Iterator<Item = &Event> {
-        self.events.iter().map(|e| &e.value)
+    pub fn events(&self) -> impl Iterator<Item = &'c Event> {
+        self.agenda.value.events().iter().map(|e| &e.value)
     }
 
     /// The first event of the queue.
-    pub fn first_event(&self) -> Option<&Event> {
-        self.events.first().map(|e| &e.value)
+    pub fn first_event(&self) -> Option<&'c Event> {
+        self.agenda.value.events().first().map(|e| &e.value)
     }
 
     /// Whether the agent has nothing to do (see [`State::is_idle`]).
     pub fn is_idle(&self) -> bool {
-        self.events.is_empty() && self.intentions.is_empty() && self.pending.is_none()
+        let a = &self.agenda.value;
+        a.events.is_empty() && a.intentions.is_empty() && a.pending.is_none()
     }
 
     /// Every intention: running, waiting for its action's feedback, suspended in an event
     /// (see [`State::all_intentions`]).
-    pub fn all_intentions(&self) -> impl Iterator<Item = &Intention> {
-        self.intentions
+    pub fn all_intentions(&self) -> impl Iterator<Item = &'c Intention> {
+        let a = &self.agenda.value;
+        a.intentions()
             .iter()
             .map(|i| &i.value)
-            .chain(self.pending.map(|p| &p.value.intention))
-            .chain(
-                self.events
-                    .iter()
-                    .filter_map(|e| e.value.intention.as_ref()),
-            )
+            .chain(a.pending().map(|p| &p.value.intention))
+            .chain(a.events().iter().filter_map(|e| e.value.intention.as_ref()))
     }
 
     /// The requests still being served (see [`State::pending_requests`]).
     pub fn pending_requests(&self) -> u64 {
+        let a = &self.agenda.value;
         requests_of(
-            self.intentions
+            a.intentions()
                 .iter()
                 .map(|i| &i.value)
-                .chain(self.pending.map(|p| &p.value.intention)),
-            self.events.iter().map(|e| &e.value),
+                .chain(a.pending().map(|p| &p.value.intention)),
+            a.events().iter().map(|e| &e.value),
         )
     }
 }
@@ -425,6 +528,7 @@ pub struct Compiled<'s, 'p> {
     events: Interner<Event>,
     intentions: Interner<Intention>,
     pendings: Interner<Pending>,
+    agendas: Interner<Agenda>,
     /// Per event and read beliefs: the options, and whether the deliberation goes on to
     /// the next event (an external belief event with no applicable plan).
     deliberations: Memo<(Vec<Chosen>, bool)>,
@@ -441,6 +545,7 @@ pub struct Compiled<'s, 'p> {
     mapped_events: Memo<Held<Part<Event>>>,
     mapped_intentions: Memo<Held<Part<Intention>>>,
     mapped_pendings: Memo<Held<Part<Pending>>>,
+    mapped_agendas: Memo<Held<Part<Agenda>>>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
 }
@@ -487,6 +592,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             events: Interner::new(),
             intentions: Interner::new(),
             pendings: Interner::new(),
+            agendas: Interner::new(),
             deliberations: Memo::new(),
             acts: Memo::new(),
             proc_acts: Memo::new(),
@@ -497,6 +603,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             mapped_events: Memo::new(),
             mapped_intentions: Memo::new(),
             mapped_pendings: Memo::new(),
+            mapped_agendas: Memo::new(),
             requests: Vec::new(),
         };
         c.requests = (0..sem.requests.len())
@@ -533,8 +640,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// The packed form of a state.
     pub fn pack<'c>(&'c self, s: &State) -> Packed<'c> {
         // SAFETY: every `Held` here comes from this compiled system's tables.
-        unsafe {
-            Packed {
+        let open = unsafe {
+            Open {
                 beliefs: self
                     .belief_set((s.beliefs.clone(), s.order.clone()))
                     .get(self),
@@ -554,7 +661,51 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     .map(|p| self.pending(p.clone()).get(self)),
                 requested: s.requested,
             }
+        };
+        self.close(open)
+    }
+
+    /// `p` opened for a transition to change it.
+    fn open<'c>(&'c self, p: &Packed<'c>) -> Open<'c> {
+        let a = &p.agenda.value;
+        Open {
+            beliefs: p.beliefs,
+            events: a.events().iter().copied().collect(),
+            intentions: a.intentions().iter().copied().collect(),
+            pending: a.pending(),
+            requested: p.requested,
         }
+    }
+
+    /// `o` packed again: its agenda interned.
+    fn close<'c>(&'c self, o: Open<'c>) -> Packed<'c> {
+        let agenda = self.agenda(
+            o.events.iter().copied(),
+            o.intentions.iter().copied(),
+            o.pending,
+        );
+        Packed {
+            beliefs: o.beliefs,
+            // SAFETY: the agenda's part is in this system's tables.
+            agenda: unsafe { agenda.get(self) },
+            requested: o.requested,
+        }
+    }
+
+    /// The agenda of these parts, which must be in this system's tables.
+    fn agenda<'c>(
+        &'c self,
+        events: impl Iterator<Item = &'c Part<Event>>,
+        intentions: impl Iterator<Item = &'c Part<Intention>>,
+        pending: Option<&'c Part<Pending>>,
+    ) -> Held<Part<Agenda>> {
+        let agenda = Agenda {
+            events: events.map(Held::new).collect(),
+            intentions: intentions.map(Held::new).collect(),
+            pending: pending.map(Held::new),
+        };
+        self.agendas
+            .intern_hashed(agenda.mixed(), agenda, |_| AtomSet::default())
     }
 
     /// The state a packed one stands for.
@@ -562,9 +713,15 @@ impl<'s, 'p> Compiled<'s, 'p> {
         State {
             beliefs: p.beliefs.value.0.clone(),
             order: p.beliefs.value.1.clone(),
-            events: p.events.iter().map(|e| e.value.clone()).collect(),
-            intentions: p.intentions.iter().map(|i| i.value.clone()).collect(),
-            pending: p.pending.map(|x| x.value.clone()),
+            events: p.events().cloned().collect(),
+            intentions: p
+                .agenda
+                .value
+                .intentions()
+                .iter()
+                .map(|i| i.value.clone())
+                .collect(),
+            pending: p.agenda.value.pending().map(|x| x.value.clone()),
             waiting: Vec::new(),
             requested: p.requested,
             library: None,
@@ -593,7 +750,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// read, which is what the agent's search asks of every state when lint left plan
     /// overlaps to confirm.
     pub fn applicable_plans<'c>(&'c self, p: &Packed<'c>) -> &'c [u32] {
-        let Some(event) = p.events.first() else {
+        let Some(event) = p.agenda.value.events().first() else {
             return &[];
         };
         let key = Key::new(event, &p.beliefs.value, 0);
@@ -655,42 +812,45 @@ impl<'s, 'p> Compiled<'s, 'p> {
         fn key<T>(part: &Part<T>, none: &Base, id: u64) -> Key {
             Key::new(part, none, id)
         }
+        let a = &p.agenda.value;
         // SAFETY: every `Held` here comes from this compiled system's tables.
         unsafe {
-            Packed {
-                beliefs: self
-                    .mapped_bases
-                    .get(key(p.beliefs, &none, id), || {
-                        self.belief_set(f.base(&p.beliefs.value))
-                    })
-                    .get(self)
-                    .get(self),
-                events: p
-                    .events
-                    .iter()
-                    .map(|e| {
+            let beliefs = self
+                .mapped_bases
+                .get(key(p.beliefs, &none, id), || {
+                    self.belief_set(f.base(&p.beliefs.value))
+                })
+                .get(self)
+                .get(self);
+            // An agenda's image is its parts' images: kept per agenda and map too.
+            let agenda = self
+                .mapped_agendas
+                .get(key(p.agenda, &none, id), || {
+                    let events = a.events().iter().map(|e| {
                         self.mapped_events
                             .get(key(e, &none, id), || self.event(f.event(&e.value)))
                             .get(self)
                             .get(self)
-                    })
-                    .collect(),
-                intentions: p
-                    .intentions
-                    .iter()
-                    .map(|i| {
+                    });
+                    let intentions = a.intentions().iter().map(|i| {
                         self.mapped_intentions
                             .get(key(i, &none, id), || self.intention(f.intention(&i.value)))
                             .get(self)
                             .get(self)
-                    })
-                    .collect(),
-                pending: p.pending.map(|x| {
-                    self.mapped_pendings
-                        .get(key(x, &none, id), || self.pending(f.pending(&x.value)))
-                        .get(self)
-                        .get(self)
-                }),
+                    });
+                    let pending = a.pending().map(|x| {
+                        self.mapped_pendings
+                            .get(key(x, &none, id), || self.pending(f.pending(&x.value)))
+                            .get(self)
+                            .get(self)
+                    });
+                    self.agenda(events, intentions, pending)
+                })
+                .get(self)
+                .get(self);
+            Packed {
+                beliefs,
+                agenda,
                 requested: self.map_requests(p.requested, id, f),
             }
         }
@@ -715,22 +875,23 @@ impl<'s, 'p> Compiled<'s, 'p> {
                 if p.requested >> r & 1 == 1 {
                     continue;
                 }
-                let mut next = p.clone();
+                let mut next = self.open(p);
                 next.requested |= 1 << r;
                 // SAFETY: the request events are in this system's tables.
                 next.events.push(unsafe { event.get(self) });
-                out.push((Notes(smallvec::smallvec![&note[..]]), next));
+                out.push((Notes(smallvec::smallvec![&note[..]]), self.close(next)));
             }
         }
         if p.is_idle() {
             return out;
         }
-        let Some(event) = p.events.first() else {
-            let mut next = p.clone();
+        let agenda = &p.agenda.value;
+        let Some(event) = agenda.events().first() else {
+            let mut next = self.open(p);
             let mut notes = Notes::default();
             self.proc_act(&mut next, &mut notes);
             self.act(&mut next, &mut notes);
-            out.push((notes, next));
+            out.push((notes, self.close(next)));
             return out;
         };
         // The events the deliberation takes: the first, and the next one after each that
@@ -746,7 +907,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     .get(key, || self.deliberate(event, &p.beliefs.value))
                     .get(self)
             };
-            match p.events.get(taken) {
+            match agenda.events().get(taken) {
                 Some(next) if *goes_on => {
                     before.0.push(&chosen[0].notes[..]);
                     event = next;
@@ -756,11 +917,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
             }
         };
         for c in chosen {
-            let mut next = Packed {
+            let mut next = Open {
                 beliefs: p.beliefs,
-                events: p.events[taken..].iter().copied().collect(),
-                intentions: p.intentions.clone(),
-                pending: p.pending,
+                events: agenda.events()[taken..].iter().copied().collect(),
+                intentions: agenda.intentions().iter().copied().collect(),
+                pending: agenda.pending(),
                 requested: p.requested,
             };
             // SAFETY: as above.
@@ -772,13 +933,13 @@ impl<'s, 'p> Compiled<'s, 'p> {
             notes.0.push(&c.notes[..]);
             self.proc_act(&mut next, &mut notes);
             self.act(&mut next, &mut notes);
-            out.push((notes, next));
+            out.push((notes, self.close(next)));
         }
         out
     }
 
     /// The `ProcAct` stage on `p`, memoized on the pending intention.
-    fn proc_act<'c>(&'c self, p: &mut Packed<'c>, notes: &mut Notes<'c>) {
+    fn proc_act<'c>(&'c self, p: &mut Open<'c>, notes: &mut Notes<'c>) {
         let Some(pending) = p.pending.take() else {
             return;
         };
@@ -812,7 +973,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
     }
 
     /// The act phase on `p`, memoized.
-    fn act<'c>(&'c self, p: &mut Packed<'c>, notes: &mut Notes<'c>) {
+    fn act<'c>(&'c self, p: &mut Open<'c>, notes: &mut Notes<'c>) {
         if p.intentions.is_empty() {
             return;
         }
@@ -935,6 +1096,15 @@ mod tests {
         assert_eq!(at(1), at(4));
         assert_ne!(at(0), at(1));
         assert_ne!(at(1), at(3));
+    }
+
+    #[test]
+    fn a_packed_state_is_three_words() {
+        // Frontiers hold millions of packed states: the agenda is one interned part.
+        assert_eq!(
+            std::mem::size_of::<Packed>(),
+            3 * std::mem::size_of::<usize>()
+        );
     }
 
     /// Values that all hash alike: only their equality tells them apart.

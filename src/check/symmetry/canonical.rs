@@ -230,7 +230,7 @@ impl Symmetry {
                 let r = Renaming { sym: self, perm };
                 let identity = perm.iter().enumerate().all(|(i, &x)| x as usize == i);
                 let renamed = if identity {
-                    p.clone()
+                    *p
                 } else {
                     c.map(p, c.map_id(perm), &r)
                 };
