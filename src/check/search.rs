@@ -122,10 +122,13 @@ pub(super) struct Facts {
     pub(super) first_fails: Vec<Option<u32>>,
     /// Bit per state: idle.
     pub(super) idle: Vec<u64>,
-    /// Per state: an index into `masks` (the requests pending there).
-    pub(super) pending: Vec<u32>,
+    /// Per state: an index into `masks` (the requests pending there). In chunks that
+    /// never move: a vector of millions would be copied at each doubling.
+    pub(super) pending: super::chunked::Chunked<u32>,
     pub(super) masks: Vec<u64>,
     pub(super) mask_ids: HashMap<u64, u32>,
+    /// The last mask recorded and its index: most states have their parent's.
+    pub(super) last_mask: Option<(u64, u32)>,
     /// Per `eventually` property: bit per state, set when the property does not hold.
     pub(super) bad: Vec<Vec<u64>>,
     /// Per state: the run properties' propositions that hold there; empty when no property
@@ -162,12 +165,22 @@ impl Facts {
             slot.get_or_insert(i);
         }
         set_bit(&mut self.idle, i, s.idle);
-        let next = self.masks.len() as u32;
-        let id = *self.mask_ids.entry(s.pending).or_insert(next);
-        if id == next {
-            self.masks.push(s.pending);
+        let id = match self.last_mask {
+            Some((mask, id)) if mask == s.pending => id,
+            _ => {
+                let next = self.masks.len() as u32;
+                let id = *self.mask_ids.entry(s.pending).or_insert(next);
+                if id == next {
+                    self.masks.push(s.pending);
+                }
+                self.last_mask = Some((s.pending, id));
+                id
+            }
+        };
+        if self.pending.push(id).is_err() {
+            // As a vector that cannot grow does.
+            std::alloc::handle_alloc_error(std::alloc::Layout::new::<u32>());
         }
-        self.pending.push(id);
         for (b, &j) in self.bad.iter_mut().zip(eventually) {
             set_bit(b, i, !bit(&s.holds, j as u32));
         }
@@ -177,7 +190,7 @@ impl Facts {
     }
 
     pub(super) fn pending(&self, i: u32) -> u64 {
-        self.masks[self.pending[i as usize] as usize]
+        self.masks[self.pending.get(i as usize) as usize]
     }
 }
 
