@@ -61,7 +61,7 @@ use crate::syntax::{Diagnostic, Severity, Span};
 use smallvec::SmallVec;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Debug;
-use std::hash::Hash;
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 /// Every explanation property, in report order.
@@ -366,7 +366,7 @@ const SHARDS: usize = 32;
 /// already met on another state of the agent.
 #[derive(Default)]
 struct Tables {
-    views: [Mutex<HashSet<Shared>>; SHARDS],
+    views: [Mutex<HashSet<Shared, Quick>>; SHARDS],
     seen: Table<SeenKey, Seen>,
     judged: Table<JudgedKey, (Shared, Vec<Violation>)>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
@@ -374,16 +374,72 @@ struct Tables {
     explained: Table<(usize, usize), Option<Judgeable>>,
     /// Each distinct value of `explained` once, so that equal ones have one address: what
     /// a transition makes of a view depends on the beliefs only through them.
-    judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>>>; SHARDS],
+    judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>, Quick>>; SHARDS],
     /// Per context atom, the atoms it unifies with.
-    instances: [Mutex<HashMap<Term, Arc<[AtomId]>>>; SHARDS],
+    instances: [Mutex<Instances>; SHARDS],
+}
+
+/// Per context atom, the atoms it unifies with (one shard of [`Tables::instances`]).
+type Instances = HashMap<Term, Arc<[AtomId]>, Quick>;
+
+/// The hasher of the tables: their keys are a few addresses, counts and flags, which a
+/// multiply and rotate per word mixes well enough (with splitmix64's finalizer, so that
+/// the shard and the bucket bits see every bit); SipHash, twice per lookup, was a tenth of
+/// a user's search. The tables are the search's own: no input chooses their keys to
+/// collide.
+type Quick = BuildHasherDefault<QuickHasher>;
+
+/// See [`Quick`].
+#[derive(Default)]
+struct QuickHasher(u64);
+
+impl QuickHasher {
+    fn word(&mut self, w: u64) {
+        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+impl Hasher for QuickHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for c in bytes.chunks(8) {
+            let mut w = [0u8; 8];
+            w[..c.len()].copy_from_slice(c);
+            self.word(u64::from_le_bytes(w));
+        }
+    }
+
+    fn write_u8(&mut self, x: u8) {
+        self.word(u64::from(x));
+    }
+
+    fn write_u32(&mut self, x: u32) {
+        self.word(u64::from(x));
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.word(x);
+    }
+
+    fn write_usize(&mut self, x: usize) {
+        self.word(x as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        crate::semantics::compiled::mix(self.0)
+    }
+}
+
+/// `x`'s hash by [`Quick`], as the tables compute it.
+fn quick<T: Hash + ?Sized>(x: &T) -> u64 {
+    use std::hash::BuildHasher;
+    Quick::default().hash_one(x)
 }
 
 /// Algorithm 2's explanation, and the truth of each literal of its context when given.
 type Judgeable = (Explanation, Vec<bool>);
 
 /// A memo: values by key, in shards.
-type Table<K, V> = [Mutex<HashMap<K, Arc<V>>>; SHARDS];
+type Table<K, V> = [Mutex<HashMap<K, Arc<V>, Quick>>; SHARDS];
 
 /// A view after a transition's notes (by address), whether they failed, whether the robot
 /// has yet to sense, whether each open explanation's context changed on the robot's
@@ -394,7 +450,7 @@ struct JudgedKey(usize, bool, bool, SmallVec<[bool; 4]>, SmallVec<[usize; 8]>);
 /// The value of `key` in `table`, computed (without the lock: computing interns views)
 /// when it is new.
 fn memo<K: Hash + Eq, V>(table: &Table<K, V>, key: K, compute: impl FnOnce() -> V) -> Arc<V> {
-    let hash = fingerprint(&key);
+    let hash = quick(&key);
     if let Some(v) = shard(table, hash).get(&key) {
         return v.clone();
     }
@@ -435,7 +491,7 @@ impl Tables {
     /// The shared view equal to `view`.
     fn intern(&self, view: View) -> Shared {
         let new = Shared::new(view);
-        let mut views = shard(&self.views, new.0 .0);
+        let mut views = shard(&self.views, quick(&new));
         match views.get(&new) {
             Some(old) => old.clone(),
             None => {
@@ -785,7 +841,7 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// them anew (a term built and unified per atom of the predicate) was an eighth of a
     /// user's search.
     fn instances(&self, atom: &Term) -> Arc<[AtomId]> {
-        let hash = fingerprint(atom);
+        let hash = quick(atom);
         if let Some(v) = shard(&self.tables.instances, hash).get(atom) {
             return v.clone();
         }
@@ -1180,13 +1236,13 @@ impl<'a, W: Runs> Explained<'a, W> {
         believed: &AtomSet,
         stack: &[crate::semantics::FrameView],
     ) -> Arc<Option<Judgeable>> {
-        let hash = fingerprint(&key);
+        let hash = quick(&key);
         if let Some(v) = shard(&self.tables.explained, hash).get(&key) {
             return v.clone();
         }
         let v = Arc::new(self.explain(believed, stack));
         let v = {
-            let mut set = shard(&self.tables.judgeables, fingerprint(&v));
+            let mut set = shard(&self.tables.judgeables, quick(&v));
             match set.get(&v) {
                 Some(old) => old.clone(),
                 None => {

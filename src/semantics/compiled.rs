@@ -227,7 +227,7 @@ impl Key {
 }
 
 /// splitmix64's finalizer: every bit of `h` reaches the shard and bucket bits.
-fn mix(mut h: u64) -> u64 {
+pub(crate) fn mix(mut h: u64) -> u64 {
     h ^= h >> 30;
     h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
     h ^= h >> 27;
