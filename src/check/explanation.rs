@@ -54,6 +54,7 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
+use crate::semantics::compiled::Quick;
 use crate::semantics::{
     Compiled, Intention, Note, Notes, Origin, Packed, Semantics, State, System, SystemState,
 };
@@ -61,7 +62,7 @@ use crate::syntax::{Diagnostic, Severity, Span};
 use smallvec::SmallVec;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Debug;
-use std::hash::{BuildHasherDefault, Hash, Hasher};
+use std::hash::Hash;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 /// Every explanation property, in report order.
@@ -381,53 +382,6 @@ struct Tables {
 
 /// Per context atom, the atoms it unifies with (one shard of [`Tables::instances`]).
 type Instances = HashMap<Term, Arc<[AtomId]>, Quick>;
-
-/// The hasher of the tables: their keys are a few addresses, counts and flags, which a
-/// multiply and rotate per word mixes well enough (with splitmix64's finalizer, so that
-/// the shard and the bucket bits see every bit); SipHash, twice per lookup, was a tenth of
-/// a user's search. The tables are the search's own: no input chooses their keys to
-/// collide.
-type Quick = BuildHasherDefault<QuickHasher>;
-
-/// See [`Quick`].
-#[derive(Default)]
-struct QuickHasher(u64);
-
-impl QuickHasher {
-    fn word(&mut self, w: u64) {
-        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
-    }
-}
-
-impl Hasher for QuickHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for c in bytes.chunks(8) {
-            let mut w = [0u8; 8];
-            w[..c.len()].copy_from_slice(c);
-            self.word(u64::from_le_bytes(w));
-        }
-    }
-
-    fn write_u8(&mut self, x: u8) {
-        self.word(u64::from(x));
-    }
-
-    fn write_u32(&mut self, x: u32) {
-        self.word(u64::from(x));
-    }
-
-    fn write_u64(&mut self, x: u64) {
-        self.word(x);
-    }
-
-    fn write_usize(&mut self, x: usize) {
-        self.word(x as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        crate::semantics::compiled::mix(self.0)
-    }
-}
 
 /// `x`'s hash by [`Quick`], as the tables compute it.
 fn quick<T: Hash + ?Sized>(x: &T) -> u64 {

@@ -286,11 +286,34 @@ fn cycle_candidates<'g>(succ: &impl Fn(u32) -> &'g [u32], within: &[u64]) -> Opt
 
 /// The members of a bit set, in increasing order (reversible).
 fn members(set: &[u64]) -> impl DoubleEndedIterator<Item = u32> + '_ {
-    set.iter().enumerate().flat_map(|(k, &w)| {
-        (0..64u32)
-            .filter(move |b| w >> b & 1 == 1)
-            .map(move |b| k as u32 * 64 + b)
-    })
+    set.iter()
+        .enumerate()
+        .filter(|(_, &w)| w != 0)
+        .flat_map(|(k, &w)| Bits(w).map(move |b| k as u32 * 64 + b))
+}
+
+/// The set bits of a word, lowest first (reversible).
+struct Bits(u64);
+
+impl Iterator for Bits {
+    type Item = u32;
+    fn next(&mut self) -> Option<u32> {
+        let b = self.0.trailing_zeros();
+        (b < 64).then(|| {
+            self.0 &= self.0 - 1;
+            b
+        })
+    }
+}
+
+impl DoubleEndedIterator for Bits {
+    fn next_back(&mut self) -> Option<u32> {
+        (self.0 != 0).then(|| {
+            let b = 63 - self.0.leading_zeros();
+            self.0 &= !(1 << b);
+            b
+        })
+    }
 }
 
 /// The strongly connected components among the states of `within` (a bit set) where
