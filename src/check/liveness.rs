@@ -201,11 +201,10 @@ impl Checker<'_> {
 /// The strongly connected components of a graph of `n` states, among those where `keep`
 /// holds, that contain a cycle; each sorted, components in order of their first state.
 ///
-/// Tarjan's search numbers every state it visits, twice: on the graph of millions of
-/// states most agents have, and that most often has no cycle, most of the time of the
-/// checks after the search went there. It now runs only on the states that
-/// [`cycle_candidates`] keeps, narrowed until they stop shrinking, numbered among
-/// themselves.
+/// Tarjan's search gives every state it visits two numbers; on graphs of millions of
+/// states, most often without a cycle, that was most of the checks after the search. So it
+/// runs only on the states [`cycle_candidates`] keeps, narrowed until they stop shrinking,
+/// and numbers them among themselves.
 fn cyclic_components<'g>(
     n: usize,
     succ: &impl Fn(u32) -> &'g [u32],
