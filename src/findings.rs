@@ -300,13 +300,17 @@ pub struct Stats {
 /// One phase of a run and its wall-clock time.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
 pub struct Phase {
-    /// `lint`, `search` (the agents' states), or `explanation:USER`.
+    /// `lint`, `search` (the agents' states), `ltl product`, or `explanation:USER`.
     pub name: String,
     /// Its wall-clock time.
     pub seconds: f64,
     /// The states it explored, for a search.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub states: Option<usize>,
+    /// The phases it ran beside, on a thread of its own (its time overlaps theirs, so the
+    /// phases' times may add up to more than the run's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub beside: Vec<String>,
 }
 
 /// The report every project command writes (SPEC §3).

@@ -560,14 +560,39 @@ fn the_reported_time_is_the_whole_runs_with_one_figure_per_phase() {
     );
     assert_eq!(phases[1]["states"], stats["states"]);
     assert!(phases[2]["states"].as_u64().unwrap() > 0);
-    // Each phase is part of the run: together they take no longer than it.
-    let sum: f64 = phases.iter().map(|p| p["seconds"].as_f64().unwrap()).sum();
-    assert!(stats["seconds"].as_f64().unwrap() >= sum, "{stats:#}");
+    // Each phase is part of the run; those that ran one after the other take no longer
+    // than it together. The products ran beside the searches after them, and say so.
+    let total = stats["seconds"].as_f64().unwrap();
+    let alone = |p: &&serde_json::Value| p.get("beside").is_none();
+    let sum: f64 = phases
+        .iter()
+        .filter(alone)
+        .map(|p| p["seconds"].as_f64().unwrap())
+        .sum();
+    assert!(total >= sum, "{stats:#}");
+    assert!(
+        phases
+            .iter()
+            .all(|p| p["seconds"].as_f64().unwrap() <= total),
+        "{stats:#}"
+    );
+    let beside: Vec<&str> = phases[3]["beside"]
+        .as_array()
+        .expect("the products ran beside the searches")
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        beside,
+        ["ltl search", "explanation:newcomer", "explanation:owner"]
+    );
+    assert_eq!(phases.iter().filter(alone).count(), phases.len() - 1);
     let o = bdi_check(&["verify", "specs/kitchen", "-v", "--color", "never"]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
         out.lines().any(|l| l.starts_with("phases: lint ")
             && l.contains("search ")
+            && l.contains("beside ltl search and explanation:newcomer and explanation:owner")
             && l.contains("explanation:owner ")),
         "{out}"
     );

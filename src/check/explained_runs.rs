@@ -122,6 +122,7 @@ pub(super) fn decide<W: Runs>(
         name: phase,
         seconds: t.elapsed().as_secs_f64(),
         states: Some(graph.len()),
+        beside: Vec::new(),
     };
     (out, phase)
 }

@@ -1703,6 +1703,7 @@ fn verify_runs<W: Runs + Copy>(
             name: phase,
             seconds: r.graph.seconds,
             states: Some(states),
+            beside: Vec::new(),
         });
         for check in checks {
             let mut failed = false;

@@ -305,17 +305,26 @@ pub fn verify_with(
     c.liveness(&mut findings, &props);
     let mut run_phases = Vec::new();
     let mut caveat = not_equivariant;
-    if on_agent_graph {
-        let t = std::time::Instant::now();
-        let mut found = Vec::new();
-        let mut reached = match &plan {
-            Some(plan) => c.runs_numbered(&mut found, &plan.whole),
-            None => c.runs_numbered(
-                &mut found,
-                &run_props.iter().cloned().enumerate().collect::<Vec<_>>(),
-            ),
-        };
-        let mut seconds = t.elapsed().as_secs_f64();
+    let mut found = Vec::new();
+    // The products of the run properties with the agent's graph take one core, and the
+    // users' searches after them leave one mostly idle (their merging thread bounds them):
+    // the products run beside those searches, on a thread of their own. Findings are
+    // merged by property number, so the order they come in does not matter.
+    let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
+        Some(plan) => plan.whole.clone(),
+        None => run_props.iter().cloned().enumerate().collect(),
+    };
+    let (whole_runs, users) = std::thread::scope(|scope| {
+        let products = on_agent_graph.then(|| {
+            scope.spawn(|| {
+                let t = std::time::Instant::now();
+                let mut found = Vec::new();
+                let reached = c.runs_numbered(&mut found, &whole);
+                (found, reached, t.elapsed().as_secs_f64())
+            })
+        });
+        let mut reached = 0;
+        let mut seconds = 0.0;
         for fixing in plan.iter().flat_map(|p| &p.fixing) {
             let ran = fixing_runs(
                 (project, &sem, &agent, compiled.as_ref()),
@@ -327,26 +336,83 @@ pub fn verify_with(
             run_phases.push(ran.phase);
             reached += ran.reached;
             seconds += ran.product_seconds;
-            caveat = caveat.or(ran.not_equivariant);
+            caveat = caveat.take().or(ran.not_equivariant);
         }
+        let users = users_and_explanations(
+            (project, &sem, compiled.as_ref(), agent.symmetry.as_ref()),
+            (&run_props, run_atoms.as_ref()),
+            (&remaining, &search),
+            &mut progress,
+        );
+        // A panic in the products is re-raised here, as a search thread's is.
+        let whole = products.map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
+        let whole = whole.map(|(f, r, t)| (f, r + reached, t + seconds));
+        users.map(|u| (whole, u))
+    })?;
+    let (user_found, user_phases, phases) = users;
+    if let Some((whole_found, reached, seconds)) = whole_runs {
+        found.extend(whole_found);
         findings.extend(runs::merge(found));
         run_phases.push(crate::findings::Phase {
             name: "ltl product".into(),
             seconds,
             states: Some(reached),
+            beside: (run_phases.iter().chain(&user_phases).chain(&phases))
+                .map(|p| p.name.clone())
+                .collect(),
         });
     }
-    // Run properties about explanations: on their user's explanation search, exact.
+    findings.extend(user_found);
+    let mut v = Verification {
+        symmetric_types,
+        symmetry_caveat: caveat,
+        ..Verification::of(&graph, project, findings)
+    };
+    v.stats.phases.extend(run_phases);
+    v.stats.phases.extend(user_phases);
+    v.stats.phases.extend(phases);
+    if unchecked {
+        v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
+    }
+    Ok(v)
+}
+
+/// What the users' searches found: the findings, the phases of the searches that decide
+/// run properties about explanations, the phases of the explanation searches.
+type UsersFound = (
+    Vec<Finding>,
+    Vec<crate::findings::Phase>,
+    Vec<crate::findings::Phase>,
+);
+
+/// The run properties about explanations, each decided on its user's explanation search
+/// (exact), then the explanation properties: one more search per user, each state paired
+/// with the user's expected successors.
+fn users_and_explanations(
+    (project, sem, compiled, symmetry): (
+        &Project,
+        &Semantics,
+        Option<&Compiled>,
+        Option<&symmetry::Symmetry>,
+    ),
+    (run_props, run_atoms): (
+        &[crate::model::property::RunProperty],
+        Option<&runs::RunAtoms>,
+    ),
+    (remaining, search): (&dyn Fn() -> Limits, &Options),
+    progress: &mut dyn FnMut(&str, usize, u32, f64),
+) -> Result<UsersFound, Vec<Diagnostic>> {
+    let mut findings = Vec::new();
     let mut user_phases = Vec::new();
-    if let Some(atoms) = &run_atoms {
-        for u in crate::model::property::explained_users(&run_props) {
+    if let Some(atoms) = run_atoms {
+        for u in crate::model::property::explained_users(run_props) {
             let props: Vec<&crate::model::property::RunProperty> = run_props
                 .iter()
                 .filter(|p| p.user.as_deref() == Some(u))
                 .collect();
             let users = crate::explain::agent::users(project, Some(u))?;
-            let ex = crate::explain::agent::Explainer::new(project, &sem);
-            let (found, phase) = match compiled.as_ref() {
+            let ex = crate::explain::agent::Explainer::new(project, sem);
+            let (found, phase) = match compiled {
                 Some(compiled) => user_runs(
                     project,
                     (
@@ -361,53 +427,36 @@ pub fn verify_with(
                         ),
                     ),
                     (&props, atoms),
-                    (remaining(), &search),
-                    &mut progress,
+                    (remaining(), search),
+                    &mut *progress,
                 ),
                 None => user_runs(
                     project,
-                    (u, explanation::Explained::new(&sem, &ex, &users[0], None)),
+                    (u, explanation::Explained::new(sem, &ex, &users[0], None)),
                     (&props, atoms),
-                    (remaining(), &search),
-                    &mut progress,
+                    (remaining(), search),
+                    &mut *progress,
                 ),
             };
             findings.extend(found);
             user_phases.push(phase);
         }
     }
-    // The explanation properties: one more search per user, each state paired with the
-    // user's expected successors.
     let explore_opts = explore::Options {
-        threads: opts.threads,
         keep_edges: false,
-        max_memory: opts.max_memory,
-        shard: opts.shard,
-        sample: opts.sample,
+        ..*search
     };
-    let left = remaining();
     let (explained, _, phases) = explanation::verify(
         project,
-        &sem,
-        compiled.as_ref(),
-        agent.symmetry.as_ref(),
-        left,
+        sem,
+        compiled,
+        symmetry,
+        remaining(),
         &explore_opts,
-        &mut progress,
+        progress,
     )?;
     findings.extend(explained);
-    let mut v = Verification {
-        symmetric_types,
-        symmetry_caveat: caveat,
-        ..Verification::of(&graph, project, findings)
-    };
-    v.stats.phases.extend(run_phases);
-    v.stats.phases.extend(user_phases);
-    v.stats.phases.extend(phases);
-    if unchecked {
-        v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
-    }
-    Ok(v)
+    Ok((findings, user_phases, phases))
 }
 
 /// What deciding some run properties on a search of their own gave.
@@ -475,6 +524,7 @@ fn fixing_runs(
             name,
             seconds: searched,
             states: Some(graph.len()),
+            beside: Vec::new(),
         },
         reached,
         product_seconds: t.elapsed().as_secs_f64(),
@@ -490,7 +540,7 @@ fn user_runs<W: explanation::Runs>(
     (user, model): (&str, explanation::Explained<W>),
     (props, atoms): (&[&crate::model::property::RunProperty], &runs::RunAtoms),
     bounds: (Limits, &Options),
-    progress: &mut impl FnMut(&str, usize, u32, f64),
+    progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> (Vec<Finding>, crate::findings::Phase)
 where
     W::State: model::AgentState,
@@ -589,6 +639,7 @@ impl Verification {
                     name: "search".into(),
                     seconds,
                     states: Some(graph.len()),
+                    beside: Vec::new(),
                 }],
             },
             bound: graph.bound,

@@ -127,6 +127,7 @@ fn whole_run(mut run: VerifyRun, started: std::time::Instant, lint: f64) -> Veri
                 name: "lint".into(),
                 seconds: lint,
                 states: None,
+                beside: Vec::new(),
             },
         );
         st.seconds = started.elapsed().as_secs_f64();

@@ -228,9 +228,16 @@ fn render_stats(s: &Stats, bound: Option<Bound>, verbose: bool) -> String {
         let phases: Vec<String> = s
             .phases
             .iter()
-            .map(|p| match p.states {
-                Some(n) => format!("{} {:.2}s ({n} states)", p.name, p.seconds),
-                None => format!("{} {:.2}s", p.name, p.seconds),
+            .map(|p| {
+                let mut notes: Vec<String> =
+                    p.states.iter().map(|n| format!("{n} states")).collect();
+                if !p.beside.is_empty() {
+                    notes.push(format!("beside {}", p.beside.join(" and ")));
+                }
+                match notes.is_empty() {
+                    true => format!("{} {:.2}s", p.name, p.seconds),
+                    false => format!("{} {:.2}s ({})", p.name, p.seconds, notes.join(", ")),
+                }
             })
             .collect();
         out.push_str(&format!("phases: {}\n", phases.join(", ")));

@@ -556,6 +556,7 @@ pub fn verify_system(
             name: "ltl product".into(),
             seconds: t.elapsed().as_secs_f64(),
             states: Some(reached),
+            beside: Vec::new(),
         });
     }
     let mut user_phases = Vec::new();
@@ -766,6 +767,7 @@ pub fn verify_system(
             name: "liveness".into(),
             seconds,
             states: Some(states),
+            beside: Vec::new(),
         });
     }
     v.stats.phases.extend(phases);
