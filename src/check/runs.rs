@@ -16,7 +16,7 @@
 use super::buchi::Buchi;
 use super::checker::Checker;
 use super::model::AgentState;
-use super::search::bit;
+use super::search::{bit, set_bit};
 use crate::findings::{Finding, Status};
 use crate::model::ltl::Ltl;
 use crate::model::property::{Atomic, Atomics, RunProperty};
@@ -425,10 +425,13 @@ pub(crate) struct Fairness<'a> {
 /// Recorded facts read through one formula's propositions.
 struct Explored<'f, 'a> {
     facts: &'f RunFacts<'a>,
-    /// The global number of each local proposition.
-    map: Vec<u32>,
     /// Per letter id of the search: the local letter.
     state_letters: Vec<u64>,
+    /// The transitions whose `did` propositions this formula reads, with their local
+    /// letter, and a bit per state that has one: most states have none, and every product
+    /// edge asks.
+    step_letters: HashMap<(u32, u32), u64, crate::semantics::compiled::Quick>,
+    stepping: Vec<u64>,
 }
 
 impl RunGraph for Explored<'_, '_> {
@@ -451,10 +454,10 @@ impl RunGraph for Explored<'_, '_> {
         }
     }
     fn step_letter(&self, i: u32, k: u32) -> u64 {
-        self.facts
-            .steps
-            .get(&(i, k))
-            .map_or(0, |l| local(l, &self.map))
+        if !bit(&self.stepping, i) {
+            return 0;
+        }
+        self.step_letters.get(&(i, k)).copied().unwrap_or(0)
     }
     fn fair_agents(&self) -> u8 {
         self.facts.fairness.as_ref().map_or(0, |f| f.agents)
@@ -854,10 +857,20 @@ fn violation(facts: &RunFacts, f: &Ltl, reached: &mut usize) -> Result<Option<Vi
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
     let state_letters = facts.letter_table.iter().map(|l| local(l, &map)).collect();
+    let mut step_letters = HashMap::default();
+    let mut stepping = Vec::new();
+    for (&(i, k), l) in facts.steps {
+        let letter = local(l, &map);
+        if letter != 0 {
+            step_letters.insert((i, k), letter);
+            set_bit(&mut stepping, i, true);
+        }
+    }
     let g = Explored {
         facts,
-        map,
         state_letters,
+        step_letters,
+        stepping,
     };
     let p = Product::new(&g, &local_f).ok_or(TooLong)?;
     let v = p.search();
