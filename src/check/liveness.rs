@@ -210,22 +210,34 @@ fn cyclic_components<'g>(
     succ: &impl Fn(u32) -> &'g [u32],
     keep: impl Fn(u32) -> bool,
 ) -> Vec<Vec<u32>> {
+    match on_cycles(n, succ, true) {
+        Some(within) => tarjan(succ, &within, keep),
+        None => Vec::new(),
+    }
+}
+
+/// A bit set of the states of a graph of `n` states that holds every state on a cycle
+/// ([`cycle_candidates`], narrowed until a pass removes little); `None` when there is no
+/// cycle. Without `self_loops`, a cycle of one state and its loop is not counted: the
+/// states outside the set are then alone in their component, with or without a loop.
+pub(super) fn on_cycles<'g>(
+    n: usize,
+    succ: &impl Fn(u32) -> &'g [u32],
+    self_loops: bool,
+) -> Option<Vec<u64>> {
     let mut within = all_of(n);
     let mut count = n;
     loop {
-        let Some(c) = cycle_candidates(succ, &within) else {
-            return Vec::new();
-        };
+        let c = cycle_candidates(succ, &within, self_loops)?;
         let left: usize = c.iter().map(|w| w.count_ones() as usize).sum();
         within = c;
         // Each pass costs a look at every edge among the candidates: stop when one
         // removes little.
         if left + left / 8 >= count {
-            break;
+            return Some(within);
         }
         count = left;
     }
-    tarjan(succ, &within, keep)
 }
 
 /// The bit set of the states `0..n`.
@@ -241,9 +253,15 @@ fn all_of(n: usize) -> Vec<u64> {
 
 /// The states of `within` (a bit set) that may lie on a cycle among them, as a bit set;
 /// `None` when none does. States are numbered, and a cycle has an edge to a state numbered
-/// no higher than its source: each state of the cycle reaches the source of such an edge
-/// and is reached from its target. Two passes over the edges find both.
-fn cycle_candidates<'g>(succ: &impl Fn(u32) -> &'g [u32], within: &[u64]) -> Option<Vec<u64>> {
+/// no higher than its source (lower, for a cycle of several states): each state of the
+/// cycle reaches the source of such an edge and is reached from its target. Two passes
+/// over the edges find both. Without `self_loops`, loops from a state to itself are not
+/// counted as cycles.
+fn cycle_candidates<'g>(
+    succ: &impl Fn(u32) -> &'g [u32],
+    within: &[u64],
+    self_loops: bool,
+) -> Option<Vec<u64>> {
     let set = |v: &mut [u64], i: u32| v[i as usize / 64] |= 1 << (i % 64);
     // Backwards: the states that reach a backward edge's source (a later successor was
     // decided first; an earlier one makes the edge backward). The targets start `from`.
@@ -253,7 +271,7 @@ fn cycle_candidates<'g>(succ: &impl Fn(u32) -> &'g [u32], within: &[u64]) -> Opt
     for i in members(within).rev() {
         let mut r = false;
         for &w in succ(i).iter().filter(|&&w| bit(within, w)) {
-            if w <= i {
+            if w < i || (w == i && self_loops) {
                 r = true;
                 set(&mut from, w);
             } else {
@@ -434,9 +452,17 @@ mod tests {
             let all = tarjan(&succ, &every, keep);
             let reduced = cyclic_components(n, &succ, keep);
             assert_eq!(reduced, all, "{lists:?}");
+            // Without self-loops, the set still holds every component of several states.
+            let several = on_cycles(n, &succ, false);
+            for comp in tarjan(&succ, &every, |_| true) {
+                if comp.len() > 1 {
+                    let set = several.as_ref().expect("a cycle of several states");
+                    assert!(comp.iter().all(|&i| bit(set, i)), "{lists:?}");
+                }
+            }
             cyclic += usize::from(!all.is_empty());
             if !back {
-                assert!(cycle_candidates(&succ, &every).is_none(), "{lists:?}");
+                assert!(cycle_candidates(&succ, &every, true).is_none(), "{lists:?}");
             }
         }
         assert!(cyclic > 20, "{cyclic} graphs with a cycle");

@@ -780,10 +780,16 @@ impl Csr {
     }
 }
 
-/// The strongly connected component of each node (Tarjan, iterative).
+/// The strongly connected component of each node (Tarjan, iterative). Only the nodes that
+/// may share a cycle with another ([`on_cycles`](super::liveness::on_cycles)) are
+/// searched; every other node is a component of its own.
 fn components(edges: &Csr) -> Vec<u32> {
     const UNSEEN: u32 = u32::MAX;
     let n = edges.len();
+    let succ = |x: u32| edges.of(x);
+    let Some(within) = super::liveness::on_cycles(n, &succ, false) else {
+        return (0..n as u32).collect();
+    };
     let mut index = vec![UNSEEN; n];
     let mut low = vec![0u32; n];
     let mut comp = vec![UNSEEN; n];
@@ -793,7 +799,7 @@ fn components(edges: &Csr) -> Vec<u32> {
     let mut count = 0u32;
     let mut calls: Vec<(u32, usize)> = Vec::new();
     for root in 0..n as u32 {
-        if index[root as usize] != UNSEEN {
+        if index[root as usize] != UNSEEN || !bit(&within, root) {
             continue;
         }
         calls.push((root, 0));
@@ -808,6 +814,9 @@ fn components(edges: &Csr) -> Vec<u32> {
             }
             if let Some(&w) = edges.of(v).get(*pos) {
                 *pos += 1;
+                if !bit(&within, w) {
+                    continue;
+                }
                 if index[w as usize] == UNSEEN {
                     calls.push((w, 0));
                 } else if on_stack[w as usize] {
@@ -830,6 +839,10 @@ fn components(edges: &Csr) -> Vec<u32> {
                 count += 1;
             }
         }
+    }
+    for c in comp.iter_mut().filter(|c| **c == UNSEEN) {
+        *c = count;
+        count += 1;
     }
     comp
 }
