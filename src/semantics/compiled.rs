@@ -388,6 +388,40 @@ impl std::fmt::Debug for Agenda {
     }
 }
 
+/// The image of each part under each map (by the part's address and the map's id), computed
+/// once: a symmetric search maps every state it meets by several renamings, and a memo
+/// [`Key`] (which gathers beliefs read) costs more than this lookup.
+struct Images<T> {
+    shards: Vec<Mutex<ImageShard<T>>>,
+}
+
+/// One shard of [`Images`]: per part address and map id, the part's image.
+type ImageShard<T> = HashMap<(usize, u64), Held<Part<T>>, Quick>;
+
+impl<T> Images<T> {
+    fn new() -> Images<T> {
+        Images {
+            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
+        }
+    }
+
+    fn get(
+        &self,
+        part: &Part<T>,
+        id: u64,
+        compute: impl FnOnce() -> Held<Part<T>>,
+    ) -> Held<Part<T>> {
+        let key = (part as *const Part<T> as usize, id);
+        let shard = &self.shards[shard_of(mix(part.hash ^ id.rotate_left(32)))];
+        if let Some(v) = lock(shard).get(&key) {
+            return *v;
+        }
+        // Computed without the lock: computing interns parts, which takes other locks.
+        let v = compute();
+        *lock(shard).entry(key).or_insert(v)
+    }
+}
+
 /// A state of the compiled search: [`State`]'s parts, shared. Hashed exactly as the
 /// [`State`] it stands for, so that its fingerprint is that state's.
 #[derive(Clone, Copy, Debug)]
@@ -587,11 +621,11 @@ pub struct Compiled<'s, 'p> {
     /// Per requests made (a bit each) and map: their image.
     mapped_requests: std::sync::RwLock<HashMap<(u64, u64), u64, Quick>>,
     /// Per part and map (see [`Compiled::map`]): the part's image.
-    mapped_bases: Memo<Held<Part<Base>>>,
-    mapped_events: Memo<Held<Part<Event>>>,
-    mapped_intentions: Memo<Held<Part<Intention>>>,
-    mapped_pendings: Memo<Held<Part<Pending>>>,
-    mapped_agendas: Memo<Held<Part<Agenda>>>,
+    mapped_bases: Images<Base>,
+    mapped_events: Images<Event>,
+    mapped_intentions: Images<Intention>,
+    mapped_pendings: Images<Pending>,
+    mapped_agendas: Images<Agenda>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
 }
@@ -645,11 +679,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
             applicable: Memo::new(),
             map_ids: Default::default(),
             mapped_requests: Default::default(),
-            mapped_bases: Memo::new(),
-            mapped_events: Memo::new(),
-            mapped_intentions: Memo::new(),
-            mapped_pendings: Memo::new(),
-            mapped_agendas: Memo::new(),
+            mapped_bases: Images::new(),
+            mapped_events: Images::new(),
+            mapped_intentions: Images::new(),
+            mapped_pendings: Images::new(),
+            mapped_agendas: Images::new(),
             requests: Vec::new(),
         };
         c.requests = (0..sem.requests.len())
@@ -853,46 +887,34 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// (`id` names the map, see [`Compiled::map_id`]; one `id`, one map), so that mapping a state costs a lookup per
     /// part. Renaming objects, for the symmetry reduction's equivariance check, is one.
     pub fn map<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
-        let none: Base = (AtomSet::default(), Vec::new());
-        // The key of a part alone: no beliefs read, the map's id.
-        fn key<T>(part: &Part<T>, none: &Base, id: u64) -> Key {
-            Key::new(part, none, id)
-        }
         let a = &p.agenda.value;
         // SAFETY: every `Held` here comes from this compiled system's tables.
         unsafe {
             let beliefs = self
                 .mapped_bases
-                .get(key(p.beliefs, &none, id), || {
-                    self.belief_set(f.base(&p.beliefs.value))
-                })
-                .get(self)
+                .get(p.beliefs, id, || self.belief_set(f.base(&p.beliefs.value)))
                 .get(self);
             // An agenda's image is its parts' images: kept per agenda and map too.
             let agenda = self
                 .mapped_agendas
-                .get(key(p.agenda, &none, id), || {
+                .get(p.agenda, id, || {
                     let events = a.events().iter().map(|e| {
                         self.mapped_events
-                            .get(key(e, &none, id), || self.event(f.event(&e.value)))
-                            .get(self)
+                            .get(e, id, || self.event(f.event(&e.value)))
                             .get(self)
                     });
                     let intentions = a.intentions().iter().map(|i| {
                         self.mapped_intentions
-                            .get(key(i, &none, id), || self.intention(f.intention(&i.value)))
-                            .get(self)
+                            .get(i, id, || self.intention(f.intention(&i.value)))
                             .get(self)
                     });
                     let pending = a.pending().map(|x| {
                         self.mapped_pendings
-                            .get(key(x, &none, id), || self.pending(f.pending(&x.value)))
-                            .get(self)
+                            .get(x, id, || self.pending(f.pending(&x.value)))
                             .get(self)
                     });
                     self.agenda(events, intentions, pending)
                 })
-                .get(self)
                 .get(self);
             Packed {
                 beliefs,
