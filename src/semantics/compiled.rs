@@ -214,14 +214,12 @@ impl Key {
                 .map(|a| u64::from(a.0)),
         );
         read.push(extra);
-        let mut h = part.hash;
-        for w in &read {
-            h = (h.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
-        }
+        let mut h = QuickHasher(part.hash);
+        read.iter().for_each(|w| h.word(*w));
         Key {
             part: part as *const Part<T> as usize,
             read,
-            hash: mix(h),
+            hash: h.finish(),
         }
     }
 }
@@ -347,13 +345,13 @@ impl Agenda {
     /// A hash of the parts' own hashes, cheaper than hashing them again one by one: an
     /// agenda is interned at every transition.
     fn mixed(&self) -> u64 {
-        let mut h = self.events.len() as u64;
+        let mut h = QuickHasher(self.events.len() as u64);
         let words = self.events().iter().map(|e| e.hash);
         let words = words.chain(self.intentions().iter().map(|i| i.hash));
-        for w in words.chain(self.pending().map(|p| p.hash)) {
-            h = (h.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
-        }
-        mix(h)
+        words
+            .chain(self.pending().map(|p| p.hash))
+            .for_each(|w| h.word(w));
+        h.finish()
     }
 }
 
@@ -465,7 +463,6 @@ impl Hash for Packed<'_> {
 }
 
 /// A [`Packed`] state opened for a transition to change: its agenda as lists of parts.
-#[derive(Clone)]
 struct Open<'c> {
     beliefs: &'c Part<Base>,
     events: SmallVec<[&'c Part<Event>; 4]>,
