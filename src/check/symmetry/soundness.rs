@@ -412,4 +412,50 @@ mod tests {
         let w: Vec<&str> = words(pddl, true).into_iter().map(|(_, w)| w).collect();
         assert!(w.contains(&"cup3") && !w.contains(&"cup1") && !w.contains(&"cup2"));
     }
+
+    #[test]
+    fn compiled_images_are_the_whole_states_renamed_under_each_generator() {
+        // The kitchen with three cups: two generators (a swap and a rotation), and cups in
+        // different places, so that an image kept for one renaming and served for another
+        // shows.
+        let specs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+        let dir = std::env::temp_dir().join(format!("bdi-check-images-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a temporary folder");
+        for f in ["kitchen.asl", "kitchen.pddl"] {
+            std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
+        }
+        let manifest = std::fs::read_to_string(specs.join("bdi-check.toml")).expect("readable");
+        let three = manifest.replace(
+            r#"cup = ["cup1", "cup2"]"#,
+            r#"cup = ["cup1", "cup2", "cup3"]"#,
+        );
+        assert_ne!(three, manifest, "the kitchen names its cups");
+        std::fs::write(dir.join("bdi-check.toml"), three).expect("writable");
+        let project = crate::model::project::load_project(&dir).expect("the project loads");
+        let sem = Semantics::new(&project).expect("the semantics");
+        let sym = Symmetry::new(&project, &sem)
+            .expect("symmetry is sound here")
+            .expect("the manifest declares symmetry");
+        let c = Compiled::new(&sem).expect("a local library");
+        let generators = sym.generators();
+        assert!(generators.len() >= 2, "{generators:?}");
+        let mut seen: HashSet<u64> = HashSet::new();
+        let mut queue: std::collections::VecDeque<Packed> = c.initial_iter().collect();
+        let mut compared = 0;
+        while let Some(p) = queue.pop_front() {
+            if !seen.insert(fingerprint(&p)) || compared == 2_000 {
+                continue;
+            }
+            compared += 1;
+            let whole = c.unpack(&p);
+            for g in &generators {
+                let r = super::super::Renaming { sym: &sym, perm: g };
+                let image = c.map(&p, c.map_id(g), &r);
+                assert_eq!(c.unpack(&image), sym.apply(&whole, g), "{g:?}");
+            }
+            queue.extend(c.successors(&p).into_iter().map(|(_, t)| t));
+        }
+        std::fs::remove_dir_all(&dir).ok();
+        assert!(compared == 2_000, "{compared} states");
+    }
 }
