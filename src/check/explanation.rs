@@ -281,12 +281,70 @@ impl Runs for Among<'_> {
 /// One agent's compiled reasoning cycle ([`Compiled`]): the runs of [`Alone`], with the
 /// same states (packed into shared parts), notes and fingerprints, each phase of the cycle
 /// computed once for all the states that share its parts.
-#[derive(Clone, Copy)]
 pub struct AloneCompiled<'c, 's, 'p> {
-    /// The agent's compiled cycle.
-    pub compiled: &'c Compiled<'s, 'p>,
-    /// Symmetry reduction over objects, if on.
-    pub symmetry: Option<&'c Symmetry>,
+    compiled: &'c Compiled<'s, 'p>,
+    symmetry: Option<&'c Symmetry>,
+    recent: Recent<'c>,
+}
+
+impl<'c, 's, 'p> AloneCompiled<'c, 's, 'p> {
+    /// The runs of the agent `compiled` is the cycle of, with symmetry reduction over
+    /// objects if `symmetry`.
+    pub fn new(
+        compiled: &'c Compiled<'s, 'p>,
+        symmetry: Option<&'c Symmetry>,
+    ) -> AloneCompiled<'c, 's, 'p> {
+        AloneCompiled {
+            compiled,
+            symmetry,
+            recent: Recent::default(),
+        }
+    }
+}
+
+impl Clone for AloneCompiled<'_, '_, '_> {
+    /// The same runs, with no successors kept yet.
+    fn clone(&self) -> Self {
+        AloneCompiled::new(self.compiled, self.symmetry)
+    }
+}
+
+/// How many agent states [`Recent`] keeps (a power of two).
+const RECENT: usize = 1 << 17;
+
+/// The agent's successors of the states met last, one per slot of a table indexed by the
+/// state's hash: a user's search meets an agent state once per view the user may have
+/// there, mostly at one depth, and computing its successors each time was a quarter of
+/// the search.
+struct Recent<'c> {
+    slots: Box<[Mutex<Option<Known<'c>>>]>,
+}
+
+/// An agent state and its successors.
+type Known<'c> = (Packed<'c>, Arc<[(Notes<'c>, Packed<'c>)]>);
+
+impl Default for Recent<'_> {
+    fn default() -> Self {
+        Recent {
+            slots: (0..RECENT).map(|_| Mutex::new(None)).collect(),
+        }
+    }
+}
+
+impl<'c> Recent<'c> {
+    /// The successors of `s` in `compiled`: kept ones when `s` was met last in its slot.
+    fn successors(&self, compiled: &'c Compiled, s: &Packed<'c>) -> Arc<[(Notes<'c>, Packed<'c>)]> {
+        let slot = &self.slots[s.address_hash() as usize & (RECENT - 1)];
+        // A panic in another search thread is re-raised by the explorer; a slot holds
+        // a whole entry or none.
+        let lock = || slot.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, succ)) = lock().as_ref().filter(|(p, _)| p == s) {
+            return succ.clone();
+        }
+        let succ: Arc<[_]> = compiled.successors(s).into();
+        *lock() = Some((*s, succ.clone()));
+        succ
+    }
 }
 
 impl<'c> Runs for AloneCompiled<'c, '_, '_> {
@@ -322,10 +380,8 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
     }
 
     fn successors(&self, s: &Packed<'c>) -> Vec<(u8, Notes<'c>, Packed<'c>)> {
-        self.compiled
-            .successors(s)
-            .into_iter()
-            .map(|(notes, next)| (0, notes, next))
+        (self.recent.successors(self.compiled, s).iter())
+            .map(|(notes, next)| (0, notes.clone(), *next))
             .collect()
     }
 
@@ -371,8 +427,12 @@ struct Tables {
     seen: Table<SeenKey, Seen>,
     judged: Table<JudgedKey, (Shared, Vec<Violation>)>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
-    /// explanation and the truth of its context, one of `judgeables`.
+    /// explanation and the truth of its context, one of `judgeables` (when its content
+    /// reads the beliefs).
     explained: Table<(usize, usize), Option<Judgeable>>,
+    /// Per action note (by address): Algorithm 2's explanation and the atoms of its
+    /// context's literals (when its content does not read the beliefs).
+    contents: Table<usize, Option<(Explanation, LiteralAtoms)>>,
     /// Each distinct value of `explained` once, so that equal ones have one address: what
     /// a transition makes of a view depends on the beliefs only through them.
     judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>, Quick>>; SHARDS],
@@ -422,7 +482,7 @@ struct SeenKey(usize, SmallVec<[usize; 4]>, SmallVec<[usize; 2]>);
 /// at each, the violations, whether a failure was among them.
 struct Seen {
     view: Shared,
-    given: Vec<Option<GivenExplanation>>,
+    given: Arc<[Option<GivenExplanation>]>,
     violations: Vec<Violation>,
     failed: bool,
     /// Whether the robot's beliefs were read (an explanation was due): else it is the same
@@ -544,6 +604,9 @@ struct Obligation {
     /// The position of the block's last action or subgoal.
     last: u16,
     gamma: Vec<ContextLiteral>,
+    /// The atoms each literal of `gamma` may be: every transition asks whether the
+    /// context changed, and a lookup per literal was a sixth of a user's search.
+    atoms: LiteralAtoms,
     /// Each literal's truth when the explanation was given.
     truth: Vec<bool>,
     /// The explained action and its step.
@@ -551,6 +614,24 @@ struct Obligation {
     span: Span,
     /// The content's steps, for messages.
     steps: Vec<PlanStep>,
+}
+
+/// Per literal of an obligation's context, the atoms an instance of it may be
+/// ([`Explainer::instances`]). It is a function of the literals, so it is left out of
+/// equality and hashing (a renamed copy made only to be fingerprinted may keep the old).
+#[derive(Clone, Debug, Default)]
+struct LiteralAtoms(Vec<Arc<[AtomId]>>);
+
+impl PartialEq for LiteralAtoms {
+    fn eq(&self, _: &LiteralAtoms) -> bool {
+        true
+    }
+}
+
+impl Eq for LiteralAtoms {}
+
+impl Hash for LiteralAtoms {
+    fn hash<H: std::hash::Hasher>(&self, _: &mut H) {}
 }
 
 /// An explanation given during a transition.
@@ -593,7 +674,8 @@ pub struct Step<N = Vec<Note>> {
     pub notes: N,
     /// For each note up to the last at which an explanation was given, the explanation
     /// given at it, if any (empty when none was: read it with [`Step::given_at`]).
-    pub given: Vec<Option<GivenExplanation>>,
+    /// Shared with every transition that gives the same ones.
+    pub given: Arc<[Option<GivenExplanation>]>,
     /// Properties violated.
     pub violations: Vec<Violation>,
 }
@@ -784,16 +866,15 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// Whether a literal of the context `o` explained has another truth on `beliefs` than
     /// when the explanation was given.
     fn context_changed(&self, o: &Obligation, beliefs: &AtomSet) -> bool {
-        o.gamma.iter().zip(&o.truth).any(|(l, t)| {
-            let believed = self.instances(&l.atom).iter().any(|&a| beliefs.contains(a));
+        (o.gamma.iter().zip(&o.atoms.0).zip(&o.truth)).any(|((l, atoms), t)| {
+            let believed = atoms.iter().any(|&a| beliefs.contains(a));
             (believed == l.positive) != *t
         })
     }
 
     /// The atoms an instance of `atom` may be ([`Explainer::instances`]), kept per atom:
-    /// every transition asks whether the open explanations' contexts changed, and finding
-    /// them anew (a term built and unified per atom of the predicate) was an eighth of a
-    /// user's search.
+    /// each explanation given asks, and finding them anew (a term built and unified per
+    /// atom of the predicate) costs.
     fn instances(&self, atom: &Term) -> Arc<[AtomId]> {
         let hash = quick(atom);
         if let Some(v) = shard(&self.tables.instances, hash).get(atom) {
@@ -820,7 +901,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         let mut step = Step {
             agent,
             notes: W::Notes::default(),
-            given: Vec::new(),
+            given: Arc::default(),
             violations: Vec::new(),
         };
         let view = &s.view.0 .1;
@@ -869,8 +950,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                         .filter_map(|&i| match notes.notes().nth(i as usize)? {
                             note @ Note::Action { stack, .. } => {
                                 let key = (note as *const Note as usize, beliefs?);
-                                let e = self.explained(key, believed, stack);
-                                Some(Arc::as_ptr(&e) as usize)
+                                Some(self.given_key(key, believed, stack))
                             }
                             _ => None,
                         })
@@ -884,7 +964,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             }
             (sensed, _) => Arc::new(self.see(view, before, &notes, sensed, None)),
         };
-        step.given.clone_from(&seen.given);
+        step.given = seen.given.clone();
         step.violations.clone_from(&seen.violations);
         step.notes = notes;
         let after = &seen.view.0 .1;
@@ -1028,7 +1108,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         }
         Seen {
             view: self.tables.intern(st),
-            given: given_at,
+            given: given_at.into(),
             violations,
             failed,
             reads_beliefs,
@@ -1174,12 +1254,61 @@ impl<'a, W: Runs> Explained<'a, W> {
             end: *e.positions.last().unwrap_or(&pos),
             last: e.last,
             gamma: e.content.context.clone(),
+            atoms: LiteralAtoms(
+                (e.content.context.iter())
+                    .map(|l| self.instances(&l.atom))
+                    .collect(),
+            ),
             truth,
             action: term.clone(),
             span,
             steps: e.content.actions.clone(),
         });
         Some(given)
+    }
+
+    /// A word that tells apart the explanations of the action note `key.0` on the
+    /// beliefs `key.1` (`believed`): the truth of each literal of its context, one bit
+    /// each, when the content is the note's alone (most often: few truths, many beliefs);
+    /// else the interned explanation's address. A bit pattern is odd or zero, an address
+    /// neither.
+    fn given_key(
+        &self,
+        key: (usize, usize),
+        believed: &AtomSet,
+        stack: &[crate::semantics::FrameView],
+    ) -> usize {
+        if !self.ex.is_semantic() {
+            let content = self.content(key.0, stack);
+            let Some((e, atoms)) = content.as_ref() else {
+                return 0;
+            };
+            if atoms.0.len() < usize::BITS as usize - 1 {
+                let literals = e.content.context.iter().zip(&atoms.0);
+                return (literals.enumerate())
+                    .filter(|(_, (l, atoms))| {
+                        atoms.iter().any(|&a| believed.contains(a)) == l.positive
+                    })
+                    .fold(1, |bits, (k, _)| bits | 2 << k);
+            }
+        }
+        Arc::as_ptr(&self.explained(key, believed, stack)) as usize
+    }
+
+    /// Algorithm 2's explanation of the action note at address `note` (on `stack`) and
+    /// the atoms of its context's literals, when its content does not read the beliefs.
+    fn content(
+        &self,
+        note: usize,
+        stack: &[crate::semantics::FrameView],
+    ) -> Arc<Option<(Explanation, LiteralAtoms)>> {
+        memo(&self.tables.contents, note, || {
+            let e = self.ex.explain(&AtomSet::default(), stack)?;
+            let atoms = (e.content.context.iter())
+                .map(|l| self.instances(&l.atom))
+                .collect();
+            Some((e, LiteralAtoms(atoms)))
+        })
     }
 
     /// [`Explained::explain`] of the action note `key.0` on the beliefs `key.1`,
@@ -1190,6 +1319,17 @@ impl<'a, W: Runs> Explained<'a, W> {
         believed: &AtomSet,
         stack: &[crate::semantics::FrameView],
     ) -> Arc<Option<Judgeable>> {
+        if !self.ex.is_semantic() {
+            // The content is the note's: only the truths are the beliefs'.
+            let content = self.content(key.0, stack);
+            return Arc::new(content.as_ref().as_ref().map(|(e, atoms)| {
+                let literals = e.content.context.iter().zip(&atoms.0);
+                let truth = literals
+                    .map(|(l, atoms)| atoms.iter().any(|&a| believed.contains(a)) == l.positive)
+                    .collect();
+                (e.clone(), truth)
+            }));
+        }
         let hash = quick(&key);
         if let Some(v) = shard(&self.tables.explained, hash).get(&key) {
             return v.clone();
@@ -1616,7 +1756,7 @@ pub fn verify(
     match compiled {
         Some(compiled) => verify_runs(
             project,
-            AloneCompiled { compiled, symmetry },
+            AloneCompiled::new(compiled, symmetry),
             limits,
             opts,
             progress,
@@ -1658,7 +1798,7 @@ pub fn robot_of(projects: &[Project]) -> usize {
 
 /// The explanation properties on `runs`, for the users of `project`'s manifest (the
 /// robot's project).
-fn verify_runs<W: Runs + Copy>(
+fn verify_runs<W: Runs + Clone>(
     project: &Project,
     runs: W,
     limits: Limits,
@@ -1686,7 +1826,7 @@ fn verify_runs<W: Runs + Copy>(
             Some(names) => format!("{}, watching {}", user.name, names[runs.robot()]),
             None => user.name.clone(),
         };
-        let model = Explained::watching(runs, &ex, user);
+        let model = Explained::watching(runs.clone(), &ex, user);
         // `--timeout` bounds the whole run: each user's search has what the earlier ones
         // left.
         let left = Limits {

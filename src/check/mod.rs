@@ -418,10 +418,7 @@ fn users_and_explanations(
                     (
                         u,
                         explanation::Explained::watching(
-                            explanation::AloneCompiled {
-                                compiled,
-                                symmetry: None,
-                            },
+                            explanation::AloneCompiled::new(compiled, None),
                             &ex,
                             &users[0],
                         ),

@@ -178,6 +178,12 @@ impl<'p> Explainer<'p> {
         (frames, at_block, positions)
     }
 
+    /// Whether Algorithm 2 reads the beliefs (`modifies = "semantic"`): with "syntactic",
+    /// [`Explainer::explain`] depends on the stack alone.
+    pub fn is_semantic(&self) -> bool {
+        self.semantic
+    }
+
     /// Algorithm 2 for the action that ran on `stack` in a state with `beliefs` (before the
     /// action), with `modifies` as the manifest says.
     pub fn explain(&self, beliefs: &AtomSet, stack: &[FrameView]) -> Option<Explanation> {

@@ -477,6 +477,16 @@ impl<'c> Packed<'c> {
         &self.beliefs.value.0
     }
 
+    /// A hash of the state's identity (its parts' addresses and its requests): cheap, and
+    /// equal for equal states, which are made of the same interned parts.
+    pub fn address_hash(&self) -> u64 {
+        let mut h = QuickHasher::default();
+        h.write_usize(self.beliefs as *const Part<Base> as usize);
+        h.write_usize(self.agenda as *const Part<Agenda> as usize);
+        h.write_u64(self.requested);
+        h.finish()
+    }
+
     /// An identity of the beliefs and their order: equal for equal ones (belief bases are
     /// interned).
     pub fn beliefs_key(&self) -> usize {
