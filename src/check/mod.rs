@@ -310,14 +310,14 @@ pub fn verify_with(
     // users' searches after them leave one mostly idle (their merging thread bounds them):
     // the products run beside those searches, on a thread of their own. Findings are
     // merged by property number, so the order they come in does not matter.
-    let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
-        Some(plan) => plan.whole.clone(),
-        None => run_props.iter().cloned().enumerate().collect(),
-    };
     let (whole_runs, users) = std::thread::scope(|scope| {
         let products = on_agent_graph.then(|| {
             scope.spawn(|| {
                 let t = std::time::Instant::now();
+                let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
+                    Some(plan) => plan.whole.clone(),
+                    None => run_props.iter().cloned().enumerate().collect(),
+                };
                 let mut found = Vec::new();
                 let reached = c.runs_numbered(&mut found, &whole);
                 (found, reached, t.elapsed().as_secs_f64())

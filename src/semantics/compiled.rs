@@ -992,13 +992,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
             }
         };
         for c in chosen {
-            let mut next = Open {
-                beliefs: p.beliefs,
-                events: agenda.events()[taken..].iter().copied().collect(),
-                intentions: agenda.intentions().iter().copied().collect(),
-                pending: agenda.pending(),
-                requested: p.requested,
-            };
+            let mut next = self.open(p);
+            // The events deliberated on are taken.
+            next.events.drain(..taken);
             // SAFETY: as above.
             unsafe {
                 next.events.extend(c.events.iter().map(|e| e.get(self)));

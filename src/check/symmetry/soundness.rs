@@ -420,6 +420,14 @@ mod tests {
         // shows.
         let specs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
         let dir = std::env::temp_dir().join(format!("bdi-check-images-{}", std::process::id()));
+        /// Removes the folder when the test ends, failed or not.
+        struct Gone(std::path::PathBuf);
+        impl Drop for Gone {
+            fn drop(&mut self) {
+                std::fs::remove_dir_all(&self.0).ok();
+            }
+        }
+        let _gone = Gone(dir.clone());
         std::fs::create_dir_all(&dir).expect("a temporary folder");
         for f in ["kitchen.asl", "kitchen.pddl"] {
             std::fs::copy(specs.join(f), dir.join(f)).expect("the kitchen's files");
@@ -455,7 +463,6 @@ mod tests {
             }
             queue.extend(c.successors(&p).into_iter().map(|(_, t)| t));
         }
-        std::fs::remove_dir_all(&dir).ok();
         assert!(compared == 2_000, "{compared} states");
     }
 }
