@@ -105,11 +105,15 @@ pub(super) fn decide<W: Runs>(
             mover: &mover,
         }),
     };
-    let mut reached = 0;
+    let mut products = runs::Products::default();
     let mut out = Vec::new();
     for p in props {
-        let (status, message, v) =
-            runs::decide(&recorded, p, (graph.complete(), reading.runs), &mut reached);
+        let (status, message, v) = runs::decide(
+            &recorded,
+            p,
+            (graph.complete(), reading.runs),
+            &mut products,
+        );
         let at = (p.span, manifest.map.location(p.span));
         // The message as decided (an undecided one already says why).
         let mut f = super::checker::dynamic_finding("property", &p.name, at, status, String::new());

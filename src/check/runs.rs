@@ -17,6 +17,7 @@ use super::buchi::Buchi;
 use super::checker::Checker;
 use super::model::AgentState;
 use super::search::{bit, set_bit};
+use super::store::OutOfMemory;
 use crate::findings::{Finding, Status};
 use crate::model::ltl::Ltl;
 use crate::model::property::{Atomic, Atomics, RunProperty};
@@ -489,6 +490,28 @@ pub(crate) struct Product<'r, G: RunGraph> {
 /// its last state for ever from there).
 type Node = (u32, u32, bool);
 
+/// The memory a product search fills, kept for the next: the products of one graph are
+/// searched one after the other, and fresh pages cost (the kernel clears them, and a
+/// vector that grows copies itself into fresh ones).
+#[derive(Default)]
+pub(crate) struct Scratch {
+    nodes: Vec<Node>,
+    /// Per node: the node it was first reached from, and by which transition.
+    parent: Vec<(u32, u32)>,
+    edges: Csr,
+    /// Per (graph state, Büchi state, ended): the node's number, or `u32::MAX`.
+    index: Vec<u32>,
+}
+
+/// What the product searches of one graph share: the product states they reached, and
+/// their memory.
+#[derive(Default)]
+pub(crate) struct Products {
+    /// Product states reached, over every search.
+    pub(crate) reached: usize,
+    scratch: Scratch,
+}
+
 /// The "transition" of a step where the run ends, or stays ended: its state repeats.
 const STAYS: u32 = u32::MAX;
 
@@ -534,16 +557,28 @@ impl<'r, G: RunGraph> Product<'r, G> {
 
     /// Breadth-first over the product; the first bad prefix, or the shortest accepting
     /// lasso found by the strongly connected components of the product.
-    pub(crate) fn search(&self) -> Option<Violation> {
+    /// `Err` when memory ran out. The search fills `scratch`, left as it was by the last.
+    pub(crate) fn search(&self, scratch: &mut Scratch) -> Result<Option<Violation>, OutOfMemory> {
         // Product nodes are numbered in the order found, breadth-first: node `x` is expanded
         // when `x` nodes were, so its edges go at the end of `edges` (one flat array).
+        let Scratch {
+            nodes,
+            parent,
+            edges,
+            index,
+        } = scratch;
+        let (nodes, parent) = (&mut *nodes, &mut *parent);
+        nodes.clear();
+        parent.clear();
+        edges.start.clear();
+        edges.to.clear();
+        edges.via.clear();
         let nb = self.buchi.states.len();
         let slot = |(i, q, ended): Node| (i as usize * nb + q as usize) * 2 + usize::from(ended);
-        let mut index: Vec<u32> = vec![u32::MAX; self.graph.len() as usize * nb * 2];
-        let mut nodes: Vec<Node> = Vec::new();
-        // Per node: the node it was first reached from, and by which transition.
-        let mut parent: Vec<(u32, u32)> = Vec::new();
-        let mut edges = Csr::default();
+        let slots = self.graph.len() as usize * nb * 2;
+        index.clear();
+        index.try_reserve_exact(slots).map_err(|_| OutOfMemory)?;
+        index.resize(slots, u32::MAX);
         let mut add =
             |n: Node, from: (u32, u32), nodes: &mut Vec<Node>, parent: &mut Vec<(u32, u32)>| {
                 let at = &mut index[slot(n)];
@@ -561,10 +596,10 @@ impl<'r, G: RunGraph> Product<'r, G> {
             let letter = self.graph.state_letter(i);
             for (guard, q) in &init.edges {
                 if guard.matches(letter) {
-                    let (x, new) = add((i, *q, false), (u32::MAX, STAYS), &mut nodes, &mut parent);
+                    let (x, new) = add((i, *q, false), (u32::MAX, STAYS), nodes, parent);
                     if new && self.universal[*q as usize] {
                         self.reached.set(nodes.len());
-                        return Some(self.prefix(&nodes, &parent, x));
+                        return Ok(Some(self.prefix(nodes, parent, x)));
                     }
                 }
             }
@@ -575,19 +610,19 @@ impl<'r, G: RunGraph> Product<'r, G> {
             self.successors(nodes[x as usize], &mut succ);
             edges.start.push(edges.to.len() as u32);
             for &(n, k) in &succ {
-                let (y, new) = add(n, (x, k), &mut nodes, &mut parent);
+                let (y, new) = add(n, (x, k), nodes, parent);
                 edges.to.push(y);
                 edges.via.push(k);
                 if new && self.universal[n.1 as usize] {
                     self.reached.set(nodes.len());
-                    return Some(self.prefix(&nodes, &parent, y));
+                    return Ok(Some(self.prefix(nodes, parent, y)));
                 }
             }
             x += 1;
         }
         edges.start.push(edges.to.len() as u32);
         self.reached.set(nodes.len());
-        self.lasso(&nodes, &parent, &edges)
+        Ok(self.lasso(nodes, parent, edges))
     }
 
     /// The graph states of the run to product node `x`, and the transition of each step
@@ -861,12 +896,21 @@ fn universal(b: &Buchi) -> Vec<bool> {
         .collect()
 }
 
-/// The formula could not be translated within [`TABLEAU_BUDGET`].
-struct TooLong;
+/// Why the product could not decide a formula.
+enum Undecided {
+    /// The formula could not be translated within [`TABLEAU_BUDGET`].
+    TooLong,
+    /// Memory ran out while the product was built.
+    OutOfMemory,
+}
 
 /// Searches the product of the recorded graph with the automaton of `not f`; adds the
 /// product states it reached to `reached`.
-fn violation(facts: &RunFacts, f: &Ltl, reached: &mut usize) -> Result<Option<Violation>, TooLong> {
+fn violation(
+    facts: &RunFacts,
+    f: &Ltl,
+    products: &mut Products,
+) -> Result<Option<Violation>, Undecided> {
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
     let state_letters = facts.letter_table.iter().map(|l| local(l, &map)).collect();
@@ -885,10 +929,10 @@ fn violation(facts: &RunFacts, f: &Ltl, reached: &mut usize) -> Result<Option<Vi
         step_letters,
         stepping,
     };
-    let p = Product::new(&g, &local_f).ok_or(TooLong)?;
-    let v = p.search();
-    *reached += p.reached.get();
-    Ok(v)
+    let p = Product::new(&g, &local_f).ok_or(Undecided::TooLong)?;
+    let v = p.search(&mut products.scratch);
+    products.reached += p.reached.get();
+    v.map_err(|OutOfMemory| Undecided::OutOfMemory)
 }
 
 /// What the runs say of one property: its status, message and run (a violation, or a
@@ -898,17 +942,20 @@ pub(crate) fn decide(
     facts: &RunFacts,
     p: &RunProperty,
     (complete, runs): (bool, &str),
-    reached: &mut usize,
+    products: &mut Products,
 ) -> (Status, String, Option<Violation>) {
-    let too_long = || {
-        (
-            Status::Unknown,
-            format!(
+    let undecided = |why: Undecided| {
+        let message = match why {
+            Undecided::TooLong => format!(
                 "`{}`: its formula is too long to translate to an automaton (more than {TABLEAU_BUDGET} tableau steps); split it into several properties",
                 p.name
             ),
-            None,
-        )
+            Undecided::OutOfMemory => format!(
+                "`{}`: memory ran out while its product with the runs was built",
+                p.name
+            ),
+        };
+        (Status::Unknown, message, None)
     };
     let held = if complete {
         Status::Pass
@@ -917,8 +964,9 @@ pub(crate) fn decide(
     };
     if p.kind == PropertyKind::Reachable {
         let goal = p.instances.first().map_or(Ltl::True, |i| i.formula.clone());
-        let Ok(found) = violation(facts, &formula_of(p.kind, &goal), reached) else {
-            return too_long();
+        let found = match violation(facts, &formula_of(p.kind, &goal), products) {
+            Ok(found) => found,
+            Err(why) => return undecided(why),
         };
         return match found {
             Some(v) => (
@@ -939,8 +987,9 @@ pub(crate) fn decide(
         };
     }
     for i in &p.instances {
-        let Ok(found) = violation(facts, &formula_of(p.kind, &i.formula), reached) else {
-            return too_long();
+        let found = match violation(facts, &formula_of(p.kind, &i.formula), products) {
+            Ok(found) => found,
+            Err(why) => return undecided(why),
         };
         let Some(mut v) = found else {
             continue;
@@ -1035,12 +1084,12 @@ impl Checker<'_> {
         out: &mut Vec<(usize, Finding)>,
         props: &[(usize, RunProperty)],
     ) -> usize {
-        let mut reached = 0;
+        let mut products = Products::default();
         // Those about explanations are decided on their user's search (`verify_with`).
         for (k, p) in props.iter().filter(|(_, p)| p.user.is_none()) {
-            out.push((*k, self.run_property(p, &mut reached)));
+            out.push((*k, self.run_property(p, &mut products)));
         }
-        reached
+        products.reached
     }
 
     /// The run of a violation, each step the transition the product took.
@@ -1062,7 +1111,7 @@ impl Checker<'_> {
         )
     }
 
-    fn run_property(&self, p: &RunProperty, reached: &mut usize) -> Finding {
+    fn run_property(&self, p: &RunProperty, products: &mut Products) -> Finding {
         let graph = self.graph;
         let succ = |i: u32| graph.successors(i);
         let may_end =
@@ -1078,7 +1127,7 @@ impl Checker<'_> {
             fairness: None,
         };
         let runs = ONE_AGENT_RUNS;
-        let (status, message, v) = decide(&facts, p, (graph.complete(), runs), reached);
+        let (status, message, v) = decide(&facts, p, (graph.complete(), runs), products);
         let mut f = self.finding("property", &p.name, p.span, status, String::new());
         // A formula too long is undecided for itself, not for the search: no caveat.
         f.message = if status == Status::Unknown && !message.contains("too long") {
@@ -1329,10 +1378,12 @@ mod tests {
     fn the_product_finds_a_violation_exactly_when_some_lasso_violates() {
         let mut r = Rng(0x9e37_79b9_7f4a_7c15);
         let (mut found, mut held) = (0, 0);
+        // One scratch for every search, as the products of one graph share it.
+        let mut scratch = Scratch::default();
         for case in 0..3000 {
             let g = toy(&mut r);
             let f = formula(&mut r, 3);
-            let v = Product::new(&g, &f).and_then(|p| p.search());
+            let v = Product::new(&g, &f).and_then(|p| p.search(&mut scratch).expect("memory"));
             let brute = lassos(&g, 5)
                 .into_iter()
                 .find(|(w, at)| !f.holds_on_lasso(&w[..*at], &w[*at..]));

@@ -542,11 +542,11 @@ pub fn verify_system(
             }),
         };
         let runs = super::runs::agents_runs(fair);
-        let mut reached = 0;
+        let mut products = super::runs::Products::default();
         // Those about explanations are decided on their user's search (below).
         for p in run_props.iter().filter(|p| p.user.is_none()) {
             let (status, message, v) =
-                super::runs::decide(&recorded, p, (graph.complete(), runs), &mut reached);
+                super::runs::decide(&recorded, p, (graph.complete(), runs), &mut products);
             let mut x = cx.finding("property", &p.name, p.span, status, String::new());
             x.message = message;
             x.counterexample = v.map(|v| cx.counterexample_via(&v));
@@ -555,7 +555,7 @@ pub fn verify_system(
         ltl_phase = Some(crate::findings::Phase {
             name: "ltl product".into(),
             seconds: t.elapsed().as_secs_f64(),
-            states: Some(reached),
+            states: Some(products.reached),
             beside: Vec::new(),
         });
     }
