@@ -549,32 +549,51 @@ struct View {
     adoption: ExpectedSuccessors,
     /// Body actions that the paper's Algorithm 1 marked and that have not run yet.
     marks: Vec<Mark>,
-    /// Explanations whose content the run has not judged yet.
-    open: Vec<Obligation>,
+    /// Explanations whose content the run has not judged yet, each hashed once: interning
+    /// a view hashed every step of every open explanation anew.
+    open: Vec<Hashed<Obligation>>,
     /// The agent's own explanation, emitted since the last environment action.
     emitted: Option<Term>,
 }
 
 /// A [`View`] with its hash: most transitions leave the view as it was, and then the
 /// next state shares it (a pointer copy) and hashes it in one word.
-#[derive(Clone, Debug)]
-struct Shared(Arc<(u64, View)>);
+type Shared = Hashed<View>;
 
-impl Shared {
-    fn new(view: View) -> Shared {
-        Shared(Arc::new((fingerprint(&view), view)))
+/// A value with its hash, shared: copied as a pointer, hashed as one word, compared by
+/// address first.
+#[derive(Debug)]
+struct Hashed<T>(Arc<(u64, T)>);
+
+impl<T: Hash> Hashed<T> {
+    fn new(x: T) -> Hashed<T> {
+        Hashed(Arc::new((fingerprint(&x), x)))
     }
 }
 
-impl PartialEq for Shared {
-    fn eq(&self, o: &Shared) -> bool {
+impl<T> Clone for Hashed<T> {
+    fn clone(&self) -> Hashed<T> {
+        Hashed(self.0.clone())
+    }
+}
+
+impl<T> std::ops::Deref for Hashed<T> {
+    type Target = T;
+
+    fn deref(&self) -> &T {
+        &self.0 .1
+    }
+}
+
+impl<T: PartialEq> PartialEq for Hashed<T> {
+    fn eq(&self, o: &Hashed<T>) -> bool {
         Arc::ptr_eq(&self.0, &o.0) || (self.0 .0 == o.0 .0 && self.0 .1 == o.0 .1)
     }
 }
 
-impl Eq for Shared {}
+impl<T: Eq> Eq for Hashed<T> {}
 
-impl Hash for Shared {
+impl<T> Hash for Hashed<T> {
     fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
         h.write_u64(self.0 .0);
     }
@@ -798,7 +817,7 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// body that ended with no change is judged once it has.
     fn judge(
         &self,
-        open: &mut Vec<Obligation>,
+        open: &mut Vec<Hashed<Obligation>>,
         (robot, beliefs): (&W::State, &AtomSet),
         failed: bool,
         unsensed: bool,
@@ -1245,7 +1264,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             after: prev,
             content: e.content.clone(),
         };
-        st.open.push(Obligation {
+        st.open.push(Hashed::new(Obligation {
             origin,
             depth,
             plan,
@@ -1263,7 +1282,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             action: term.clone(),
             span,
             steps: e.content.actions.clone(),
-        });
+        }));
         Some(given)
     }
 
@@ -1541,7 +1560,7 @@ impl<W: Runs> Model for Explained<'_, W> {
                             PlanStep::Subgoal(t) => PlanStep::Subgoal(r.term(t)),
                         })
                         .collect(),
-                    ..o.clone()
+                    ..Obligation::clone(o)
                 })
                 .collect();
             (
