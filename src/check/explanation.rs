@@ -314,8 +314,9 @@ const RECENT: usize = 1 << 17;
 
 /// The agent's successors of the states met last, one per slot of a table indexed by the
 /// state's hash: a user's search meets an agent state once per view the user may have
-/// there, mostly at one depth, and computing its successors each time was a quarter of
-/// the search.
+/// there, and computing its successors each time was a quarter of the search. On the
+/// store-cup library (7.7 views a state) 85% of the lookups hit; on the 4-cup kitchen
+/// about 15% of a possible 40%, its views of a state coming at distant depths.
 struct Recent<'c> {
     slots: Box<[Mutex<Option<Known<'c>>>]>,
 }
@@ -653,6 +654,24 @@ impl Hash for LiteralAtoms {
     fn hash<H: std::hash::Hasher>(&self, _: &mut H) {}
 }
 
+impl LiteralAtoms {
+    /// The truth of each literal of `gamma` (whose atoms these are) on `beliefs`.
+    fn truths<'a>(
+        &'a self,
+        gamma: &'a [ContextLiteral],
+        beliefs: &'a AtomSet,
+    ) -> impl Iterator<Item = bool> + 'a {
+        (gamma.iter().zip(&self.0))
+            .map(|(l, atoms)| atoms.iter().any(|&a| beliefs.contains(a)) == l.positive)
+    }
+}
+
+/// Up to 62 truths as a word: bit 0 set, bit `k + 1` the `k`-th truth. Odd, so never an
+/// address (see [`Explained::given_key`]).
+fn truth_bits(truths: impl Iterator<Item = bool>) -> usize {
+    (truths.enumerate()).fold(1, |bits, (k, t)| bits | usize::from(t) << (k + 1))
+}
+
 /// An explanation given during a transition.
 #[derive(Clone, Debug)]
 pub struct GivenExplanation {
@@ -885,10 +904,7 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// Whether a literal of the context `o` explained has another truth on `beliefs` than
     /// when the explanation was given.
     fn context_changed(&self, o: &Obligation, beliefs: &AtomSet) -> bool {
-        (o.gamma.iter().zip(&o.atoms.0).zip(&o.truth)).any(|((l, atoms), t)| {
-            let believed = atoms.iter().any(|&a| beliefs.contains(a));
-            (believed == l.positive) != *t
-        })
+        (o.atoms.truths(&o.gamma, beliefs).zip(&o.truth)).any(|(now, then)| now != *then)
     }
 
     /// The atoms an instance of `atom` may be ([`Explainer::instances`]), kept per atom:
@@ -1303,12 +1319,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                 return 0;
             };
             if atoms.0.len() < usize::BITS as usize - 1 {
-                let literals = e.content.context.iter().zip(&atoms.0);
-                return (literals.enumerate())
-                    .filter(|(_, (l, atoms))| {
-                        atoms.iter().any(|&a| believed.contains(a)) == l.positive
-                    })
-                    .fold(1, |bits, (k, _)| bits | 2 << k);
+                return truth_bits(atoms.truths(&e.content.context, believed));
             }
         }
         Arc::as_ptr(&self.explained(key, believed, stack)) as usize
@@ -1342,10 +1353,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             // The content is the note's: only the truths are the beliefs'.
             let content = self.content(key.0, stack);
             return Arc::new(content.as_ref().as_ref().map(|(e, atoms)| {
-                let literals = e.content.context.iter().zip(&atoms.0);
-                let truth = literals
-                    .map(|(l, atoms)| atoms.iter().any(|&a| believed.contains(a)) == l.positive)
-                    .collect();
+                let truth = atoms.truths(&e.content.context, believed).collect();
                 (e.clone(), truth)
             }));
         }
@@ -1919,4 +1927,23 @@ fn verify_runs<W: Runs + Clone>(
         }
     }
     Ok((out, complete, phases))
+}
+
+#[cfg(test)]
+mod tests {
+    /// Explanations with the same content share a memo entry exactly when every literal of
+    /// their context has the same truth: the word must tell every vector of truths apart.
+    #[test]
+    fn truth_bits_tell_every_vector_of_truths_apart() {
+        let mut seen = std::collections::HashMap::new();
+        for len in 0..=10usize {
+            for v in 0..1u32 << len {
+                let w = super::truth_bits((0..len).map(|k| v >> k & 1 == 1));
+                assert_eq!(w & 1, 1, "odd, so never an address");
+                // The content fixes the length: per length, one word per vector.
+                assert!(seen.insert((len, w), v).is_none(), "{len} literals, {v:b}");
+            }
+        }
+        assert_eq!(super::truth_bits((0..62).map(|_| true)), usize::MAX >> 1);
+    }
 }
