@@ -428,11 +428,11 @@ struct Tables {
     seen: Table<SeenKey, Seen>,
     judged: Table<JudgedKey, (Shared, Vec<Violation>)>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
-    /// explanation and the truth of its context, one of `judgeables` (when its content
-    /// reads the beliefs).
+    /// explanation and the truth of its context, one of `judgeables` (interned, so that its
+    /// address stands for it in a memo key while the search lasts).
     explained: Table<(usize, usize), Option<Judgeable>>,
     /// Per action note (by address): Algorithm 2's explanation and the atoms of its
-    /// context's literals (when its content does not read the beliefs).
+    /// context's literals, when its content does not read the beliefs (`syntactic`).
     contents: Table<usize, Option<(Explanation, LiteralAtoms)>>,
     /// Each distinct value of `explained` once, so that equal ones have one address: what
     /// a transition makes of a view depends on the beliefs only through them.
@@ -1349,19 +1349,20 @@ impl<'a, W: Runs> Explained<'a, W> {
         believed: &AtomSet,
         stack: &[crate::semantics::FrameView],
     ) -> Arc<Option<Judgeable>> {
-        if !self.ex.is_semantic() {
-            // The content is the note's: only the truths are the beliefs'.
-            let content = self.content(key.0, stack);
-            return Arc::new(content.as_ref().as_ref().map(|(e, atoms)| {
-                let truth = atoms.truths(&e.content.context, believed).collect();
-                (e.clone(), truth)
-            }));
-        }
         let hash = quick(&key);
         if let Some(v) = shard(&self.tables.explained, hash).get(&key) {
             return v.clone();
         }
-        let v = Arc::new(self.explain(believed, stack));
+        let v = if self.ex.is_semantic() {
+            Arc::new(self.explain(believed, stack))
+        } else {
+            // The content is the note's: only the truths are the beliefs'.
+            let content = self.content(key.0, stack);
+            Arc::new(content.as_ref().as_ref().map(|(e, atoms)| {
+                let truth = atoms.truths(&e.content.context, believed).collect();
+                (e.clone(), truth)
+            }))
+        };
         let v = {
             let mut set = shard(&self.tables.judgeables, quick(&v));
             match set.get(&v) {

@@ -570,9 +570,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let (nodes, parent) = (&mut *nodes, &mut *parent);
         nodes.clear();
         parent.clear();
-        edges.start.clear();
-        edges.to.clear();
-        edges.via.clear();
+        edges.clear();
         let nb = self.buchi.states.len();
         let slot = |(i, q, ended): Node| (i as usize * nb + q as usize) * 2 + usize::from(ended);
         let slots = self.graph.len() as usize * nb * 2;
@@ -800,6 +798,13 @@ struct Csr {
 }
 
 impl Csr {
+    /// No node, the memory kept.
+    fn clear(&mut self) {
+        self.start.clear();
+        self.to.clear();
+        self.via.clear();
+    }
+
     fn len(&self) -> usize {
         self.start.len().saturating_sub(1)
     }
@@ -1129,8 +1134,11 @@ impl Checker<'_> {
         let runs = ONE_AGENT_RUNS;
         let (status, message, v) = decide(&facts, p, (graph.complete(), runs), products);
         let mut f = self.finding("property", &p.name, p.span, status, String::new());
-        // A formula too long is undecided for itself, not for the search: no caveat.
-        f.message = if status == Status::Unknown && !message.contains("too long") {
+        // Undecided with every state expanded is the property's own doing (a formula too
+        // long, memory out in its product), not the search's: no caveat then, nor for a
+        // formula too long on a search cut short.
+        let cut_short = !graph.complete() && !message.contains("too long");
+        f.message = if status == Status::Unknown && cut_short {
             self.finding("property", &p.name, p.span, status, message)
                 .message
         } else {
