@@ -169,6 +169,7 @@ impl Search {
             compiled: defaults.compiled,
             sample,
             partial_order: !self.no_partial_order,
+            stored_users: defaults.stored_users,
         };
         let bounds = commands::verify::Bounds {
             max_states: self.max_states,

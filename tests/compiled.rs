@@ -198,17 +198,29 @@ fn verify_reports_the_same_with_the_compiled_and_the_reference_cycle() {
             .map(|l| l.finding)
             .collect();
         for symmetry in [false, true] {
-            let run = |compiled| {
+            let run = |compiled, stored_users| {
                 let opts = VerifyOptions {
                     threads: 2,
                     symmetry,
                     compiled,
+                    stored_users,
                     ..VerifyOptions::default()
                 };
                 verify_with(&p, limits, &opts, |_, _, _, _| {}, &lint).expect("verify runs")
             };
-            let (fast, slow) = (run(true), run(false));
+            let (fast, slow) = (run(true, true), run(false, true));
             let at = format!("{} (symmetry {symmetry})", dir.display());
+            // The users' searches on the agent's stored graph and on the cycle run again.
+            let again = run(true, false);
+            assert_eq!(fast.findings, again.findings, "{at}: stored graph");
+            assert_eq!(fast.stats.phases.len(), again.stats.phases.len(), "{at}");
+            for (a, b) in fast.stats.phases.iter().zip(&again.stats.phases) {
+                assert_eq!(
+                    (&a.name, a.states),
+                    (&b.name, b.states),
+                    "{at}: stored graph"
+                );
+            }
             assert_eq!(fast.findings, slow.findings, "{at}");
             assert_eq!(fast.stats.states, slow.stats.states, "{at}");
             assert_eq!(fast.stats.transitions, slow.stats.transitions, "{at}");

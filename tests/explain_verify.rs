@@ -723,7 +723,7 @@ fn one_agent_gets_the_same_explanation_findings_compiled_and_through_the_interle
         let (alone, complete, _) = verify(
             &projects[0],
             &sem,
-            None,
+            (None, None),
             None,
             limits,
             &opts,
@@ -736,7 +736,7 @@ fn one_agent_gets_the_same_explanation_findings_compiled_and_through_the_interle
         let (fast, fast_complete, _) = verify(
             &projects[0],
             &sem,
-            compiled.as_ref(),
+            (compiled.as_ref(), None),
             None,
             limits,
             &opts,

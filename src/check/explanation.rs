@@ -40,11 +40,16 @@
 //! the tables the agent's own search filled. The user's view is interned and hashed once,
 //! and what a transition's notes make of a view is computed once per view, notes (shared
 //! by the compiled cycle) and beliefs, where it reads them: most transitions of a user's
-//! search repeat one met on another state of the agent. A state of a user's search then
-//! costs about twice a state of the agent's (`docs/benchmarks.md`).
+//! search repeat one met on another state of the agent. When the agent's own search was
+//! exact and complete, it kept its graph ([`Stored`]: every state, and a number for the
+//! notes of each transition), and the users' searches read it ([`AloneStored`]) instead of
+//! running the cycle again: a state of a user's search then costs less than a state of
+//! the agent's (`docs/benchmarks.md`).
 
+use super::chunked::Chunked;
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
 use super::model::{CycleNotes, Model};
+use super::store::OutOfMemory;
 use super::symmetry::{Renaming, Symmetry};
 use super::trace::Builder;
 use crate::explain::agent::{Explainer, Explanation, User};
@@ -145,6 +150,12 @@ pub trait Runs: Sync {
     /// An identity of the robot's intentions in `s` (see [`State::all_intentions`]), when
     /// the runs share them as [`Runs::notes_key`] shares notes.
     fn intentions_key(&self, _s: &Self::State) -> Option<SmallVec<[usize; 8]>> {
+        None
+    }
+
+    /// Without symmetry reduction, the fingerprint of `s` with a user's view whose hash is
+    /// `view`, when the runs number their states: cheaper than hashing both.
+    fn fingerprint_numbered(&self, _s: &Self::State, _view: u64) -> Option<u64> {
         None
     }
 
@@ -405,6 +416,277 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
     ) -> Option<u64> {
         self.symmetry
             .map(|sym| sym.fingerprint_with_compiled(self.compiled, s, extra))
+    }
+}
+
+/// The agent's graph as its exact, complete search stored it on the compiled cycle: every
+/// state, and the notes of each of its transitions in the graph's order. A user's search
+/// then follows the stored transitions ([`AloneStored`]) instead of running the cycle
+/// again: a user meets each agent state once per view it may have there. About 30 bytes
+/// a state: the state's parts, and a number per transition for its notes ([`NoteIds`]).
+#[derive(Default)]
+pub struct Stored<'c> {
+    states: Chunked<Packed<'c>>,
+    /// Per state, where its transitions' notes begin in `notes` (and one past the last).
+    starts: Chunked<u32>,
+    notes: Chunked<u32>,
+    /// The notes by number, once the search is over ([`Stored::finish`]).
+    distinct: Vec<Vec<Notes<'c>>>,
+    /// Whether a state could not be held (too many transitions to number, or memory):
+    /// the graph is then unusable.
+    broken: bool,
+}
+
+impl<'c> Stored<'c> {
+    /// Adds the next state (in the search's numbering) and its transitions' notes, by
+    /// their numbers in [`NoteIds`].
+    pub fn push(&mut self, state: Packed<'c>, notes: impl IntoIterator<Item = u32>) {
+        if self.broken {
+            return;
+        }
+        let held = || -> Result<(), OutOfMemory> {
+            if self.starts.is_empty() {
+                self.starts.push(0)?;
+            }
+            self.states.push(state)?;
+            for n in notes {
+                self.notes.push(n)?;
+            }
+            self.starts
+                .push(u32::try_from(self.notes.len()).map_err(|_| OutOfMemory)?)
+        };
+        if held().is_err() {
+            self.broken = true;
+        }
+    }
+
+    /// The notes `ids` numbered, held from now on.
+    pub fn finish(&mut self, ids: NoteIds<'c>) {
+        self.broken |= ids.full.into_inner();
+        self.distinct = (ids.shards.into_iter())
+            .map(|s| s.into_inner().unwrap_or_else(|e| e.into_inner()).1)
+            .collect();
+    }
+
+    /// Whether every state of `graph` is held, each with the notes of all its transitions.
+    pub fn covers<S>(&self, graph: &Graph<S>) -> bool {
+        !self.broken && graph.complete() && self.states.len() == graph.len()
+    }
+
+    /// The notes numbered `id`.
+    fn notes(&self, id: u32) -> &Notes<'c> {
+        &self.distinct[id as usize % SHARDS][id as usize / SHARDS]
+    }
+}
+
+/// Numbers for the distinct notes of the agent's transitions (notes the compiled cycle
+/// shares are equal when they are the same values: [`Notes::key`]), given as the search
+/// meets them, from any thread.
+#[derive(Default)]
+pub struct NoteIds<'c> {
+    shards: [Mutex<NotesShard<'c>>; SHARDS],
+    /// Whether a shard ran out of numbers.
+    full: std::sync::atomic::AtomicBool,
+}
+
+/// One shard of [`NoteIds`]: numbers by key, and the notes by number (divided by
+/// [`SHARDS`]: the rest of the division is the shard).
+type NotesShard<'c> = (HashMap<SmallVec<[usize; 4]>, u32, Quick>, Vec<Notes<'c>>);
+
+impl<'c> NoteIds<'c> {
+    /// The number of `notes`.
+    pub fn id(&self, notes: &Notes<'c>) -> u32 {
+        let key = notes.key();
+        let hash = quick(&key);
+        let k = (hash >> 40) as usize % SHARDS;
+        let mut shard = self.shards[k].lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(&id) = shard.0.get(&key) {
+            return id;
+        }
+        let Some(id) = (shard.1.len())
+            .checked_mul(SHARDS)
+            .and_then(|x| u32::try_from(x + k).ok())
+        else {
+            self.full.store(true, std::sync::atomic::Ordering::Relaxed);
+            return 0;
+        };
+        shard.1.push(notes.clone());
+        shard.0.insert(key, id);
+        id
+    }
+}
+
+/// A state of [`AloneStored`]: its number in the agent's graph, which alone identifies it
+/// (hashed and compared), and the state.
+#[derive(Clone, Copy)]
+pub struct Node<'g, 'c> {
+    index: u32,
+    state: &'g Packed<'c>,
+}
+
+impl PartialEq for Node<'_, '_> {
+    fn eq(&self, o: &Node<'_, '_>) -> bool {
+        self.index == o.index
+    }
+}
+
+impl Eq for Node<'_, '_> {}
+
+impl Hash for Node<'_, '_> {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        self.index.hash(h);
+    }
+}
+
+impl Debug for Node<'_, '_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "state {} of the agent's graph", self.index)
+    }
+}
+
+impl super::model::AgentState for Node<'_, '_> {
+    fn beliefs(&self) -> &AtomSet {
+        self.state.beliefs()
+    }
+    fn beliefs_key(&self) -> Option<usize> {
+        Some(self.state.beliefs_key())
+    }
+    fn pending_requests(&self) -> u64 {
+        self.state.pending_requests()
+    }
+    fn is_idle(&self) -> bool {
+        self.state.is_idle()
+    }
+    fn goals(&self, events: bool) -> Vec<&Term> {
+        super::model::AgentState::goals(self.state, events)
+    }
+}
+
+/// The notes of a transition of [`AloneStored`]: their number ([`NoteIds`]), which
+/// identifies them, and the notes.
+#[derive(Clone, Copy, Default)]
+pub struct StoredNotes<'g, 'c> {
+    id: u32,
+    notes: Option<&'g Notes<'c>>,
+}
+
+impl Debug for StoredNotes<'_, '_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list().entries(self.notes()).finish()
+    }
+}
+
+impl CycleNotes for StoredNotes<'_, '_> {
+    fn notes(&self) -> impl Iterator<Item = &Note> {
+        self.notes.into_iter().flat_map(|n| n.iter())
+    }
+}
+
+/// A bijection of 64-bit words that spreads every bit of its input over its output (the
+/// finalizer of Steele, Lea and Flood's SplitMix64).
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The runs of [`AloneCompiled`] without symmetry, read from the agent's stored graph
+/// ([`Stored`]): the same states, transitions, notes and order, so a user's search meets
+/// the same states in the same order, without computing a successor again.
+#[derive(Clone, Copy)]
+pub struct AloneStored<'g, 'c, 's, 'p> {
+    compiled: &'c Compiled<'s, 'p>,
+    stored: &'g Stored<'c>,
+    graph: &'g Graph,
+}
+
+impl<'g, 'c, 's, 'p> AloneStored<'g, 'c, 's, 'p> {
+    /// The runs of `graph`, the complete graph of an exact search on `compiled`, whose
+    /// states and notes `stored` holds; `None` unless it holds them all.
+    pub fn new(
+        compiled: &'c Compiled<'s, 'p>,
+        stored: &'g Stored<'c>,
+        graph: &'g Graph,
+    ) -> Option<AloneStored<'g, 'c, 's, 'p>> {
+        stored.covers(graph).then_some(AloneStored {
+            compiled,
+            stored,
+            graph,
+        })
+    }
+
+    fn node(&self, index: u32) -> Node<'g, 'c> {
+        Node {
+            index,
+            state: self.stored.states.at(index as usize),
+        }
+    }
+}
+
+impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
+    type State = Node<'g, 'c>;
+    type Notes = StoredNotes<'g, 'c>;
+
+    fn agents(&self) -> &[Semantics<'_>] {
+        std::slice::from_ref(self.compiled.semantics())
+    }
+
+    fn robot(&self) -> usize {
+        0
+    }
+
+    fn names(&self) -> Option<&[String]> {
+        None
+    }
+
+    fn robot_beliefs<'s>(&self, s: &'s Node<'g, 'c>) -> &'s AtomSet {
+        s.state.beliefs()
+    }
+
+    fn robot_intentions<'s>(&self, s: &'s Node<'g, 'c>) -> impl Iterator<Item = &'s Intention> {
+        s.state.all_intentions()
+    }
+
+    fn world<'s>(&self, s: &'s Node<'g, 'c>) -> &'s AtomSet {
+        s.state.beliefs()
+    }
+
+    fn initial(&self) -> Box<dyn Iterator<Item = Node<'g, 'c>> + '_> {
+        // The search numbers the initial states first, in the order the cycle gives them.
+        Box::new((0..self.graph.initial as u32).map(|i| self.node(i)))
+    }
+
+    fn successors(&self, s: &Node<'g, 'c>) -> Vec<(u8, StoredNotes<'g, 'c>, Node<'g, 'c>)> {
+        let targets = (self.graph.successors(s.index))
+            .expect("a complete graph keeps every state's transitions");
+        let (st, i) = (self.stored, s.index as usize);
+        let from = st.starts.get(i) as usize;
+        debug_assert_eq!(st.starts.get(i + 1) as usize - from, targets.len());
+        (targets.iter().enumerate())
+            .map(|(k, &t)| {
+                let id = st.notes.get(from + k);
+                let notes = Some(st.notes(id));
+                (0, StoredNotes { id, notes }, self.node(t))
+            })
+            .collect()
+    }
+
+    fn notes_key(&self, notes: &StoredNotes<'g, 'c>) -> Option<SmallVec<[usize; 4]>> {
+        Some(smallvec::smallvec![notes.id as usize])
+    }
+
+    fn beliefs_key(&self, s: &Node<'g, 'c>) -> usize {
+        s.state.beliefs_key()
+    }
+
+    fn intentions_key(&self, s: &Node<'g, 'c>) -> Option<SmallVec<[usize; 8]>> {
+        Some(s.state.intentions_key())
+    }
+
+    fn fingerprint_numbered(&self, s: &Node<'g, 'c>, view: u64) -> Option<u64> {
+        // Equal only if `view ^ mix(index + 1)` is: for another state, a chance of 2^-64
+        // with views hashed by SipHash, as a fingerprint of both would have.
+        Some(mix(view ^ mix(u64::from(s.index) + 1)))
     }
 }
 
@@ -1581,7 +1863,9 @@ impl<W: Runs> Model for Explained<'_, W> {
                 v.emitted.as_ref().map(|t| r.term(t)),
             )
         });
-        renamed.unwrap_or_else(|| fingerprint(s))
+        renamed
+            .or_else(|| self.runs.fingerprint_numbered(&s.state, s.view.0 .0))
+            .unwrap_or_else(|| fingerprint(s))
     }
 }
 
@@ -1771,16 +2055,20 @@ fn render<W: Runs>(
 /// user and place when it fails. Nothing when the manifest has no `[explanation]` users.
 /// Also returns whether every user's search was complete.
 /// With `compiled` (the agent's compiled cycle, whose tables the agent's search filled),
-/// the users' searches run on it.
+/// the users' searches run on it; with `stored` (the agent's graph, from an exact search),
+/// they read that graph instead.
 pub fn verify(
     project: &Project,
     sem: &Semantics,
-    compiled: Option<&Compiled>,
+    (compiled, stored): (Option<&Compiled>, Option<AloneStored>),
     symmetry: Option<&Symmetry>,
     limits: Limits,
     opts: &Options,
     progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
+    if let Some(stored) = stored.filter(|_| symmetry.is_none()) {
+        return verify_runs(project, stored, limits, opts, progress);
+    }
     match compiled {
         Some(compiled) => verify_runs(
             project,

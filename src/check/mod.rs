@@ -107,6 +107,10 @@ pub struct VerifyOptions {
     pub sample: Option<sample::Sample>,
     /// Partial-order reduction among several agents ([`por`]).
     pub partial_order: bool,
+    /// The users' explanation searches read the agent's graph, stored by its exact search
+    /// on the compiled cycle ([`explanation::AloneStored`]), instead of running the cycle
+    /// again. Off, they run it: the two give the same report.
+    pub stored_users: bool,
 }
 
 impl Default for VerifyOptions {
@@ -120,6 +124,7 @@ impl Default for VerifyOptions {
             compiled: true,
             sample: None,
             partial_order: true,
+            stored_users: true,
         }
     }
 }
@@ -272,14 +277,29 @@ pub fn verify_with(
     // Every stored state is also checked for equivariance: reduction is only exact if
     // renaming a state renames its successors (see Symmetry::equivariance_violation);
     // where it does not, the report says so.
+    // The users' searches follow the agent's transitions again, once per view: an exact
+    // search keeps its states and notes for them (about 70 bytes a state), so that they
+    // read its graph instead of running the cycle again.
+    let mut stored = (compiled.is_some()
+        && agent.symmetry.is_none()
+        && opts.stored_users
+        && search.shard.is_none()
+        && search.sample.is_none()
+        && (project.manifest.explanation.as_ref()).is_some_and(|e| !e.users.is_empty()))
+    .then(explanation::Stored::default);
     let (graph, not_equivariant, unchecked) = agent_search(
         &agent,
         compiled.as_ref(),
         &conditions,
         (limits, &search),
         (&mut facts, &eventually, &mut failures),
+        stored.as_mut(),
         &mut |n, d, t| progress("search", n, d, t),
     );
+    let stored_runs = match (&compiled, &stored) {
+        (Some(c), Some(st)) => explanation::AloneStored::new(c, st, &graph),
+        _ => None,
+    };
     let Failures {
         actions: action_failures,
         goals: goal_failures,
@@ -340,6 +360,7 @@ pub fn verify_with(
         }
         let users = users_and_explanations(
             (project, &sem, compiled.as_ref(), agent.symmetry.as_ref()),
+            stored_runs,
             (&run_props, run_atoms.as_ref()),
             (&remaining, &search),
             &mut progress,
@@ -395,6 +416,7 @@ fn users_and_explanations(
         Option<&Compiled>,
         Option<&symmetry::Symmetry>,
     ),
+    stored: Option<explanation::AloneStored>,
     (run_props, run_atoms): (
         &[crate::model::property::RunProperty],
         Option<&runs::RunAtoms>,
@@ -412,8 +434,15 @@ fn users_and_explanations(
                 .collect();
             let users = crate::explain::agent::users(project, Some(u))?;
             let ex = crate::explain::agent::Explainer::new(project, sem);
-            let (found, phase) = match compiled {
-                Some(compiled) => user_runs(
+            let (found, phase) = match (stored, compiled) {
+                (Some(stored), _) => user_runs(
+                    project,
+                    (u, explanation::Explained::watching(stored, &ex, &users[0])),
+                    (&props, atoms),
+                    (remaining(), search),
+                    &mut *progress,
+                ),
+                (None, Some(compiled)) => user_runs(
                     project,
                     (
                         u,
@@ -427,7 +456,7 @@ fn users_and_explanations(
                     (remaining(), search),
                     &mut *progress,
                 ),
-                None => user_runs(
+                (None, None) => user_runs(
                     project,
                     (u, explanation::Explained::new(sem, &ex, &users[0], None)),
                     (&props, atoms),
@@ -446,7 +475,7 @@ fn users_and_explanations(
     let (explained, _, phases) = explanation::verify(
         project,
         sem,
-        compiled,
+        (compiled, stored),
         symmetry,
         remaining(),
         &explore_opts,
@@ -504,6 +533,7 @@ fn fixing_runs(
         &conditions,
         (limits, search),
         (&mut facts, &[], &mut Failures::default()),
+        None,
         &mut |n, d, t| progress(&name, n, d, t),
     );
     let searched = t.elapsed().as_secs_f64();
@@ -560,12 +590,15 @@ where
 }
 
 /// The agent's search, on the compiled cycle when there is one, with `agent`'s symmetry.
-fn agent_search(
-    agent: &Agent,
-    compiled: Option<&Compiled>,
+/// With `stored` (on the compiled cycle only), every state and its transitions' notes are
+/// kept there.
+fn agent_search<'c>(
+    agent: &'c Agent,
+    compiled: Option<&'c Compiled>,
     conditions: &Conditions,
     bounds: (Limits, &Options),
     record: (&mut Facts, &[usize], &mut Failures),
+    stored: Option<&mut explanation::Stored<'c>>,
     progress: &mut dyn FnMut(usize, u32, f64),
 ) -> (explore::Graph, Option<String>, bool) {
     let sem = agent.sem;
@@ -575,14 +608,25 @@ fn agent_search(
                 compiled: c,
                 symmetry: agent.symmetry.as_ref(),
             };
+            let ids = explanation::NoteIds::default();
+            let number = |n: &crate::semantics::Notes<'c>| ids.id(n);
+            let mut stored = stored;
+            let mut sink = stored
+                .as_mut()
+                .map(|st| move |s, notes: smallvec::SmallVec<[u32; 4]>| st.push(s, notes));
             let (g, unequal, unchecked) = search_agent(
                 &model,
                 (conditions, |s: &Packed| c.applicable_plans(s).into()),
                 |s, succ| model.equivariance_violation(s, succ),
                 bounds,
                 record,
+                sink.as_mut()
+                    .map(|k| (&number as _, k as &mut dyn FnMut(_, _))),
                 progress,
             );
+            if let Some(st) = stored {
+                st.finish(ids);
+            }
             (g.cast(), unequal, unchecked)
         }
         None => search_agent(
@@ -603,6 +647,7 @@ fn agent_search(
             },
             bounds,
             record,
+            None,
             progress,
         ),
     }

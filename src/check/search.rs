@@ -9,6 +9,13 @@ use super::runs::{Letter, RunAtoms};
 use crate::model::cond::Cond;
 use std::collections::HashMap;
 
+/// What the search keeps of every state ([`search_agent`]): a number for each label, and
+/// where each state goes with the numbers of its transitions' labels.
+pub(super) type Keep<'a, M> = (
+    &'a (dyn Fn(&<M as Model>::Label) -> u32 + Sync),
+    &'a mut dyn FnMut(<M as Model>::State, smallvec::SmallVec<[u32; 4]>),
+);
+
 /// Plans, by index.
 pub(super) type Plans = smallvec::SmallVec<[u32; 4]>;
 
@@ -197,7 +204,10 @@ impl Facts {
 /// The agent's search (on the reference or the compiled model: they have the same
 /// fingerprints), recording each state's facts and each transition's failures. Returns
 /// the graph, the first equivariance violation `equivariance` reports, and whether a
-/// complete search left states unchecked (stored after `--timeout` passed).
+/// complete search left states unchecked (stored after `--timeout` passed). With `keep`,
+/// every stored state is handed to its sink in state number order, with the numbers its
+/// function gives the labels of its transitions, in transition order (none when it was
+/// not expanded).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn search_agent<M>(
     model: &M,
@@ -205,6 +215,7 @@ pub(super) fn search_agent<M>(
     equivariance: impl Fn(&M::State, Option<&Successors<M>>) -> Option<String> + Sync,
     (limits, opts): (Limits, &Options),
     (facts, eventually, failures): (&mut Facts, &[usize], &mut Failures),
+    keep: Option<Keep<M>>,
     progress: impl FnMut(usize, u32, f64),
 ) -> (Graph, Option<String>, bool)
 where
@@ -212,6 +223,7 @@ where
     M::State: AgentState + Send + Sync,
     M::Label: CycleNotes + Send,
 {
+    let (number, mut sink) = keep.unzip();
     let mut not_equivariant = None;
     // Past `--timeout` the search stops, and the states it still stores are not checked
     // for equivariance (the check costs more than the state): a search that completes
@@ -233,11 +245,25 @@ where
                 unchecked.store(true, std::sync::atomic::Ordering::Relaxed);
             }
             let unequal = if late { None } else { equivariance(s, succ) };
-            (conditions.summarize(s, &applicable, &by_beliefs), unequal)
+            // Numbered in the exploring threads: the merging one bounds the search.
+            let kept = number.map(|number| {
+                let labels = succ
+                    .iter()
+                    .flat_map(|v| v.iter().map(|(l, _, _)| number(l)));
+                (s.clone(), labels.collect())
+            });
+            (
+                conditions.summarize(s, &applicable, &by_beliefs),
+                unequal,
+                kept,
+            )
         },
-        |i, (sum, unequal)| {
+        |i, (sum, unequal, kept)| {
             if not_equivariant.is_none() {
                 not_equivariant = unequal;
+            }
+            if let (Some(sink), Some((s, labels))) = (sink.as_mut(), kept) {
+                sink(s, labels);
             }
             facts.record(i, sum, eventually)
         },
