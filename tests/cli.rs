@@ -586,7 +586,11 @@ fn the_reported_time_is_the_whole_runs_with_one_figure_per_phase() {
         beside,
         ["ltl search", "explanation:newcomer", "explanation:owner"]
     );
-    assert_eq!(phases.iter().filter(alone).count(), phases.len() - 1);
+    // The users' searches ran beside each other.
+    for (i, other) in [(4, "explanation:owner"), (5, "explanation:newcomer")] {
+        assert_eq!(phases[i]["beside"], serde_json::json!([other]), "{stats:#}");
+    }
+    assert_eq!(phases.iter().filter(alone).count(), phases.len() - 3);
     let o = bdi_check(&["verify", "specs/kitchen", "-v", "--color", "never"]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -618,8 +622,7 @@ fn the_progress_display_names_every_phase_in_turn() {
             "lint",
             "search",
             "ltl search",
-            "explanation:newcomer",
-            "explanation:owner"
+            "explanation:newcomer, explanation:owner"
         ]
     );
 }

@@ -482,21 +482,69 @@ impl<'c> Stored<'c> {
 /// Numbers for the distinct notes of the agent's transitions (notes the compiled cycle
 /// shares are equal when they are the same values: [`Notes::key`]), given as the search
 /// meets them, from any thread.
-#[derive(Default)]
 pub struct NoteIds<'c> {
     shards: [Mutex<NotesShard<'c>>; SHARDS],
     /// Whether a shard ran out of numbers.
     full: std::sync::atomic::AtomicBool,
+    /// Tells these numbers from another search's in the threads' caches ([`RECENT_IDS`]).
+    serial: u64,
 }
 
 /// One shard of [`NoteIds`]: numbers by key, and the notes by number (divided by
 /// [`SHARDS`]: the rest of the division is the shard).
 type NotesShard<'c> = (HashMap<SmallVec<[usize; 4]>, u32, Quick>, Vec<Notes<'c>>);
 
+/// How many numbers of notes each thread keeps at hand (a power of two).
+const RECENT_IDS: usize = 1 << 10;
+
+/// A number a thread gave last to notes of one key: the [`NoteIds`] (by serial), the
+/// key (notes of at most two phases) and the number.
+type RecentId = (u64, [usize; 4], u32);
+
+thread_local! {
+    /// Numbering notes through the shards' locks and maps was a sixth of the agent's
+    /// search when its graph is kept: each thread keeps the numbers it gave last.
+    static NUMBERED: std::cell::RefCell<Vec<RecentId>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+impl Default for NoteIds<'_> {
+    fn default() -> Self {
+        static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        NoteIds {
+            shards: Default::default(),
+            full: Default::default(),
+            serial: SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+        }
+    }
+}
+
 impl<'c> NoteIds<'c> {
     /// The number of `notes`.
     pub fn id(&self, notes: &Notes<'c>) -> u32 {
-        let key = notes.key();
+        let Some(words) = notes.short_key() else {
+            return self.numbered(notes.key(), notes);
+        };
+        let slot = (mix(words[0] as u64 ^ mix(words[2] as u64)) as usize) & (RECENT_IDS - 1);
+        let hit = NUMBERED.with_borrow(|r| {
+            r.get(slot)
+                .filter(|e| e.0 == self.serial && e.1 == words)
+                .map(|e| e.2)
+        });
+        if let Some(id) = hit {
+            return id;
+        }
+        let id = self.numbered(notes.key(), notes);
+        NUMBERED.with_borrow_mut(|r| {
+            if r.is_empty() {
+                r.resize(RECENT_IDS, (0, [0; 4], 0));
+            }
+            r[slot] = (self.serial, words, id);
+        });
+        id
+    }
+
+    /// The number of `notes`, of key `key`, from the shards.
+    fn numbered(&self, key: SmallVec<[usize; 4]>, notes: &Notes<'c>) -> u32 {
         let hash = quick(&key);
         let k = (hash >> 40) as usize % SHARDS;
         let mut shard = self.shards[k].lock().unwrap_or_else(|e| e.into_inner());
@@ -2135,31 +2183,45 @@ fn verify_runs<W: Runs + Clone>(
     let mut out = Vec::new();
     let mut complete = true;
     let mut phases = Vec::new();
-    let started = std::time::Instant::now();
-    for user in &users {
+    let models: Vec<Explained<W>> = (users.iter())
+        .map(|user| Explained::watching(runs.clone(), &ex, user))
+        .collect();
+    let names: Vec<String> = (users.iter())
+        .map(|u| format!("explanation:{}", u.name))
+        .collect();
+    // The users' searches run side by side: each is bound by its merging thread, and
+    // together they keep the cores busy. The progress shown is the first one's, named
+    // after them all. `--timeout` bounds each, as it does the whole run.
+    let label = names.join(", ");
+    let results: Vec<UserResult<W::State>> = std::thread::scope(|scope| {
+        let others: Vec<_> = (models.iter().skip(1))
+            .map(|m| scope.spawn(move || check_user(m, limits, opts, |_, _, _| {})))
+            .collect();
+        let first = models
+            .first()
+            .map(|m| check_user(m, limits, opts, |n, d, t| progress(&label, n, d, t)));
+        // A panic in another user's search is re-raised here, as a search thread's is.
+        (first.into_iter())
+            .chain(
+                others
+                    .into_iter()
+                    .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))),
+            )
+            .collect()
+    });
+    for (((user, model), r), phase) in users.iter().zip(&models).zip(&results).zip(&names) {
         // Among several agents, the message says whom the user watches.
         let who = match runs.names().filter(|n| n.len() > 1) {
             Some(names) => format!("{}, watching {}", user.name, names[runs.robot()]),
             None => user.name.clone(),
         };
-        let model = Explained::watching(runs.clone(), &ex, user);
-        // `--timeout` bounds the whole run: each user's search has what the earlier ones
-        // left.
-        let left = Limits {
-            timeout: limits
-                .timeout
-                .map(|t| (t - started.elapsed().as_secs_f64()).max(0.0)),
-            ..limits
-        };
-        let phase = format!("explanation:{}", user.name);
-        let r = check_user(&model, left, opts, |n, d, t| progress(&phase, n, d, t));
         complete &= r.graph.complete();
         let states = r.graph.len();
         phases.push(Phase {
-            name: phase,
+            name: phase.clone(),
             seconds: r.graph.seconds,
             states: Some(states),
-            beside: Vec::new(),
+            beside: names.iter().filter(|n| *n != phase).cloned().collect(),
         });
         for check in checks {
             let mut failed = false;
@@ -2176,7 +2238,7 @@ fn verify_runs<W: Runs + Clone>(
                     status: Status::Fail,
                     message: format!("for {who}: {}", v.message),
                     location: Some(loc),
-                    counterexample: Some(counterexample(project, &model, &r.graph, *shown, v)),
+                    counterexample: Some(counterexample(project, model, &r.graph, *shown, v)),
                     span: Some(v.span),
                     related: Vec::new(),
                     suppressed: None,
