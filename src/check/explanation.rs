@@ -1506,9 +1506,11 @@ impl<'a, W: Runs> Explained<'a, W> {
     ) -> Option<GivenExplanation> {
         let obs = Observation::Action(term.clone());
         let prev = st.prev.clone();
-        let after = prev
-            .as_ref()
-            .map_or("the start".to_string(), |o| o.to_string());
+        // For messages only.
+        let after = || {
+            prev.as_ref()
+                .map_or("the start".to_string(), |o| o.to_string())
+        };
         // Declaratively: novel when no pair of N matches, pair by pair.
         let novel = !st
             .n
@@ -1520,26 +1522,25 @@ impl<'a, W: Runs> Explained<'a, W> {
                 .learned()
                 .iter()
                 .any(|p| p.prev == prev && p.next == obs);
-        let mut grown: Vec<Pair> = st.n.learned().to_vec();
-        if novel {
-            grown.push(Pair {
-                prev: prev.clone(),
-                next: obs.clone(),
-            });
-            grown.sort();
-        }
+        // `N` as it was (its pairs shared, not copied).
+        let before = st.n.clone();
         let due = st.n.observe(prev.as_ref(), &obs);
+        let pair = novel.then(|| Pair {
+            prev: prev.clone(),
+            next: obs.clone(),
+        });
         st.prev = Some(obs);
-        if due != novel || st.n.learned() != grown.as_slice() {
+        if due != novel || !grew_by(before.learned(), st.n.learned(), pair.as_ref()) {
             out.push(Violation {
                 check: "demand-exact",
                 span,
                 message: format!(
-                    "at {term} after {after}, Algorithm 1 {} an explanation and N has {} learned pairs, but the pair is {} and N should have {}",
+                    "at {term} after {}, Algorithm 1 {} an explanation and N has {} learned pairs, but the pair is {} and N should have {}",
+                    after(),
                     if due { "gave" } else { "gave no" },
                     st.n.learned().len(),
                     if novel { "novel" } else { "expected" },
-                    grown.len()
+                    before.learned().len() + usize::from(novel)
                 ),
             });
         }
@@ -1560,7 +1561,8 @@ impl<'a, W: Runs> Explained<'a, W> {
                 check: "demand-adoption",
                 span,
                 message: format!(
-                    "{term} after {after} {} by the observed sequence, but Algorithm 1 at plan adoption {} it",
+                    "{term} after {} {} by the observed sequence, but Algorithm 1 at plan adoption {} it",
+                    after(),
                     if due { "is surprising" } else { "is expected" },
                     if marked { "marked" } else { "did not mark" }
                 ),
@@ -1576,7 +1578,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         if self.sem().explains_itself() {
             self.conformance(
                 term,
-                &after,
+                &after(),
                 emitted.as_ref(),
                 explanation.map(|(e, _)| &e.content),
                 span,
@@ -1763,6 +1765,21 @@ impl<'a, W: Runs> Explained<'a, W> {
                     });
                 }
             }
+        }
+    }
+}
+
+/// Whether the sorted pairs `after` are the sorted pairs `before` with `pair` added, or
+/// the same pairs when there is none to add.
+fn grew_by(before: &[Pair], after: &[Pair], pair: Option<&Pair>) -> bool {
+    match pair {
+        None => std::ptr::eq(before, after) || before == after,
+        Some(p) => {
+            let at = before.partition_point(|q| q < p);
+            after.len() == before.len() + 1
+                && after[..at] == before[..at]
+                && after[at] == *p
+                && after[at + 1..] == before[at..]
         }
     }
 }
@@ -2282,6 +2299,34 @@ fn verify_runs<W: Runs + Clone>(
 
 #[cfg(test)]
 mod tests {
+    /// `demand-exact`'s check that `N` grew by exactly the novel pair: every other change
+    /// of the sorted pairs is told from it.
+    #[test]
+    fn grew_by_tells_the_pair_added_from_any_other_change() {
+        use crate::explain::Pair;
+        let p = |a: &str, b: &str| Pair::parse(a, b).expect("a pair");
+        let mut all = vec![p("a", "b"), p("a", "c"), p("b", "c"), p("c", "a")];
+        all.sort();
+        let (before, new) = ([all[0].clone(), all[1].clone(), all[3].clone()], &all[2]);
+        assert!(super::grew_by(&before, &all, Some(new)));
+        assert!(super::grew_by(&before, &before, None));
+        // Nothing added, another pair added, a pair dropped or swapped, two added.
+        assert!(!super::grew_by(&before, &before, Some(new)));
+        assert!(!super::grew_by(&before, &all, None));
+        assert!(!super::grew_by(&before, &all, Some(&all[0])));
+        assert!(!super::grew_by(&before, &all[1..], Some(new)));
+        let swapped = [
+            all[0].clone(),
+            all[2].clone(),
+            all[2].clone(),
+            all[3].clone(),
+        ];
+        assert!(!super::grew_by(&before, &swapped, Some(new)));
+        let mut more = all.clone();
+        more.push(p("d", "a"));
+        assert!(!super::grew_by(&before, &more, Some(new)));
+    }
+
     /// Explanations with the same content share a memo entry exactly when every literal of
     /// their context has the same truth: the word must tell every vector of truths apart.
     #[test]

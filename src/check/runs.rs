@@ -481,6 +481,9 @@ pub(crate) struct Product<'r, G: RunGraph> {
     buchi: Buchi,
     /// Per Büchi state: accepting, with a `true` edge back to itself.
     universal: Vec<bool>,
+    /// Whether every accepting state is universal (the negation of a safety property):
+    /// a violation is then a prefix, found as it is reached, and no cycle need be sought.
+    prefixes_only: bool,
     graph: &'r G,
     /// Product states the last search reached.
     pub(crate) reached: std::cell::Cell<usize>,
@@ -521,8 +524,11 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// `None` when the automaton would take more than [`TABLEAU_BUDGET`] steps to build.
     pub(crate) fn new(graph: &'r G, f: &Ltl) -> Option<Self> {
         let buchi = Buchi::from_ltl_within(&Ltl::not(f.clone()), TABLEAU_BUDGET)?;
+        let universal = universal(&buchi);
+        let prefixes_only = (buchi.states.iter().zip(&universal)).all(|(b, &u)| !b.accepting || u);
         Some(Product {
-            universal: universal(&buchi),
+            universal,
+            prefixes_only,
             buchi,
             graph,
             reached: std::cell::Cell::new(0),
@@ -604,13 +610,19 @@ impl<'r, G: RunGraph> Product<'r, G> {
         }
         let mut succ = Vec::new();
         let mut x = 0u32;
+        // Without a cycle to seek, the product's edges are not kept.
+        let keep = !self.prefixes_only;
         while (x as usize) < nodes.len() {
             self.successors(nodes[x as usize], &mut succ);
-            edges.start.push(edges.to.len() as u32);
+            if keep {
+                edges.start.push(edges.to.len() as u32);
+            }
             for &(n, k) in &succ {
                 let (y, new) = add(n, (x, k), nodes, parent);
-                edges.to.push(y);
-                edges.via.push(k);
+                if keep {
+                    edges.to.push(y);
+                    edges.via.push(k);
+                }
                 if new && self.universal[n.1 as usize] {
                     self.reached.set(nodes.len());
                     return Ok(Some(self.prefix(nodes, parent, y)));
@@ -618,8 +630,12 @@ impl<'r, G: RunGraph> Product<'r, G> {
             }
             x += 1;
         }
-        edges.start.push(edges.to.len() as u32);
         self.reached.set(nodes.len());
+        let accepting = |n: &Node| self.buchi.states[n.1 as usize].accepting;
+        if !keep || !nodes.iter().any(accepting) {
+            return Ok(None);
+        }
+        edges.start.push(edges.to.len() as u32);
         Ok(self.lasso(nodes, parent, edges))
     }
 
