@@ -728,7 +728,7 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     }
 
     fn intentions_key(&self, s: &Node<'g, 'c>) -> Option<SmallVec<[usize; 8]>> {
-        Some(s.state.intentions_key())
+        Some(smallvec::smallvec![s.state.agenda_key()])
     }
 
     fn fingerprint_numbered(&self, s: &Node<'g, 'c>, view: u64) -> Option<u64> {

@@ -493,6 +493,12 @@ impl<'c> Packed<'c> {
         self.beliefs as *const Part<Base> as usize
     }
 
+    /// An identity of the agenda (events, intentions, the pending action): equal for equal
+    /// agendas (they are interned), so for the same intentions in the same places too.
+    pub fn agenda_key(&self) -> usize {
+        self.agenda as *const Part<Agenda> as usize
+    }
+
     /// An identity of every intention (see [`Packed::all_intentions`]): equal for the same
     /// intentions in the same places (intentions, events and pending actions are interned).
     pub fn intentions_key(&self) -> SmallVec<[usize; 8]> {
