@@ -447,7 +447,11 @@ fn a_user_sees_the_requests_to_the_robot_and_its_actions_and_nothing_of_the_othe
                     let name = &system.names()[step.agent as usize];
                     if name == other {
                         // Another agent's step changes nothing the user has seen.
-                        assert!(step.given.iter().all(Option::is_none));
+                        assert!(step
+                            .given
+                            .iter()
+                            .flat_map(|g| g.iter())
+                            .all(Option::is_none));
                         assert_eq!(t.last_observed(), s.last_observed());
                         assert_eq!(t.expected().learned(), n.learned());
                         others_acted += step
@@ -456,7 +460,7 @@ fn a_user_sees_the_requests_to_the_robot_and_its_actions_and_nothing_of_the_othe
                             .filter(|n| matches!(n, Note::Action { .. }))
                             .count();
                     }
-                    explained += step.given.iter().flatten().count();
+                    explained += step.given.iter().flat_map(|g| g.iter()).flatten().count();
                     if seen.insert(fingerprint(&t)) {
                         queue.push(t);
                     }

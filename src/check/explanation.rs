@@ -803,6 +803,50 @@ fn memo<K: Hash + Eq, V>(table: &Table<K, V>, key: K, compute: impl FnOnce() -> 
     shard(table, hash).entry(key).or_insert(v).clone()
 }
 
+/// [`memo`], read by `read` under the table's lock instead of returned: two threads
+/// counting references to one entry from every transition made its cache line travel.
+fn memo_read<K: Hash + Eq, V, R>(
+    table: &Table<K, V>,
+    key: K,
+    compute: impl FnOnce() -> V,
+    read: impl Fn(&V) -> R,
+) -> R {
+    let hash = quick(&key);
+    if let Some(v) = shard(table, hash).get(&key) {
+        return read(v);
+    }
+    let v = Arc::new(compute());
+    read(shard(table, hash).entry(key).or_insert(v))
+}
+
+/// What a transition takes of a [`Seen`].
+struct SeenRead {
+    view: Shared,
+    given: Option<Arc<[Option<GivenExplanation>]>>,
+    violations: Vec<Violation>,
+    failed: bool,
+}
+
+impl Seen {
+    /// What a transition takes of it.
+    fn read(&self) -> SeenRead {
+        SeenRead {
+            view: self.view.clone(),
+            given: self.given.clone(),
+            violations: self.violations.clone(),
+            failed: self.failed,
+        }
+    }
+
+    /// [`Seen::read`], or the notes whose explanation was due when it read the beliefs.
+    fn read_unless_due(&self) -> Result<SeenRead, SmallVec<[u32; 2]>> {
+        match self.reads_beliefs {
+            true => Err(self.due.clone()),
+            false => Ok(self.read()),
+        }
+    }
+}
+
 /// A view (by address: views are interned), the notes (by [`Runs::notes_key`]), and the
 /// explanations the due ones get on the robot's beliefs (by address: interned), none when
 /// no explanation is due.
@@ -813,7 +857,7 @@ struct SeenKey(usize, SmallVec<[usize; 4]>, SmallVec<[usize; 2]>);
 /// at each, the violations, whether a failure was among them.
 struct Seen {
     view: Shared,
-    given: Arc<[Option<GivenExplanation>]>,
+    given: Option<Arc<[Option<GivenExplanation>]>>,
     violations: Vec<Violation>,
     failed: bool,
     /// Whether the robot's beliefs were read (an explanation was due): else it is the same
@@ -1041,9 +1085,11 @@ pub struct Step<N = Vec<Note>> {
     /// The agent's notes.
     pub notes: N,
     /// For each note up to the last at which an explanation was given, the explanation
-    /// given at it, if any (empty when none was: read it with [`Step::given_at`]).
+    /// given at it, if any; `None` when none was (read it with [`Step::given_at`]). Not
+    /// an empty `Arc`: std shares one for every empty slice, and counting its references
+    /// from every transition of two threads was a tenth of a user's search.
     /// Shared with every transition that gives the same ones.
-    pub given: Arc<[Option<GivenExplanation>]>,
+    pub given: Option<Arc<[Option<GivenExplanation>]>>,
     /// Properties violated.
     pub violations: Vec<Violation>,
 }
@@ -1051,7 +1097,7 @@ pub struct Step<N = Vec<Note>> {
 impl<N> Step<N> {
     /// The explanation given at the `i`-th note, if any.
     pub fn given_at(&self, i: usize) -> Option<&GivenExplanation> {
-        self.given.get(i).and_then(Option::as_ref)
+        self.given.as_deref()?.get(i)?.as_ref()
     }
 }
 
@@ -1266,7 +1312,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         let mut step = Step {
             agent,
             notes: W::Notes::default(),
-            given: Arc::default(),
+            given: None,
             violations: Vec::new(),
         };
         let view = &s.view.0 .1;
@@ -1300,42 +1346,51 @@ impl<'a, W: Runs> Explained<'a, W> {
                 let beliefs = Some(self.runs.beliefs_key(before));
                 // Most notes do not read the beliefs (no explanation is due): one entry for
                 // every state then.
-                let seen = memo(
+                let seen = memo_read(
                     &self.tables.seen,
                     SeenKey(at, key.clone(), SmallVec::new()),
                     || self.see(view, before, &notes, None, beliefs),
+                    Seen::read_unless_due,
                 );
-                if seen.reads_beliefs {
-                    // The due notes are the same on every state; their explanations differ
-                    // on far fewer states than the beliefs do.
-                    let believed = self.runs.robot_beliefs(before);
-                    let given = seen
-                        .due
-                        .iter()
-                        .filter_map(|&i| match notes.notes().nth(i as usize)? {
-                            note @ Note::Action { stack, .. } => {
-                                let key = (note as *const Note as usize, beliefs?);
-                                Some(self.given_key(key, believed, stack))
-                            }
-                            _ => None,
-                        })
-                        .collect();
-                    memo(&self.tables.seen, SeenKey(at, key, given), || {
-                        self.see(view, before, &notes, None, beliefs)
-                    })
-                } else {
-                    seen
+                match seen {
+                    Ok(seen) => seen,
+                    Err(due) => {
+                        // The due notes are the same on every state; their explanations differ
+                        // on far fewer states than the beliefs do.
+                        let believed = self.runs.robot_beliefs(before);
+                        let given = due
+                            .iter()
+                            .filter_map(|&i| match notes.notes().nth(i as usize)? {
+                                note @ Note::Action { stack, .. } => {
+                                    let key = (note as *const Note as usize, beliefs?);
+                                    Some(self.given_key(key, believed, stack))
+                                }
+                                _ => None,
+                            })
+                            .collect();
+                        memo_read(
+                            &self.tables.seen,
+                            SeenKey(at, key, given),
+                            || self.see(view, before, &notes, None, beliefs),
+                            Seen::read,
+                        )
+                    }
                 }
             }
-            (sensed, _) => Arc::new(self.see(view, before, &notes, sensed, None)),
+            (sensed, _) => self.see(view, before, &notes, sensed, None).read(),
         };
-        step.given = seen.given.clone();
-        step.violations.clone_from(&seen.violations);
+        step.given = seen.given;
+        step.violations = seen.violations;
         step.notes = notes;
         let after = &seen.view.0 .1;
         if after.open.is_empty() && after.marks.iter().all(|m| self.alive(m, &next)) {
-            let view = seen.view.clone();
-            return (step, ExplainedState { state: next, view });
+            return (
+                step,
+                ExplainedState {
+                    state: next,
+                    view: seen.view,
+                },
+            );
         }
         let unsensed = self.runs.to_sense(&next);
         let judged = match self.runs.intentions_key(&next) {
@@ -1355,15 +1410,23 @@ impl<'a, W: Runs> Explained<'a, W> {
                     changed,
                     key,
                 );
-                memo(&self.tables.judged, key, || {
-                    self.after(&seen.view, &next, seen.failed, unsensed)
-                })
+                memo_read(
+                    &self.tables.judged,
+                    key,
+                    || self.after(&seen.view, &next, seen.failed, unsensed),
+                    |(view, violations)| (view.clone(), violations.clone()),
+                )
             }
-            None => Arc::new(self.after(&seen.view, &next, seen.failed, unsensed)),
+            None => self.after(&seen.view, &next, seen.failed, unsensed),
         };
-        step.violations.extend(judged.1.iter().cloned());
-        let view = judged.0.clone();
-        (step, ExplainedState { state: next, view })
+        step.violations.extend(judged.1);
+        (
+            step,
+            ExplainedState {
+                state: next,
+                view: judged.0,
+            },
+        )
     }
 
     /// The view `view` after a transition to `next` (the robot's state): its open
@@ -1473,7 +1536,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         }
         Seen {
             view: self.tables.intern(st),
-            given: given_at.into(),
+            given: (!given_at.is_empty()).then(|| given_at.into()),
             violations,
             failed,
             reads_beliefs,
@@ -1966,7 +2029,7 @@ pub fn check_user<W: Runs>(
         |_, _| (),
         |_, ()| {},
         |src, k, step: &Step<W::Notes>, fp| {
-            given += step.given.iter().flatten().count();
+            given += step.given.iter().flat_map(|g| g.iter()).flatten().count();
             for v in &step.violations {
                 violations
                     .entry((v.check, v.span.file.0, v.span.start))
