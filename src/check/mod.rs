@@ -274,11 +274,8 @@ pub fn verify_with(
     } else {
         None
     };
-    // Every stored state is also checked for equivariance: reduction is only exact if
-    // renaming a state renames its successors (see Symmetry::equivariance_violation);
-    // where it does not, the report says so.
     // The users' searches follow the agent's transitions again, once per view: an exact
-    // search keeps its states and notes for them (about 70 bytes a state), so that they
+    // search keeps its states and notes for them (about 30 bytes a state), so that they
     // read its graph instead of running the cycle again.
     let mut stored = (compiled.is_some()
         && agent.symmetry.is_none()
@@ -287,6 +284,9 @@ pub fn verify_with(
         && search.sample.is_none()
         && (project.manifest.explanation.as_ref()).is_some_and(|e| !e.users.is_empty()))
     .then(explanation::Stored::default);
+    // Every stored state is also checked for equivariance: reduction is only exact if
+    // renaming a state renames its successors (see Symmetry::equivariance_violation);
+    // where it does not, the report says so.
     let (graph, not_equivariant, unchecked) = agent_search(
         &agent,
         compiled.as_ref(),
