@@ -138,6 +138,10 @@ impl Pair {
     /// turns the two sides into the observations together (so shared variables agree). The
     /// observations' own variables, if any, are constants here.
     pub fn matches(&self, prev: Option<&Observation>, next: &Observation) -> bool {
+        // Most patterns are about other steps: told apart by name and arity, no unifier.
+        if !may_match(&self.next, next) {
+            return false;
+        }
         let mut s = Substitution::new();
         let first = match (&self.prev, prev) {
             (None, None) => true,
@@ -145,6 +149,20 @@ impl Pair {
             _ => false,
         };
         first && match_observation(&self.next, next, &mut s)
+    }
+}
+
+/// Whether `pattern` may match `seen`: the same kind and, when the pattern is a literal,
+/// the same functor and arity (a necessary condition of [`match_observation`]).
+fn may_match(pattern: &Observation, seen: &Observation) -> bool {
+    let (p, o) = match (pattern, seen) {
+        (Observation::Request(p), Observation::Request(o))
+        | (Observation::Action(p), Observation::Action(o)) => (p, o),
+        _ => return false,
+    };
+    match p.functor() {
+        Some(f) => o.functor() == Some(f) && o.arity() == p.arity(),
+        None => true,
     }
 }
 
