@@ -729,3 +729,79 @@ fn note_handled_gaps(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::explanation::{AloneStored, Runs, Stored};
+    use super::*;
+    use crate::check::model::CycleNotes;
+    use std::collections::{HashMap, VecDeque};
+
+    /// The graph an exact search keeps for the users' searches holds every state, and from
+    /// each the compiled cycle's transitions, in its order, with the very same notes: a
+    /// breadth-first walk of the stored graph beside the compiled cycle meets, at every
+    /// node, the state the cycle reaches there.
+    #[test]
+    fn the_stored_graph_is_the_compiled_cycles() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        for dir in [
+            "specs/kitchen",
+            "specs/paper",
+            "tests/verify/explain_untruthful",
+        ] {
+            let project = crate::model::project::load_project(&root.join(dir)).expect("loads");
+            let sem = Semantics::new(&project).expect("the semantics");
+            let compiled = Compiled::new(&sem).expect("a local library");
+            let agent = Agent {
+                sem: &sem,
+                symmetry: None,
+            };
+            let conditions = Conditions {
+                invariants: Vec::new(),
+                props: Vec::new(),
+                overlaps: Vec::new(),
+                runs: None,
+            };
+            let limits = Limits {
+                max_states: 1_000_000,
+                max_depth: 10_000,
+                timeout: None,
+            };
+            let options = Options {
+                threads: 2,
+                ..Options::default()
+            };
+            let mut stored = Stored::default();
+            let (graph, _, _) = agent_search(
+                &agent,
+                Some(&compiled),
+                &conditions,
+                (limits, &options),
+                (&mut Facts::default(), &[], &mut Failures::default()),
+                Some(&mut stored),
+                &mut |_, _, _| {},
+            );
+            assert!(graph.complete(), "{dir}");
+            let runs = AloneStored::new(&compiled, &stored, &graph).expect("every state held");
+            let mut met = HashMap::new();
+            let mut queue: VecDeque<_> = runs.initial().zip(compiled.initial_iter()).collect();
+            assert_eq!(queue.len(), graph.initial, "{dir}");
+            while let Some((node, state)) = queue.pop_front() {
+                if let Some(first) = met.insert(node, state) {
+                    assert_eq!(first, state, "{dir}: {node:?} stands for two states");
+                    continue;
+                }
+                let (kept, cycle) = (runs.successors(&node), compiled.successors(&state));
+                assert_eq!(kept.len(), cycle.len(), "{dir}: {node:?}");
+                for ((_, notes, next), (cycle_notes, cycle_next)) in kept.into_iter().zip(cycle) {
+                    let at = |n: &crate::semantics::Note| n as *const _ as usize;
+                    let kept_at: Vec<usize> = notes.notes().map(at).collect();
+                    let cycle_at: Vec<usize> = cycle_notes.iter().map(at).collect();
+                    assert_eq!(kept_at, cycle_at, "{dir}: {node:?}");
+                    queue.push_back((next, cycle_next));
+                }
+            }
+            assert_eq!(met.len(), graph.len(), "{dir}");
+        }
+    }
+}
