@@ -932,8 +932,31 @@ fn violation(
     f: &Ltl,
     products: &mut Products,
 ) -> Result<Option<Violation>, Undecided> {
+    Ok(product_search(facts, f, products, false)?.flatten())
+}
+
+/// Whether `f` holds on every run, decided by one product only when `f` is a safety formula
+/// (its violations are prefixes) over at most 64 propositions; `None` when not decided so.
+fn holds_as_safety(facts: &RunFacts, f: &Ltl, products: &mut Products) -> Option<bool> {
+    match product_search(facts, f, products, true) {
+        Ok(Some(found)) => Some(found.is_none()),
+        _ => None,
+    }
+}
+
+/// [`violation`]; with `safety_only`, `Ok(None)` instead of a search when `f` is not a
+/// safety formula over at most 64 propositions.
+fn product_search(
+    facts: &RunFacts,
+    f: &Ltl,
+    products: &mut Products,
+    safety_only: bool,
+) -> Result<Option<Option<Violation>>, Undecided> {
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
+    if safety_only && map.len() > 64 {
+        return Ok(None);
+    }
     let state_letters = facts.letter_table.iter().map(|l| local(l, &map)).collect();
     let mut step_letters = HashMap::default();
     let mut stepping = Vec::new();
@@ -951,9 +974,12 @@ fn violation(
         stepping,
     };
     let p = Product::new(&g, &local_f).ok_or(Undecided::TooLong)?;
+    if safety_only && !p.prefixes_only {
+        return Ok(None);
+    }
     let v = p.search(&mut products.scratch);
     products.reached += p.reached.get();
-    v.map_err(|OutOfMemory| Undecided::OutOfMemory)
+    v.map(Some).map_err(|OutOfMemory| Undecided::OutOfMemory)
 }
 
 /// What the runs say of one property: its status, message and run (a violation, or a
@@ -1007,6 +1033,15 @@ pub(crate) fn decide(
             ),
         };
     }
+    // Instances of a safety property (`[] (did(wipe(L)) -> holding(none))` for every `L`)
+    // hold together exactly when their conjunction does: one product instead of one per
+    // instance. A violation is then looked for instance by instance, as without it, so
+    // that the run shown is the first instance's shortest.
+    let instances = (p.instances.iter()).map(|i| formula_of(p.kind, &i.formula));
+    let together = instances.reduce(Ltl::and).filter(|_| p.instances.len() > 1);
+    if together.is_some_and(|f| holds_as_safety(facts, &f, products) == Some(true)) {
+        return passed(facts, p, held, runs);
+    }
     for i in &p.instances {
         let found = match violation(facts, &formula_of(p.kind, &i.formula), products) {
             Ok(found) => found,
@@ -1019,6 +1054,16 @@ pub(crate) fn decide(
         let message = failure(p, &v);
         return (Status::Fail, message, Some(v));
     }
+    passed(facts, p, held, runs)
+}
+
+/// The verdict of a property that no run violates.
+fn passed(
+    facts: &RunFacts,
+    p: &RunProperty,
+    held: Status,
+    runs: &str,
+) -> (Status, String, Option<Violation>) {
     // The state kinds say what their checks on states say (check/safety.rs, liveness.rs).
     let message = match p.kind {
         PropertyKind::Always => format!("`{}` holds in all {} reached states", p.name, facts.len),
@@ -1471,6 +1516,11 @@ mod on_a_project {
         "<> intends(rest)",
         "[] not desires(rest)",
         "<> [] (robotAt(table) | robotAt(cupboard))",
+        // An instance per place: decided together when they all hold (safety).
+        "[] not robotAt(L)",
+        "[] (did(wipe(L)) -> robotAt(L))",
+        "[] (did(navigateTo(L)) -> robotAt(L))",
+        "[] (dirty(L) -> robotAt(L))",
     ];
 
     /// A patrol that never ends: its runs loop.
