@@ -935,26 +935,26 @@ fn violation(
     Ok(product_search(facts, f, products, false)?.flatten())
 }
 
-/// Whether `f` holds on every run, decided by one product only when `f` is a safety formula
-/// (its violations are prefixes) over at most 64 propositions; `None` when not decided so.
-fn holds_as_safety(facts: &RunFacts, f: &Ltl, products: &mut Products) -> Option<bool> {
+/// Whether `f` holds on every run, when one product over at most 64 propositions decides
+/// it; `None` when `f` has more, or its automaton is too long, or memory ran out.
+fn holds_at_once(facts: &RunFacts, f: &Ltl, products: &mut Products) -> Option<bool> {
     match product_search(facts, f, products, true) {
         Ok(Some(found)) => Some(found.is_none()),
         _ => None,
     }
 }
 
-/// [`violation`]; with `safety_only`, `Ok(None)` instead of a search when `f` is not a
-/// safety formula over at most 64 propositions.
+/// [`violation`]; with `bounded`, `Ok(None)` instead of a search when `f` has more than 64
+/// propositions.
 fn product_search(
     facts: &RunFacts,
     f: &Ltl,
     products: &mut Products,
-    safety_only: bool,
+    bounded: bool,
 ) -> Result<Option<Option<Violation>>, Undecided> {
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
-    if safety_only && map.len() > 64 {
+    if bounded && map.len() > 64 {
         return Ok(None);
     }
     let state_letters = facts.letter_table.iter().map(|l| local(l, &map)).collect();
@@ -974,9 +974,6 @@ fn product_search(
         stepping,
     };
     let p = Product::new(&g, &local_f).ok_or(Undecided::TooLong)?;
-    if safety_only && !p.prefixes_only {
-        return Ok(None);
-    }
     let v = p.search(&mut products.scratch);
     products.reached += p.reached.get();
     v.map(Some).map_err(|OutOfMemory| Undecided::OutOfMemory)
@@ -1033,13 +1030,22 @@ pub(crate) fn decide(
             ),
         };
     }
-    // Instances of a safety property (`[] (did(wipe(L)) -> holding(none))` for every `L`)
-    // hold together exactly when their conjunction does: one product instead of one per
-    // instance. A violation is then looked for instance by instance, as without it, so
-    // that the run shown is the first instance's shortest.
-    let instances = (p.instances.iter()).map(|i| formula_of(p.kind, &i.formula));
-    let together = instances.reduce(Ltl::and).filter(|_| p.instances.len() > 1);
-    if together.is_some_and(|f| holds_as_safety(facts, &f, products) == Some(true)) {
+    // The instances of an invariant (`[] (did(wipe(L)) -> holding(none))`, one per binding
+    // of its free variables) hold together exactly when `[]` of their bodies' conjunction
+    // does: one product instead of one per instance. (Other formulas are left alone: the
+    // automaton of a conjunction of liveness instances outgrows the tableau's budget.) A
+    // violation is then looked for instance by instance, as without it, so that the run
+    // shown is the first instance's shortest.
+    let together: Option<Ltl> = (p.instances.len() > 1)
+        .then(|| {
+            (p.instances.iter())
+                .map(|i| invariant_body(&formula_of(p.kind, &i.formula)).cloned())
+                .collect::<Option<Vec<Ltl>>>()
+        })
+        .flatten()
+        .and_then(|b| b.into_iter().reduce(Ltl::and))
+        .map(Ltl::always);
+    if together.is_some_and(|f| holds_at_once(facts, &f, products) == Some(true)) {
         return passed(facts, p, held, runs);
     }
     for i in &p.instances {
@@ -1055,6 +1061,23 @@ pub(crate) fn decide(
         return (Status::Fail, message, Some(v));
     }
     passed(facts, p, held, runs)
+}
+
+/// `f` of `[] f` with no temporal operator in `f`: an invariant of the run's states and
+/// steps.
+fn invariant_body(f: &Ltl) -> Option<&Ltl> {
+    fn temporal_free(f: &Ltl) -> bool {
+        match f {
+            Ltl::True | Ltl::False | Ltl::Prop(_) => true,
+            Ltl::Not(a) => temporal_free(a),
+            Ltl::And(a, b) | Ltl::Or(a, b) => temporal_free(a) && temporal_free(b),
+            Ltl::Next(_) | Ltl::Until(..) | Ltl::Release(..) => false,
+        }
+    }
+    match f {
+        Ltl::Release(a, body) if matches!(**a, Ltl::False) && temporal_free(body) => Some(body),
+        _ => None,
+    }
 }
 
 /// The verdict of a property that no run violates.
@@ -1516,7 +1539,7 @@ mod on_a_project {
         "<> intends(rest)",
         "[] not desires(rest)",
         "<> [] (robotAt(table) | robotAt(cupboard))",
-        // An instance per place: decided together when they all hold (safety).
+        // An instance per place: decided together when they all hold (invariants).
         "[] not robotAt(L)",
         "[] (did(wipe(L)) -> robotAt(L))",
         "[] (did(navigateTo(L)) -> robotAt(L))",
