@@ -523,7 +523,12 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// propositions).
     /// `None` when the automaton would take more than [`TABLEAU_BUDGET`] steps to build.
     pub(crate) fn new(graph: &'r G, f: &Ltl) -> Option<Self> {
-        let buchi = Buchi::from_ltl_within(&Ltl::not(f.clone()), TABLEAU_BUDGET)?;
+        Product::new_within(graph, f, TABLEAU_BUDGET)
+    }
+
+    /// [`Product::new`], the automaton built in at most `budget` tableau steps.
+    fn new_within(graph: &'r G, f: &Ltl, budget: usize) -> Option<Self> {
+        let buchi = Buchi::from_ltl_within(&Ltl::not(f.clone()), budget)?;
         let universal = universal(&buchi);
         let prefixes_only = (buchi.states.iter().zip(&universal)).all(|(b, &u)| !b.accepting || u);
         Some(Product {
@@ -936,7 +941,8 @@ fn violation(
 }
 
 /// Whether `f` holds on every run, when one product over at most 64 propositions decides
-/// it; `None` when `f` has more, or its automaton is too long, or memory ran out.
+/// it; `None` when `f` has more, or its automaton takes more than an eighth of
+/// [`TABLEAU_BUDGET`] (its instances one by one are then cheaper), or memory ran out.
 fn holds_at_once(facts: &RunFacts, f: &Ltl, products: &mut Products) -> Option<bool> {
     match product_search(facts, f, products, true) {
         Ok(Some(found)) => Some(found.is_none()),
@@ -973,7 +979,11 @@ fn product_search(
         step_letters,
         stepping,
     };
-    let p = Product::new(&g, &local_f).ok_or(Undecided::TooLong)?;
+    let p = match bounded {
+        true => Product::new_within(&g, &local_f, TABLEAU_BUDGET / 8),
+        false => Product::new(&g, &local_f),
+    };
+    let p = p.ok_or(Undecided::TooLong)?;
     let v = p.search(&mut products.scratch);
     products.reached += p.reached.get();
     v.map(Some).map_err(|OutOfMemory| Undecided::OutOfMemory)
@@ -1030,16 +1040,17 @@ pub(crate) fn decide(
             ),
         };
     }
-    // The instances of an invariant (`[] (did(wipe(L)) -> holding(none))`, one per binding
-    // of its free variables) hold together exactly when `[]` of their bodies' conjunction
-    // does: one product instead of one per instance. (Other formulas are left alone: the
-    // automaton of a conjunction of liveness instances outgrows the tableau's budget.) A
-    // violation is then looked for instance by instance, as without it, so that the run
-    // shown is the first instance's shortest.
+    // The instances of a `[]` property (`[] (did(wipe(L)) -> holding(none))`, `used(C) ~>
+    // cupAt(C, dishwasher)`, one per binding of their free variables) hold together exactly
+    // when `[]` of their bodies' conjunction does: one product, whose automaton shares the
+    // states where no instance has gone wrong yet, instead of one per instance. (Built as
+    // the conjunction of the `[]` formulas instead, the automaton of 4 response instances
+    // outgrew the tableau's budget.) A violation is then looked for instance by instance,
+    // as without it, so that the run shown is the first instance's shortest.
     let together: Option<Ltl> = (p.instances.len() > 1)
         .then(|| {
             (p.instances.iter())
-                .map(|i| invariant_body(&formula_of(p.kind, &i.formula)).cloned())
+                .map(|i| always_body(&formula_of(p.kind, &i.formula)).cloned())
                 .collect::<Option<Vec<Ltl>>>()
         })
         .flatten()
@@ -1063,19 +1074,10 @@ pub(crate) fn decide(
     passed(facts, p, held, runs)
 }
 
-/// `f` of `[] f` with no temporal operator in `f`: an invariant of the run's states and
-/// steps.
-fn invariant_body(f: &Ltl) -> Option<&Ltl> {
-    fn temporal_free(f: &Ltl) -> bool {
-        match f {
-            Ltl::True | Ltl::False | Ltl::Prop(_) => true,
-            Ltl::Not(a) => temporal_free(a),
-            Ltl::And(a, b) | Ltl::Or(a, b) => temporal_free(a) && temporal_free(b),
-            Ltl::Next(_) | Ltl::Until(..) | Ltl::Release(..) => false,
-        }
-    }
+/// `f` of `[] f` (`false R f`).
+fn always_body(f: &Ltl) -> Option<&Ltl> {
     match f {
-        Ltl::Release(a, body) if matches!(**a, Ltl::False) && temporal_free(body) => Some(body),
+        Ltl::Release(a, body) if matches!(**a, Ltl::False) => Some(body),
         _ => None,
     }
 }
@@ -1539,11 +1541,13 @@ mod on_a_project {
         "<> intends(rest)",
         "[] not desires(rest)",
         "<> [] (robotAt(table) | robotAt(cupboard))",
-        // An instance per place: decided together when they all hold (invariants).
+        // An instance per place: decided together when they all hold.
         "[] not robotAt(L)",
         "[] (did(wipe(L)) -> robotAt(L))",
         "[] (did(navigateTo(L)) -> robotAt(L))",
         "[] (dirty(L) -> robotAt(L))",
+        "requested(wipeTable) ~> robotAt(L)",
+        "dirty(L) ~> not dirty(L)",
     ];
 
     /// A patrol that never ends: its runs loop.
