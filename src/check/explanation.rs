@@ -796,12 +796,7 @@ struct JudgedKey(usize, bool, bool, SmallVec<[bool; 4]>, SmallVec<[usize; 8]>);
 /// The value of `key` in `table`, computed (without the lock: computing interns views)
 /// when it is new.
 fn memo<K: Hash + Eq, V>(table: &Table<K, V>, key: K, compute: impl FnOnce() -> V) -> Arc<V> {
-    let hash = quick(&key);
-    if let Some(v) = shard(table, hash).get(&key) {
-        return v.clone();
-    }
-    let v = Arc::new(compute());
-    shard(table, hash).entry(key).or_insert(v).clone()
+    memo_read(table, key, compute, Arc::clone)
 }
 
 /// [`memo`], read by `read` under the table's lock instead of returned: two threads
@@ -810,7 +805,7 @@ fn memo_read<K: Hash + Eq, V, R>(
     table: &Table<K, V>,
     key: K,
     compute: impl FnOnce() -> V,
-    read: impl Fn(&V) -> R,
+    read: impl Fn(&Arc<V>) -> R,
 ) -> R {
     let hash = quick(&key);
     if let Some(v) = shard(table, hash).get(&key) {
@@ -1351,7 +1346,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                     &self.tables.seen,
                     SeenKey(at, key.clone(), SmallVec::new()),
                     || self.see(view, before, &notes, None, beliefs),
-                    Seen::read_unless_due,
+                    |s| s.read_unless_due(),
                 );
                 match seen {
                     Ok(seen) => seen,
@@ -1373,7 +1368,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                             &self.tables.seen,
                             SeenKey(at, key, given),
                             || self.see(view, before, &notes, None, beliefs),
-                            Seen::read,
+                            |s| s.read(),
                         )
                     }
                 }
@@ -1415,7 +1410,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                     &self.tables.judged,
                     key,
                     || self.after(&seen.view, &next, seen.failed, unsensed),
-                    |(view, violations)| (view.clone(), violations.clone()),
+                    |judged| (judged.0.clone(), judged.1.clone()),
                 )
             }
             None => self.after(&seen.view, &next, seen.failed, unsensed),

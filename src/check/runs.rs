@@ -940,9 +940,11 @@ fn violation(
     Ok(product_search(facts, f, products, false)?.flatten())
 }
 
-/// Whether `f` holds on every run, when one product over at most 64 propositions decides
-/// it; `None` when `f` has more, or its automaton takes more than an eighth of
-/// [`TABLEAU_BUDGET`] (its instances one by one are then cheaper), or memory ran out.
+/// Whether `f` holds on every run, when one product over at most
+/// [`MAX_PROPS`](crate::model::property::MAX_PROPS) propositions (a letter's bits) decides
+/// it; `None` when `f` has more (each instance has at most that many), or its automaton
+/// takes more than an eighth of [`TABLEAU_BUDGET`] (its instances one by one are then
+/// cheaper), or memory ran out.
 fn holds_at_once(facts: &RunFacts, f: &Ltl, products: &mut Products) -> Option<bool> {
     match product_search(facts, f, products, true) {
         Ok(Some(found)) => Some(found.is_none()),
@@ -950,8 +952,9 @@ fn holds_at_once(facts: &RunFacts, f: &Ltl, products: &mut Products) -> Option<b
     }
 }
 
-/// [`violation`]; with `bounded`, `Ok(None)` instead of a search when `f` has more than 64
-/// propositions.
+/// [`violation`]; with `bounded`, `Ok(None)` instead of a search when `f` has more than
+/// [`MAX_PROPS`](crate::model::property::MAX_PROPS) propositions (compiling a property
+/// refuses an instance with more), and an eighth of the tableau's budget.
 fn product_search(
     facts: &RunFacts,
     f: &Ltl,
@@ -960,7 +963,7 @@ fn product_search(
 ) -> Result<Option<Option<Violation>>, Undecided> {
     let mut map = Vec::new();
     let local_f = localize(f, &mut map);
-    if bounded && map.len() > 64 {
+    if bounded && map.len() > crate::model::property::MAX_PROPS {
         return Ok(None);
     }
     let state_letters = facts.letter_table.iter().map(|l| local(l, &map)).collect();
