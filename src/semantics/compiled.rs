@@ -420,6 +420,65 @@ impl<T> Images<T> {
     }
 }
 
+/// Per part (by address) and a client's tag: numbers the client derived from it, each
+/// list boxed so that it stays where it is while the table grows.
+struct Derived<T> {
+    shards: Vec<Mutex<DerivedShard<T>>>,
+}
+
+/// One shard of [`Derived`]: per part address and tag, the list.
+type DerivedShard<T> = HashMap<(usize, u64), Box<[T]>, Quick>;
+
+impl<T> Derived<T> {
+    fn new() -> Derived<T> {
+        Derived {
+            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
+        }
+    }
+
+    /// What `derive` makes of the part at `address` (whose hash is `hash`) for `tag`,
+    /// made once.
+    fn get(
+        &self,
+        address: usize,
+        hash: u64,
+        tag: u64,
+        derive: impl FnOnce() -> Vec<T>,
+    ) -> Held<[T]> {
+        let key = (address, tag);
+        let shard = &self.shards[shard_of(mix(hash ^ tag.rotate_left(32)))];
+        let found = lock(shard).get(&key).map(|b| Held::new(&**b));
+        found.unwrap_or_else(|| {
+            // Derived without the lock, as images are.
+            let list = derive().into_boxed_slice();
+            Held::new(&**lock(shard).entry(key).or_insert(list))
+        })
+    }
+}
+
+/// The next [`Compiled`]'s serial.
+static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// Per thread, the images [`Compiled::map`] met, by the address of the part (or the
+/// requests made) and the map id: a symmetric search maps every successor by several
+/// renamings, and two threads taking the shared tables' locks for the same few entries
+/// spent most of `map`'s time passing those locks' cache lines between cores.
+#[derive(Default)]
+struct LocalImages {
+    /// The [`Compiled::serial`] these images are of.
+    serial: u64,
+    parts: HashMap<(usize, u64), usize, Quick>,
+    requests: HashMap<(u64, u64), u64, Quick>,
+}
+
+thread_local! {
+    static LOCAL_IMAGES: std::cell::RefCell<LocalImages> = Default::default();
+}
+
+/// The bit that marks a map id as a caller's own code rather than one of
+/// [`Compiled::map_id`]'s.
+pub const MAP_CODE: u64 = 1 << 63;
+
 /// A state of the compiled search: [`State`]'s parts, shared. Hashed exactly as the
 /// [`State`] it stands for, so that its fingerprint is that state's.
 #[derive(Clone, Copy, Debug)]
@@ -531,6 +590,21 @@ impl<'c> Packed<'c> {
         self.agenda.value.events().iter().map(|e| &e.value)
     }
 
+    /// The requests made, a bit each (see [`State::requested`]).
+    pub fn requested(&self) -> u64 {
+        self.requested
+    }
+
+    /// The running intentions, in the order they take turns.
+    pub fn intentions(&self) -> impl Iterator<Item = &'c Intention> {
+        self.agenda.value.intentions().iter().map(|i| &i.value)
+    }
+
+    /// The intention that waits for its action's feedback, if any.
+    pub fn pending(&self) -> Option<&'c Pending> {
+        self.agenda.value.pending().map(|p| &p.value)
+    }
+
     /// The first event of the queue.
     pub fn first_event(&self) -> Option<&'c Event> {
         self.agenda.value.events().first().map(|e| &e.value)
@@ -630,6 +704,9 @@ struct Acted {
 /// The compiled transition system of a [`Semantics`] whose library is local.
 pub struct Compiled<'s, 'p> {
     sem: &'s Semantics<'p>,
+    /// Distinct for every compiled system made: whose images a thread's [`LOCAL_IMAGES`]
+    /// holds.
+    serial: u64,
     beliefs: Interner<Base>,
     events: Interner<Event>,
     intentions: Interner<Intention>,
@@ -652,6 +729,11 @@ pub struct Compiled<'s, 'p> {
     mapped_intentions: Images<Intention>,
     mapped_pendings: Images<Pending>,
     mapped_agendas: Images<Agenda>,
+    /// Per agenda and a client's tag: what the client derived from the agenda (see
+    /// [`Compiled::derived`]).
+    derived: Derived<u16>,
+    /// The same per belief base (see [`Compiled::derived_from_beliefs`]).
+    derived_from_beliefs: Derived<u64>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
 }
@@ -694,6 +776,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
         let mut c = Compiled {
             sem,
+            serial: SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
             beliefs: Interner::new(),
             events: Interner::new(),
             intentions: Interner::new(),
@@ -710,6 +793,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
             mapped_intentions: Images::new(),
             mapped_pendings: Images::new(),
             mapped_agendas: Images::new(),
+            derived: Derived::new(),
+            derived_from_beliefs: Derived::new(),
             requests: Vec::new(),
         };
         c.requests = (0..sem.requests.len())
@@ -876,7 +961,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
     }
 
     /// The id, for [`Compiled::map`], of the map named `name` (a permutation of objects,
-    /// say): one per distinct name.
+    /// say): one per distinct name. These ids count up from 0; a caller that can name its
+    /// maps in 63 bits may instead use such a name with the top bit set ([`MAP_CODE`]),
+    /// which needs no lookup.
     pub fn map_id(&self, name: &[u16]) -> u64 {
         if let Some(id) = self
             .map_ids
@@ -889,6 +976,38 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let mut ids = self.map_ids.write().unwrap_or_else(|e| e.into_inner());
         let next = ids.len() as u64;
         *ids.entry(name.into()).or_insert(next)
+    }
+
+    /// What `derive` makes of `p`'s agenda (its events, intentions and pending action:
+    /// nothing else of `p` may be read), computed once per agenda and `tag`. A client
+    /// takes a tag of its own (one tag, one `derive`): the symmetry reduction keeps there
+    /// the order in which an agenda's terms name objects.
+    pub fn derived<'c>(
+        &'c self,
+        p: &Packed<'c>,
+        tag: u64,
+        derive: impl FnOnce(&Packed<'c>) -> Vec<u16>,
+    ) -> &'c [u16] {
+        let held = self
+            .derived
+            .get(p.agenda_key(), p.agenda.hash, tag, || derive(p));
+        // SAFETY: the list is boxed in this system's table, never moved out, replaced or
+        // dropped before the table is.
+        unsafe { held.get(self) }
+    }
+
+    /// [`Compiled::derived`] for the beliefs and their order (`derive` may read nothing
+    /// else of `p`): computed once per belief base and `tag`.
+    pub fn derived_from_beliefs<'c>(
+        &'c self,
+        p: &Packed<'c>,
+        tag: u64,
+        derive: impl FnOnce(&Packed<'c>) -> Vec<u64>,
+    ) -> &'c [u64] {
+        let held =
+            (self.derived_from_beliefs).get(p.beliefs_key(), p.beliefs.hash, tag, || derive(p));
+        // SAFETY: as in `derived`.
+        unsafe { held.get(self) }
     }
 
     /// The image of the requests made `r` under the map `id`, `f`, computed once.
@@ -913,6 +1032,49 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// (`id` names the map, see [`Compiled::map_id`]; one `id`, one map), so that mapping a state costs a lookup per
     /// part. Renaming objects, for the symmetry reduction's equivariance check, is one.
     pub fn map<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
+        let beliefs_at = p.beliefs as *const Part<Base> as usize;
+        let agenda_at = p.agenda as *const Part<Agenda> as usize;
+        let known = LOCAL_IMAGES.with(|l| {
+            let mut l = l.borrow_mut();
+            if l.serial != self.serial {
+                *l = LocalImages {
+                    serial: self.serial,
+                    ..LocalImages::default()
+                };
+            }
+            let beliefs = l.parts.get(&(beliefs_at, id)).copied()?;
+            let agenda = l.parts.get(&(agenda_at, id)).copied()?;
+            let requested = l.requests.get(&(p.requested, id)).copied()?;
+            Some((beliefs, agenda, requested))
+        });
+        if let Some((beliefs, agenda, requested)) = known {
+            // SAFETY: these addresses are of parts in this system's tables (the thread's
+            // images are of the system whose serial they carry), which live as long as
+            // it does.
+            return unsafe {
+                Packed {
+                    beliefs: &*(beliefs as *const Part<Base>),
+                    agenda: &*(agenda as *const Part<Agenda>),
+                    requested,
+                }
+            };
+        }
+        let image = self.map_shared(p, id, f);
+        LOCAL_IMAGES.with(|l| {
+            let mut l = l.borrow_mut();
+            if l.serial == self.serial {
+                let beliefs = image.beliefs as *const Part<Base> as usize;
+                let agenda = image.agenda as *const Part<Agenda> as usize;
+                l.parts.insert((beliefs_at, id), beliefs);
+                l.parts.insert((agenda_at, id), agenda);
+                l.requests.insert((p.requested, id), image.requested);
+            }
+        });
+        image
+    }
+
+    /// [`Compiled::map`] through the tables every thread shares.
+    fn map_shared<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
         let a = &p.agenda.value;
         // SAFETY: every `Held` here comes from this compiled system's tables.
         unsafe {

@@ -5,43 +5,70 @@
 use super::{mix, next_arrangement};
 use super::{Involves, Perm, Renaming, Symmetry};
 use crate::check::explore::fingerprint;
+use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::Substitution;
-use crate::semantics::state::{CursorKind, Intention};
+use crate::semantics::compiled::MAP_CODE;
+use crate::semantics::state::{CursorKind, Event, Intention};
 use crate::semantics::{Compiled, Origin, Packed, State};
+use smallvec::{smallvec, SmallVec};
 
 /// Most orders tried to break ties between objects that are not interchangeable; beyond
 /// it the sorted order is kept as it is (less reduction, still sound).
 const MAX_TIE_ORDERS: usize = 5040;
 
+/// Symmetric objects in order of first occurrence; on the stack for up to 16 of them, as
+/// this is found for every successor.
+type Occurrences = SmallVec<[u16; 16]>;
+
+/// One value per symmetric object, on the stack for up to 16 of them.
+type Features<T> = SmallVec<[T; 16]>;
+
 impl Symmetry {
     /// The symmetric objects in the order they first occur in the state's terms.
-    fn occurrences(&self, s: &State) -> Vec<u16> {
-        let mut out = Vec::new();
-        for e in &s.events {
-            self.collect_objects(&e.trigger.literal, &mut out);
-            self.origin_objects(e.origin, &mut out);
-            if let Some(i) = &e.intention {
-                self.intention_objects(i, &mut out);
-            }
-        }
-        for i in s
+    fn occurrences(&self, s: &State) -> Occurrences {
+        let mut named = Vec::new();
+        let intentions = s
             .intentions
             .iter()
             .chain(s.pending.iter().map(|p| &p.intention))
-            .chain(s.waiting.iter().map(|w| &w.intention))
-        {
-            self.intention_objects(i, &mut out);
+            .chain(s.waiting.iter().map(|w| &w.intention));
+        self.agenda_objects(s.events.iter(), intentions, &mut named);
+        let mut out = Occurrences::from_vec(named);
+        self.order_objects(&s.order, &mut out);
+        out
+    }
+
+    /// Appends the symmetric objects that the events' and then the intentions' terms
+    /// name, in order of first occurrence.
+    fn agenda_objects<'a>(
+        &self,
+        events: impl Iterator<Item = &'a Event>,
+        intentions: impl Iterator<Item = &'a Intention>,
+        out: &mut Vec<u16>,
+    ) {
+        for e in events {
+            self.collect_objects(&e.trigger.literal, out);
+            self.origin_objects(e.origin, out);
+            if let Some(i) = &e.intention {
+                self.intention_objects(i, out);
+            }
         }
-        // The belief-base order tells interchangeable objects apart too: `cupAt(cup2, _)`
-        // added after `cupAt(cup1, _)` is answered first.
-        for a in &s.order {
+        for i in intentions {
+            self.intention_objects(i, out);
+        }
+    }
+
+    /// Appends the symmetric objects of the beliefs in their order, not yet in `out`: the
+    /// belief-base order tells interchangeable objects apart too (`cupAt(cup2, _)` added
+    /// after `cupAt(cup1, _)` is answered first).
+    fn order_objects(&self, order: &[AtomId], out: &mut Occurrences) {
+        for a in order {
             for &(_, _, o) in &self.atom_args[a.0 as usize] {
                 if !out.contains(&o) {
                     out.push(o);
                 }
             }
         }
-        out
     }
 
     fn origin_objects(&self, o: Origin, out: &mut Vec<u16>) {
@@ -78,15 +105,55 @@ impl Symmetry {
     /// and whether ties between objects that are not interchangeable remain to be tried.
     fn sorting(&self, s: &State) -> (Perm, Vec<Vec<u16>>) {
         let n = self.objects.len();
-        // (first occurrence, hash of the atoms and requests that involve the object alone,
-        // whether it shares an atom or a request with another symmetric object)
-        let mut first = vec![u32::MAX; n];
-        for (k, o) in self.occurrences(s).into_iter().enumerate() {
-            first[o as usize] = k as u32;
+        let mut hash: Features<u64> = smallvec![0; n];
+        let mut shared: Features<bool> = smallvec![false; n];
+        self.belief_features(&s.beliefs, &mut hash, &mut shared);
+        self.request_features(s.requested, &mut hash, &mut shared);
+        self.sort(&self.occurrences(s), &hash, &shared)
+    }
+
+    /// [`Symmetry::sorting`] of a compiled state, without unpacking it: what its agenda
+    /// and its beliefs tell of the objects is found once per agenda and per belief base
+    /// ([`Compiled::derived`], [`Compiled::derived_from_beliefs`]).
+    fn sorting_compiled(&self, c: &Compiled, p: &Packed) -> (Perm, Vec<Vec<u16>>) {
+        let n = self.objects.len();
+        let named = c.derived(p, self.serial, |p| {
+            let mut out = Vec::new();
+            let intentions = p.intentions().chain(p.pending().map(|x| &x.intention));
+            self.agenda_objects(p.events(), intentions, &mut out);
+            out
+        });
+        // Per object its hash, then whether it is shared, then the objects in the
+        // beliefs' order.
+        let base = c.derived_from_beliefs(p, self.serial, |p| {
+            let mut hash: Features<u64> = smallvec![0; n];
+            let mut shared: Features<bool> = smallvec![false; n];
+            self.belief_features(p.beliefs(), &mut hash, &mut shared);
+            let mut order = Occurrences::new();
+            self.order_objects(p.order(), &mut order);
+            let shared = shared.iter().map(|&x| u64::from(x));
+            hash.iter()
+                .copied()
+                .chain(shared)
+                .chain(order.iter().map(|&o| u64::from(o)))
+                .collect()
+        });
+        let mut occurrences = Occurrences::from_slice(named);
+        for &o in &base[2 * n..] {
+            if !occurrences.contains(&(o as u16)) {
+                occurrences.push(o as u16);
+            }
         }
-        let mut hash = vec![0u64; n];
-        let mut shared = vec![false; n];
-        for a in s.beliefs.iter() {
+        let mut hash = Features::from_slice(&base[..n]);
+        let mut shared: Features<bool> = base[n..2 * n].iter().map(|&x| x != 0).collect();
+        self.request_features(p.requested(), &mut hash, &mut shared);
+        self.sort(&occurrences, &hash, &shared)
+    }
+
+    /// Adds, per object, the hash of the atoms of `beliefs` that involve it alone, and
+    /// marks the objects that share an atom with another symmetric object.
+    fn belief_features(&self, beliefs: &AtomSet, hash: &mut [u64], shared: &mut [bool]) {
+        for a in beliefs.iter() {
             match self.involves[a.0 as usize] {
                 Involves::None => {}
                 Involves::One(o, key) => {
@@ -99,8 +166,12 @@ impl Symmetry {
                 }
             }
         }
+    }
+
+    /// [`Symmetry::belief_features`] of the requests made, `requested`.
+    fn request_features(&self, requested: u64, hash: &mut [u64], shared: &mut [bool]) {
         for (r, inv) in self.request_involves.iter().enumerate() {
-            if s.requested >> r & 1 == 0 {
+            if requested >> r & 1 == 0 {
                 continue;
             }
             match *inv {
@@ -117,10 +188,20 @@ impl Symmetry {
                 }
             }
         }
+    }
+
+    /// The sorting renaming and the ties of a state whose symmetric objects first occur in
+    /// the order `occurrences`, with per object the `hash` of the atoms and requests that
+    /// involve it alone and whether it is `shared` with another symmetric object.
+    fn sort(&self, occurrences: &[u16], hash: &[u64], shared: &[bool]) -> (Perm, Vec<Vec<u16>>) {
+        let mut first: Features<u32> = smallvec![u32::MAX; self.objects.len()];
+        for (k, &o) in occurrences.iter().enumerate() {
+            first[o as usize] = k as u32;
+        }
         let mut perm = self.identity();
         let mut ties = Vec::new();
         for g in &self.groups {
-            let mut order = g.clone();
+            let mut order: SmallVec<[u16; 16]> = SmallVec::from_slice(g);
             order.sort_by_key(|&o| (first[o as usize], hash[o as usize], shared[o as usize], o));
             for (slot, &o) in order.iter().enumerate() {
                 perm[o as usize] = g[slot];
@@ -145,8 +226,7 @@ impl Symmetry {
     /// The renamings that may take `s` to its canonical member: the sorting order, and
     /// when objects tie, that order with every arrangement of each tie (none beyond
     /// [`MAX_TIE_ORDERS`]).
-    fn candidates(&self, s: &State) -> Vec<Perm> {
-        let (perm, ties) = self.sorting(s);
+    fn candidates(&self, (perm, ties): (Perm, Vec<Vec<u16>>)) -> Vec<Perm> {
         let orders: usize = ties
             .iter()
             .map(|t| (1..=t.len()).product::<usize>())
@@ -177,7 +257,7 @@ impl Symmetry {
 
     /// The canonical member of `s`'s class and its fingerprint.
     pub fn canonical(&self, s: &State) -> (u64, Option<State>) {
-        let candidates = self.candidates(s);
+        let candidates = self.candidates(self.sorting(s));
         if let [p] = candidates.as_slice() {
             if p.iter().enumerate().all(|(i, &x)| x as usize == i) {
                 return (fingerprint(s), None);
@@ -206,7 +286,7 @@ impl Symmetry {
         s: &State,
         extra: impl Fn(&Renaming) -> H,
     ) -> u64 {
-        self.candidates(s)
+        self.candidates(self.sorting(s))
             .iter()
             .map(|p| {
                 let r = Renaming { sym: self, perm: p };
@@ -224,7 +304,7 @@ impl Symmetry {
         p: &Packed<'c>,
         extra: impl Fn(&Renaming) -> H,
     ) -> u64 {
-        self.candidates(&c.unpack(p))
+        self.candidates(self.sorting_compiled(c, p))
             .iter()
             .map(|perm| {
                 let r = Renaming { sym: self, perm };
@@ -232,12 +312,24 @@ impl Symmetry {
                 let renamed = if identity {
                     *p
                 } else {
-                    c.map(p, c.map_id(perm), &r)
+                    c.map(p, self.map_id(c, perm), &r)
                 };
                 fingerprint(&(renamed, extra(&r)))
             })
             .min()
             .expect("at least one candidate")
+    }
+
+    /// The id of the renaming `perm` for [`Compiled::map`]: its images four bits each
+    /// when every object's index fits ([`MAP_CODE`]: no lookup), else [`Compiled::map_id`].
+    pub(super) fn map_id(&self, c: &Compiled, perm: &[u16]) -> u64 {
+        if perm.len() <= 15 {
+            perm.iter()
+                .enumerate()
+                .fold(MAP_CODE, |id, (i, &x)| id | u64::from(x) << (4 * i))
+        } else {
+            c.map_id(perm)
+        }
     }
 
     /// The canonical fingerprint of `s`.

@@ -77,7 +77,15 @@ pub struct Symmetry {
     requests: Vec<Term>,
     request_index: HashMap<Term, u8>,
     atom_count: usize,
+    /// Generators of the renamings (see [`Symmetry::generators`]).
+    generators: Vec<Perm>,
+    /// Distinct for each symmetry made: its tag for what it derives from a compiled
+    /// system's parts ([`crate::semantics::Compiled::derived`]).
+    serial: u64,
 }
+
+/// The next [`Symmetry`]'s serial.
+static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 /// A renaming: symmetric index -> symmetric index.
 type Perm = Vec<u16>;
@@ -203,7 +211,10 @@ impl Symmetry {
                 .map(|(i, r)| (r.clone(), i as u8))
                 .collect(),
             atom_count: atoms.len(),
+            serial: SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            generators: Vec::new(),
         };
+        sym.generators = sym.generators_of_groups();
         sym.involves = (0..atoms.len() as u32)
             .map(|a| sym.atom_involves(AtomId(a)))
             .collect();
@@ -231,7 +242,11 @@ impl Symmetry {
 
     /// Generators of the renamings: per type, a swap of its first two objects and a
     /// rotation of all of them (they generate every permutation).
-    fn generators(&self) -> Vec<Perm> {
+    fn generators(&self) -> &[Perm] {
+        &self.generators
+    }
+
+    fn generators_of_groups(&self) -> Vec<Perm> {
         let mut out = Vec::new();
         for g in &self.groups {
             let mut swap = self.identity();

@@ -10,6 +10,7 @@ use crate::model::cond::{Cond, CountCmp};
 use crate::model::project::Project;
 use crate::semantics::{Compiled, Packed, Semantics, State};
 use crate::syntax::{Diagnostic, Span};
+use smallvec::SmallVec;
 use std::collections::HashSet;
 use std::sync::Arc;
 
@@ -40,14 +41,14 @@ impl Symmetry {
         let classes = |succ: &[State]| sorted(succ.iter().map(|t| self.fingerprint(t)).collect());
         let succ = successors(s);
         let mut here = None;
-        self.generators().into_iter().find_map(|g| {
-            let other = successors(&self.apply(s, &g));
+        self.generators().iter().find_map(|g| {
+            let other = successors(&self.apply(s, g));
             // Equivariance itself, and far cheaper than canonical members: the successors
             // of `g(s)` are those of `s` renamed by `g`. When they are not, they may still
             // be renamings of them by other renamings: compare their classes.
             let renamed = sorted(
                 succ.iter()
-                    .map(|t| fingerprint(&self.apply(t, &g)))
+                    .map(|t| fingerprint(&self.apply(t, g)))
                     .collect(),
             );
             if sorted(other.iter().map(fingerprint).collect()) == renamed {
@@ -77,10 +78,6 @@ impl Symmetry {
         p: &Packed<'c>,
         succ: Option<Vec<&Packed<'c>>>,
     ) -> Option<String> {
-        let sorted = |mut v: Vec<u64>| {
-            v.sort_unstable();
-            v
-        };
         let computed: Vec<Packed>;
         let succ = match succ {
             Some(succ) => succ,
@@ -89,16 +86,23 @@ impl Symmetry {
                 computed.iter().collect()
             }
         };
+        // Parts are interned, so two packed states are the same state exactly when they
+        // are equal: the successors are compared as states, with no fingerprint.
         let alike = self.generators().iter().all(|g| {
             let r = super::Renaming { sym: self, perm: g };
-            let id = c.map_id(g);
+            let id = self.map_id(c, g);
             let other = c.successors(&c.map(p, id, &r));
-            sorted(other.iter().map(|(_, t)| fingerprint(t)).collect())
-                == sorted(
-                    succ.iter()
-                        .map(|t| fingerprint(&c.map(t, id, &r)))
-                        .collect(),
-                )
+            let mut renamed: SmallVec<[Packed; 4]> =
+                succ.iter().map(|t| c.map(t, id, &r)).collect();
+            other.len() == renamed.len()
+                && other.iter().all(|(_, t)| {
+                    // A multiset comparison: each successor of `g(p)` takes one renamed one.
+                    renamed
+                        .iter()
+                        .position(|u| u == t)
+                        .map(|k| renamed.swap_remove(k))
+                        .is_some()
+                })
         });
         if alike {
             return None;
@@ -456,7 +460,10 @@ mod tests {
             }
             compared += 1;
             let whole = c.unpack(&p);
-            for g in &generators {
+            // The canonical fingerprint made without unpacking, from what is kept per
+            // agenda and per belief base, is the one made on the whole state.
+            assert_eq!(sym.fingerprint_compiled(&c, &p), sym.fingerprint(&whole));
+            for g in generators {
                 let r = super::super::Renaming { sym: &sym, perm: g };
                 let image = c.map(&p, c.map_id(g), &r);
                 assert_eq!(c.unpack(&image), sym.apply(&whole, g), "{g:?}");
