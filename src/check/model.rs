@@ -147,21 +147,6 @@ pub struct CompiledAgent<'c, 's, 'p> {
     pub symmetry: Option<&'c Symmetry>,
 }
 
-impl<'c> CompiledAgent<'c, '_, '_> {
-    /// The first renaming at which `s`'s successors are not its renaming's successors
-    /// renamed, if any (see [`Symmetry::equivariance_violation`]); `None` without symmetry.
-    /// `succ`: `s`'s successors, when the search has them.
-    pub fn equivariance_violation(
-        &self,
-        s: &Packed<'c>,
-        succ: Option<&super::explore::Successors<Self>>,
-    ) -> Option<String> {
-        let sym = self.symmetry?;
-        let succ = succ.map(|v| v.iter().map(|(_, t, _)| t).collect());
-        sym.equivariance_violation_compiled(self.compiled, s, succ)
-    }
-}
-
 impl<'c> Model for CompiledAgent<'c, '_, '_> {
     type State = Packed<'c>;
     type Label = Notes<'c>;

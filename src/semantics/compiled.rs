@@ -701,6 +701,31 @@ struct Acted {
     notes: Box<[Note]>,
 }
 
+/// A phase computed for a memo, with the parts it was computed on (the belief base is the
+/// whole state's): what [`Compiled::phases_equivariant`] checks.
+#[derive(Clone, Copy)]
+enum Phase {
+    Deliberation(Held<Part<Event>>, Held<Part<Base>>),
+    Act(Held<Part<Intention>>, Held<Part<Base>>),
+    ProcAct(Held<Part<Pending>>),
+}
+
+/// What [`Compiled::phases_equivariant`] compares of an act phase (see
+/// [`Compiled::acted_key`]).
+type ActedKey = (
+    Vec<AtomId>,
+    Vec<AtomId>,
+    Vec<AtomId>,
+    Vec<usize>,
+    Option<usize>,
+    Option<usize>,
+);
+
+/// A part's address: its identity.
+fn address<T>(part: &Part<T>) -> usize {
+    part as *const Part<T> as usize
+}
+
 /// The compiled transition system of a [`Semantics`] whose library is local.
 pub struct Compiled<'s, 'p> {
     sem: &'s Semantics<'p>,
@@ -736,6 +761,8 @@ pub struct Compiled<'s, 'p> {
     derived_from_beliefs: Derived<u64>,
     /// Per request: its event and its note.
     requests: Vec<(Held<Part<Event>>, [Note; 1])>,
+    /// Every phase computed for the memos, in the order they were computed.
+    phases: Mutex<Vec<Phase>>,
 }
 
 /// A map of agent states that works part by part (see [`Compiled::map`]).
@@ -796,6 +823,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             derived: Derived::new(),
             derived_from_beliefs: Derived::new(),
             requests: Vec::new(),
+            phases: Mutex::default(),
         };
         c.requests = (0..sem.requests.len())
             .map(|r| {
@@ -1076,39 +1104,201 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// [`Compiled::map`] through the tables every thread shares.
     fn map_shared<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
         let a = &p.agenda.value;
-        // SAFETY: every `Held` here comes from this compiled system's tables.
-        unsafe {
-            let beliefs = self
-                .mapped_bases
-                .get(p.beliefs, id, || self.belief_set(f.base(&p.beliefs.value)))
-                .get(self);
+        // SAFETY: the agenda's image is in this system's tables.
+        let agenda = unsafe {
             // An agenda's image is its parts' images: kept per agenda and map too.
-            let agenda = self
-                .mapped_agendas
+            self.mapped_agendas
                 .get(p.agenda, id, || {
-                    let events = a.events().iter().map(|e| {
-                        self.mapped_events
-                            .get(e, id, || self.event(f.event(&e.value)))
-                            .get(self)
-                    });
-                    let intentions = a.intentions().iter().map(|i| {
-                        self.mapped_intentions
-                            .get(i, id, || self.intention(f.intention(&i.value)))
-                            .get(self)
-                    });
-                    let pending = a.pending().map(|x| {
-                        self.mapped_pendings
-                            .get(x, id, || self.pending(f.pending(&x.value)))
-                            .get(self)
-                    });
-                    self.agenda(events, intentions, pending)
+                    self.agenda(
+                        a.events().iter().map(|e| self.image_event(e, id, f)),
+                        a.intentions()
+                            .iter()
+                            .map(|i| self.image_intention(i, id, f)),
+                        a.pending().map(|x| self.image_pending(x, id, f)),
+                    )
                 })
-                .get(self);
-            Packed {
-                beliefs,
-                agenda,
-                requested: self.map_requests(p.requested, id, f),
-            }
+                .get(self)
+        };
+        Packed {
+            beliefs: self.image_base(p.beliefs, id, f),
+            agenda,
+            requested: self.map_requests(p.requested, id, f),
+        }
+    }
+
+    /// Whether every phase the memos computed so far commutes with the map `id`, `f`: its
+    /// outcome on the parts' images is the image of its outcome (events, intentions and
+    /// pending actions as parts, the beliefs it adds and removes, and the order it puts
+    /// them in; notes aside, as the states are what a reduction merges), and the map takes
+    /// each request's event to a request's event.
+    ///
+    /// This is equivariance of the whole cycle (`successors(f(p)) = f(successors(p))` for
+    /// every state `p` reached), checked once per memoized phase instead of once per
+    /// state: [`Compiled::successors`] does nothing but take these phases' outcomes and
+    /// put them together by position (the first event, the first intention, the back of
+    /// the queues), by counts that a renaming keeps (requests made, environment atoms) and
+    /// by predicate order (`Semantics::reorder_front`), and `f` maps beliefs atom by atom.
+    /// So when every phase commutes, every state's successors do.
+    pub fn phases_equivariant(&self, id: u64, f: &impl PartMap) -> bool {
+        let phases: Vec<Phase> = lock(&self.phases).clone();
+        // SAFETY (throughout): every `Held` here is in this system's tables.
+        let requests = self.requests.iter().enumerate().all(|(r, (event, _))| {
+            let image = f.requested(1 << r);
+            image.count_ones() == 1
+                && std::ptr::eq(
+                    self.image_event(unsafe { event.get(self) }, id, f),
+                    unsafe { self.requests[image.trailing_zeros() as usize].0.get(self) },
+                )
+        });
+        requests
+            && phases.iter().all(|&phase| match phase {
+                Phase::Deliberation(event, base) => {
+                    let (event, base) = unsafe { (event.get(self), base.get(self)) };
+                    let (chosen, goes_on) = self.deliberate(event, &base.value);
+                    let image = self.deliberate(
+                        self.image_event(event, id, f),
+                        &self.image_base(base, id, f).value,
+                    );
+                    // The options as a multiset: each of the image's takes one renamed.
+                    let mut renamed: Vec<_> = chosen
+                        .iter()
+                        .map(|c| {
+                            let events: Vec<usize> = c
+                                .events
+                                .iter()
+                                .map(|e| address(self.image_event(unsafe { e.get(self) }, id, f)))
+                                .collect();
+                            let intention = c.intention.map(|i| {
+                                address(self.image_intention(unsafe { i.get(self) }, id, f))
+                            });
+                            (events, intention)
+                        })
+                        .collect();
+                    goes_on == image.1
+                        && chosen.len() == image.0.len()
+                        && image.0.iter().all(|c| {
+                            let events: Vec<usize> =
+                                c.events.iter().map(|e| e.0.as_ptr() as usize).collect();
+                            let intention = c.intention.map(|i| i.0.as_ptr() as usize);
+                            renamed
+                                .iter()
+                                .position(|x| *x == (events.clone(), intention))
+                                .map(|k| renamed.swap_remove(k))
+                                .is_some()
+                        })
+                }
+                Phase::Act(intention, base) => {
+                    let (intention, base) = unsafe { (intention.get(self), base.get(self)) };
+                    let image_base = self.image_base(base, id, f);
+                    let acted =
+                        self.compute_act(intention, &base.value, self.sem.env_count(&base.value.0));
+                    let image = self.compute_act(
+                        self.image_intention(intention, id, f),
+                        &image_base.value,
+                        self.sem.env_count(&image_base.value.0),
+                    );
+                    self.acted_image(&acted, id, f) == self.acted_key(&image)
+                }
+                Phase::ProcAct(pending) => {
+                    let pending = unsafe { pending.get(self) };
+                    let done = self.compute_proc_act(pending);
+                    let image = self.compute_proc_act(self.image_pending(pending, id, f));
+                    self.acted_image(&done, id, f) == self.acted_key(&image)
+                }
+            })
+    }
+
+    /// What [`Compiled::phases_equivariant`] compares of an act phase: the beliefs added
+    /// and removed, the order kept, and the parts by address.
+    fn acted_key(&self, a: &Acted) -> ActedKey {
+        (
+            // As lists: a set's words may differ in length for the same atoms.
+            a.added.iter().collect(),
+            a.removed.iter().collect(),
+            self.by_predicate(a.front.clone()),
+            a.events.iter().map(|e| e.0.as_ptr() as usize).collect(),
+            a.back.map(|i| i.0.as_ptr() as usize),
+            a.pending.map(|p| p.0.as_ptr() as usize),
+        )
+    }
+
+    /// `front` as `Semantics::reorder_front` reads it: each added atom goes in front of
+    /// its predicate's beliefs, so only the order of each predicate's atoms matters.
+    fn by_predicate(&self, mut front: Vec<AtomId>) -> Vec<AtomId> {
+        front.sort_by_key(|&a| self.sem.project.atoms.pred_of(a));
+        front
+    }
+
+    /// [`Compiled::acted_key`] of `a`'s image under the map `id`, `f`.
+    fn acted_image(&self, a: &Acted, id: u64, f: &impl PartMap) -> ActedKey {
+        let (added, front) = f.base(&(a.added.clone(), a.front.clone()));
+        let (removed, _) = f.base(&(a.removed.clone(), Vec::new()));
+        // SAFETY: an outcome's parts are in this system's tables.
+        unsafe {
+            (
+                added.iter().collect(),
+                removed.iter().collect(),
+                self.by_predicate(front),
+                a.events
+                    .iter()
+                    .map(|e| address(self.image_event(e.get(self), id, f)))
+                    .collect(),
+                a.back
+                    .map(|i| address(self.image_intention(i.get(self), id, f))),
+                a.pending
+                    .map(|p| address(self.image_pending(p.get(self), id, f))),
+            )
+        }
+    }
+
+    /// The image of a belief base under the map `id`, `f` (as [`Compiled::map`] makes it).
+    fn image_base<'c>(&'c self, b: &Part<Base>, id: u64, f: &impl PartMap) -> &'c Part<Base> {
+        // SAFETY: images are in this system's tables.
+        unsafe {
+            self.mapped_bases
+                .get(b, id, || self.belief_set(f.base(&b.value)))
+                .get(self)
+        }
+    }
+
+    /// The image of an event (see [`Compiled::image_base`]).
+    fn image_event<'c>(&'c self, e: &Part<Event>, id: u64, f: &impl PartMap) -> &'c Part<Event> {
+        // SAFETY: as above.
+        unsafe {
+            self.mapped_events
+                .get(e, id, || self.event(f.event(&e.value)))
+                .get(self)
+        }
+    }
+
+    /// The image of an intention (see [`Compiled::image_base`]).
+    fn image_intention<'c>(
+        &'c self,
+        i: &Part<Intention>,
+        id: u64,
+        f: &impl PartMap,
+    ) -> &'c Part<Intention> {
+        // SAFETY: as above.
+        unsafe {
+            self.mapped_intentions
+                .get(i, id, || self.intention(f.intention(&i.value)))
+                .get(self)
+        }
+    }
+
+    /// The image of an intention that waits for its action's feedback (see
+    /// [`Compiled::image_base`]).
+    fn image_pending<'c>(
+        &'c self,
+        p: &Part<Pending>,
+        id: u64,
+        f: &impl PartMap,
+    ) -> &'c Part<Pending> {
+        // SAFETY: as above.
+        unsafe {
+            self.mapped_pendings
+                .get(p, id, || self.pending(f.pending(&p.value)))
+                .get(self)
         }
     }
 
@@ -1160,7 +1350,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
             // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
             let (chosen, goes_on) = unsafe {
                 self.deliberations
-                    .get(key, || self.deliberate(event, &p.beliefs.value))
+                    .get(key, || {
+                        self.computed(Phase::Deliberation(Held::new(event), Held::new(p.beliefs)));
+                        self.deliberate(event, &p.beliefs.value)
+                    })
                     .get(self)
             };
             match agenda.events().get(taken) {
@@ -1201,21 +1394,8 @@ impl<'s, 'p> Compiled<'s, 'p> {
             let done = self
                 .proc_acts
                 .get(key, || {
-                    let none = (AtomSet::default(), Vec::new());
-                    let mut s = Self::alone(&none, &AtomSet::default(), None);
-                    s.pending = Some(pending.value.clone());
-                    let mut notes = Vec::new();
-                    self.sem.proc_act(&mut s, &mut notes);
-                    debug_assert!(s.pending.is_none() && s.intentions.len() <= 1);
-                    Acted {
-                        added: AtomSet::default(),
-                        removed: AtomSet::default(),
-                        front: Vec::new(),
-                        events: s.events.into_iter().map(|e| self.event(e)).collect(),
-                        back: s.intentions.pop().map(|i| self.intention(i)),
-                        pending: None,
-                        notes: notes.into(),
-                    }
+                    self.computed(Phase::ProcAct(Held::new(pending)));
+                    self.compute_proc_act(pending)
                 })
                 .get(self);
             p.events.extend(done.events.iter().map(|e| e.get(self)));
@@ -1239,7 +1419,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
         unsafe {
             let acted = self
                 .acts
-                .get(key, || self.compute_act(first, base, env))
+                .get(key, || {
+                    self.computed(Phase::Act(Held::new(first), Held::new(held)));
+                    self.compute_act(first, base, env)
+                })
                 .get(self);
             if !acted.added.is_empty() || !acted.removed.is_empty() {
                 let next = base.0.with_changes(&acted.added, &acted.removed);
@@ -1255,6 +1438,30 @@ impl<'s, 'p> Compiled<'s, 'p> {
             }
             notes.0.push(&acted.notes[..]);
         }
+    }
+
+    /// The `ProcAct` stage of `pending` (it reads no belief).
+    fn compute_proc_act(&self, pending: &Part<Pending>) -> Acted {
+        let none = (AtomSet::default(), Vec::new());
+        let mut s = Self::alone(&none, &AtomSet::default(), None);
+        s.pending = Some(pending.value.clone());
+        let mut notes = Vec::new();
+        self.sem.proc_act(&mut s, &mut notes);
+        debug_assert!(s.pending.is_none() && s.intentions.len() <= 1);
+        Acted {
+            added: AtomSet::default(),
+            removed: AtomSet::default(),
+            front: Vec::new(),
+            events: s.events.into_iter().map(|e| self.event(e)).collect(),
+            back: s.intentions.pop().map(|i| self.intention(i)),
+            pending: None,
+            notes: notes.into(),
+        }
+    }
+
+    /// Notes that a memo computed `phase`.
+    fn computed(&self, phase: Phase) {
+        lock(&self.phases).push(phase);
     }
 
     /// A state with only the beliefs `reads` selects and the given intention: what a phase

@@ -55,16 +55,34 @@ impl Symmetry {
                 return None;
             }
             let here = here.get_or_insert_with(|| classes(&succ));
-            (classes(&other) != *here).then(|| {
-                let moved: Vec<String> = g
-                    .iter()
-                    .enumerate()
-                    .filter(|(i, &j)| *i != j as usize)
-                    .map(|(i, &j)| format!("{} -> {}", self.names[i], self.names[j as usize]))
-                    .collect();
-                moved.join(", ")
-            })
+            (classes(&other) != *here).then(|| self.show(g))
         })
+    }
+
+    /// A renaming as the objects it moves, `a -> b, ...`.
+    fn show(&self, g: &[u16]) -> String {
+        let moved: Vec<String> = g
+            .iter()
+            .enumerate()
+            .filter(|(i, &j)| *i != j as usize)
+            .map(|(i, &j)| format!("{} -> {}", self.names[i], self.names[j as usize]))
+            .collect();
+        moved.join(", ")
+    }
+
+    /// The first generator of the renamings under which a phase that `c`'s memos
+    /// computed does not commute with renaming ([`Compiled::phases_equivariant`]), shown
+    /// as the objects it moves. A search on the compiled cycle checks this once, after it
+    /// ends, instead of [`Symmetry::equivariance_violation_compiled`] on every state: it
+    /// says the same of every state the search expanded (every phase their successors
+    /// took was memoized), at a cost that does not grow with the states.
+    pub fn phase_violation(&self, c: &Compiled) -> Option<String> {
+        self.generators()
+            .iter()
+            .find(|g| {
+                !c.phases_equivariant(self.map_id(c, g), &super::Renaming { sym: self, perm: g })
+            })
+            .map(|g| self.show(g))
     }
 
     /// [`Symmetry::equivariance_violation`] on the compiled reasoning cycle: the renamings
@@ -471,5 +489,7 @@ mod tests {
             queue.extend(c.successors(&p).into_iter().map(|(_, t)| t));
         }
         assert!(compared == 2_000, "{compared} states");
+        // Every phase the walk computed commutes with both generators.
+        assert_eq!(sym.phase_violation(&c), None);
     }
 }
