@@ -6,7 +6,7 @@
 //! (kept between 3/8 and 3/4 full, so 6.7 to 13.3 bytes per state). A slot holds the
 //! state's number and the top byte of its fingerprint, so that probing past other states
 //! seldom reads their fingerprints (a cache miss each). The two arrays grow by chunks
-//! that never move ([`Chunked`]: copying them into fresh memory cost more than the search
+//! that never move (`Chunked`: copying them into fresh memory cost more than the search
 //! did with it), with less than one chunk (2^18 states) of slack: 19 to 29 bytes per state
 //! from a million states on. No state is kept: a state, or the run to it, is rebuilt by
 //! replaying transitions from an initial state and following the fingerprints (as stateright does). Growth uses

@@ -7,7 +7,7 @@
 //! decides, per user, whether the action surprises them ([`crate::explain::demand`]); when it
 //! does, Algorithm 2 builds the explanation from the running intention's stack
 //! ([`crate::explain::content()`]) and it is rendered as one sentence. Each user's view of the
-//! run is [`Explained`], the model whose explanations `verify` checks: what `explain` prints
+//! run is [`Explained`](crate::check::explanation::Explained), the model whose explanations `verify` checks: what `explain` prints
 //! is what was verified.
 
 use crate::findings::{Report, TraceStep};

@@ -12,7 +12,7 @@ use crate::syntax::ast::{TriggerKind, TriggerOp};
 
 impl Semantics<'_> {
     /// Every plan that may be relevant for `t`, in any library a run can reach (for the
-    /// library of a state, [`Semantics::relevant_in`]).
+    /// library of a state, `Semantics::relevant_in`).
     pub fn relevant_plans(&self, t: &EventTrigger) -> &[u32] {
         self.relevant
             .get(&(

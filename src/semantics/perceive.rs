@@ -32,7 +32,7 @@ impl Semantics<'_> {
     }
 
     /// What of `env_count` an act phase depends on: the size of Jason's percept set
-    /// decides the order of perceived effects ([`Semantics::java_order`]) only through its
+    /// decides the order of perceived effects (`Semantics::java_order`) only through its
     /// number of buckets, which is one value for every count an action can lead to, unless
     /// the count is near a resize (then the count itself).
     pub fn env_class(&self, env: usize) -> u64 {

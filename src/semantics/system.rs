@@ -8,7 +8,7 @@
 //! then takes the first message of its mailbox (`checkMail`, one message per `sense`).
 //! An `achieve` arrives by Jason's shortcut in `applyProcMsg` (no `kqml_received` plan of
 //! the user, a literal content): the external event `+!g[source(sender)]`. Then the cycle
-//! goes on as one agent's ([`Semantics::cycle`]); what its action changed becomes the
+//! goes on as one agent's (`Semantics::cycle`); what its action changed becomes the
 //! environment, and the messages it sent are delivered at once (`LocalAgArch.sendMsg` puts
 //! them in the receiver's mailbox before `.send` returns).
 //!

@@ -226,7 +226,7 @@ pub(super) fn first_stuck(stuck: &[u64], agents: usize) -> Vec<Option<u32>> {
 const MAX_STUCK_STATES: usize = 1 << 20;
 
 /// Whether agent `k`, not done in `s`, can never take a step again: no run from `s`
-/// reaches a state where it takes one. `None` when more than [`MAX_STUCK_STATES`] states
+/// reaches a state where it takes one. `None` when more than `MAX_STUCK_STATES` states
 /// would have to be looked at to tell.
 pub fn stuck_from(system: &System, s: &SystemState, k: usize) -> Option<bool> {
     use std::collections::HashSet;

@@ -11,7 +11,7 @@
 //! goal that names another), each reported with its run renamed, as the full search would.
 //!
 //! The checks that follow runs for ever (`livelock`, `request-not-completed`, `eventually`)
-//! are [`liveness`]'s, on a search of every interleaving. The explanation properties are
+//! are `liveness`'s, on a search of every interleaving. The explanation properties are
 //! [`super::explanation`]'s, on every interleaving as the users watching the robot see it.
 
 use super::explore::{explore_with, Graph, Limits, Options, Walk};
