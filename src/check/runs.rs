@@ -493,17 +493,55 @@ pub(crate) struct Product<'r, G: RunGraph> {
 /// its last state for ever from there).
 type Node = (u32, u32, bool);
 
+/// Product nodes in the order found: per node its graph state and `2 q + ended` (8 bytes
+/// where a [`Node`] takes 12: products reach hundreds of millions of nodes).
+#[derive(Default)]
+struct Nodes(Vec<(u32, u32)>);
+
+impl Nodes {
+    fn get(&self, x: u32) -> Node {
+        let (i, key) = self.0[x as usize];
+        (i, key >> 1, key & 1 == 1)
+    }
+
+    /// Node `x`'s Büchi state and whether the run ended, as `2 q + ended`.
+    fn key(&self, x: u32) -> u32 {
+        self.0[x as usize].1
+    }
+
+    fn push(&mut self, (i, q, ended): Node) {
+        self.0.push((i, q * 2 + u32::from(ended)));
+    }
+
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    fn clear(&mut self) {
+        self.0.clear();
+    }
+
+    fn iter(&self) -> impl Iterator<Item = Node> + '_ {
+        (0..self.0.len() as u32).map(|x| self.get(x))
+    }
+}
+
 /// The memory a product search fills, kept for the next: the products of one graph are
 /// searched one after the other, and fresh pages cost (the kernel clears them, and a
 /// vector that grows copies itself into fresh ones).
 #[derive(Default)]
 pub(crate) struct Scratch {
-    nodes: Vec<Node>,
+    nodes: Nodes,
     /// Per node: the node it was first reached from, and by which transition.
     parent: Vec<(u32, u32)>,
     edges: Csr,
-    /// Per (graph state, Büchi state, ended): the node's number, or `u32::MAX`.
-    index: Vec<u32>,
+    /// Per graph state: the last node found of it, or `u32::MAX`. A dense index per
+    /// (graph state, Büchi state, ended) took 8 bytes per Büchi state for every graph
+    /// state, written whole at every search (gigabytes at 6 cups), for a few nodes per
+    /// graph state.
+    head: Vec<u32>,
+    /// Per node: the node found before it of the same graph state (or `u32::MAX`).
+    chain: Vec<u32>,
 }
 
 /// What the product searches of one graph share: the product states they reached, and
@@ -576,26 +614,39 @@ impl<'r, G: RunGraph> Product<'r, G> {
             nodes,
             parent,
             edges,
-            index,
+            head,
+            chain,
         } = scratch;
         let (nodes, parent) = (&mut *nodes, &mut *parent);
+        let states = self.graph.len() as usize;
+        if head.len() == states {
+            // Only what the last search set is reset.
+            for (i, _, _) in nodes.iter() {
+                head[i as usize] = u32::MAX;
+            }
+        } else {
+            head.clear();
+            head.try_reserve_exact(states).map_err(|_| OutOfMemory)?;
+            head.resize(states, u32::MAX);
+        }
         nodes.clear();
         parent.clear();
         edges.clear();
-        let nb = self.buchi.states.len();
-        let slot = |(i, q, ended): Node| (i as usize * nb + q as usize) * 2 + usize::from(ended);
-        let slots = self.graph.len() as usize * nb * 2;
-        index.clear();
-        index.try_reserve_exact(slots).map_err(|_| OutOfMemory)?;
-        index.resize(slots, u32::MAX);
+        chain.clear();
         let mut add =
-            |n: Node, from: (u32, u32), nodes: &mut Vec<Node>, parent: &mut Vec<(u32, u32)>| {
-                let at = &mut index[slot(n)];
-                if *at != u32::MAX {
-                    return (*at, false);
+            |n: Node, from: (u32, u32), nodes: &mut Nodes, parent: &mut Vec<(u32, u32)>| {
+                let (i, q, ended) = n;
+                let key = q * 2 + u32::from(ended);
+                let mut at = head[i as usize];
+                while at != u32::MAX {
+                    if nodes.key(at) == key {
+                        return (at, false);
+                    }
+                    at = chain[at as usize];
                 }
                 let x = nodes.len() as u32;
-                *at = x;
+                chain.push(head[i as usize]);
+                head[i as usize] = x;
                 nodes.push(n);
                 parent.push(from);
                 (x, true)
@@ -618,7 +669,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         // Without a cycle to seek, the product's edges are not kept.
         let keep = !self.prefixes_only;
         while (x as usize) < nodes.len() {
-            self.successors(nodes[x as usize], &mut succ);
+            self.successors(nodes.get(x), &mut succ);
             if keep {
                 edges.start.push(edges.to.len() as u32);
             }
@@ -637,7 +688,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         }
         self.reached.set(nodes.len());
         let accepting = |n: &Node| self.buchi.states[n.1 as usize].accepting;
-        if !keep || !nodes.iter().any(accepting) {
+        if !keep || !nodes.iter().any(|n| accepting(&n)) {
             return Ok(None);
         }
         edges.start.push(edges.to.len() as u32);
@@ -646,7 +697,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
 
     /// The graph states of the run to product node `x`, and the transition of each step
     /// (the steps where the run ends or stays ended are left out: the state repeats).
-    fn run_to(&self, nodes: &[Node], parent: &[(u32, u32)], x: u32) -> (Vec<u32>, Vec<u32>) {
+    fn run_to(&self, nodes: &Nodes, parent: &[(u32, u32)], x: u32) -> (Vec<u32>, Vec<u32>) {
         let (mut states, mut via) = (Vec::new(), Vec::new());
         let mut at = x;
         loop {
@@ -655,11 +706,11 @@ impl<'r, G: RunGraph> Product<'r, G> {
                 via.push(k);
             }
             if k == STAYS || p == u32::MAX {
-                if p == u32::MAX || nodes[p as usize].0 != nodes[at as usize].0 {
-                    states.push(nodes[at as usize].0);
+                if p == u32::MAX || nodes.get(p).0 != nodes.get(at).0 {
+                    states.push(nodes.get(at).0);
                 }
             } else {
-                states.push(nodes[at as usize].0);
+                states.push(nodes.get(at).0);
             }
             if p == u32::MAX {
                 break;
@@ -671,7 +722,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         (states, via)
     }
 
-    fn prefix(&self, nodes: &[Node], parent: &[(u32, u32)], x: u32) -> Violation {
+    fn prefix(&self, nodes: &Nodes, parent: &[(u32, u32)], x: u32) -> Violation {
         let (path, path_via) = self.run_to(nodes, parent, x);
         Violation {
             path,
@@ -686,7 +737,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// The shallowest accepting node on a cycle of a fair component, and a shortest cycle
     /// through it (with fairness of agents, through a step of every agent that could move
     /// everywhere in the component).
-    fn lasso(&self, nodes: &[Node], parent: &[(u32, u32)], edges: &Csr) -> Option<Violation> {
+    fn lasso(&self, nodes: &Nodes, parent: &[(u32, u32)], edges: &Csr) -> Option<Violation> {
         let comp = components(edges);
         let on_cycle = |x: u32| {
             let c = comp[x as usize];
@@ -698,7 +749,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let mut everywhere: HashMap<u32, u64> = HashMap::new();
         let mut moved: HashMap<u32, u64> = HashMap::new();
         if agents > 0 {
-            for (x, &(i, _, ended)) in nodes.iter().enumerate() {
+            for (x, (i, _, ended)) in nodes.iter().enumerate() {
                 let c = comp[x];
                 // A run that ended stays: no agent is owed a step there.
                 let can = if ended { 0 } else { self.graph.enabled(i) };
@@ -716,13 +767,13 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let fair = |c: u32| owed(c) & !moved.get(&c).copied().unwrap_or(0) == 0;
         // Nodes are numbered breadth-first, so the first is the shallowest.
         let entry = (0..nodes.len() as u32).find(|&x| {
-            self.buchi.states[nodes[x as usize].1 as usize].accepting
+            self.buchi.states[nodes.get(x).1 as usize].accepting
                 && on_cycle(x)
                 && fair(comp[x as usize])
         })?;
         let c = comp[entry as usize];
         let (path, path_via) = self.run_to(nodes, parent, entry);
-        if nodes[entry as usize].2 {
+        if nodes.get(entry).2 {
             // The loop is the run staying in its last state.
             return Some(Violation {
                 path,
@@ -736,14 +787,14 @@ impl<'r, G: RunGraph> Product<'r, G> {
         // From the entry, for each agent, through a step of it when it can move everywhere
         // in the component, else through a state where it cannot (unless the entry is
         // one); then back to the entry. The loop is then fair to every agent.
-        let mut cycle = vec![nodes[entry as usize].0];
+        let mut cycle = vec![nodes.get(entry).0];
         let mut cycle_via = Vec::new();
         let mut at = entry;
-        let disabled = |y: u32, a: u8| self.graph.enabled(nodes[y as usize].0) >> a & 1 == 0;
+        let disabled = |y: u32, a: u8| self.graph.enabled(nodes.get(y).0) >> a & 1 == 0;
         for a in 0..agents {
             let steps = if owed(c) >> a & 1 == 1 {
                 self.path_within(edges, (&comp, c), at, |x, _, k| {
-                    k != STAYS && self.graph.mover(nodes[x as usize].0, k) == Some(a)
+                    k != STAYS && self.graph.mover(nodes.get(x).0, k) == Some(a)
                 })?
             } else if disabled(entry, a) {
                 continue;
@@ -751,13 +802,13 @@ impl<'r, G: RunGraph> Product<'r, G> {
                 self.path_within(edges, (&comp, c), at, |_, y, _| disabled(y, a))?
             };
             for &(y, k) in &steps {
-                cycle.push(nodes[y as usize].0);
+                cycle.push(nodes.get(y).0);
                 cycle_via.push(k);
             }
             at = steps.last().map_or(at, |s| s.0);
         }
         for (y, k) in self.path_within(edges, (&comp, c), at, |_, y, _| y == entry)? {
-            cycle.push(nodes[y as usize].0);
+            cycle.push(nodes.get(y).0);
             cycle_via.push(k);
         }
         Some(Violation {
