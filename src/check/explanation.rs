@@ -770,7 +770,26 @@ struct Tables {
     judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>, Quick>>; SHARDS],
     /// Per context atom, the atoms it unifies with.
     instances: [Mutex<Instances>; SHARDS],
+    /// Under symmetry, per view (by address: views are interned) and renaming: the hash
+    /// of the view renamed. A state's fingerprint tries a renaming or more of every
+    /// successor, and renaming a view's terms and hashing them cost more than the rest
+    /// of the user's search; a view meets few renamings.
+    renamed: [Mutex<RenamedViews>; SHARDS],
 }
+
+/// Per view (by address) and renaming: the hash of the view renamed (one shard of
+/// [`Tables::renamed`]).
+type RenamedViews = HashMap<(usize, SmallVec<[u16; 16]>), u64, Quick>;
+
+/// What a fingerprint reads of a view, renamed (see [`Explained::renamed_view`]).
+type RenamedView = (
+    Vec<Pair>,
+    Option<Observation>,
+    Vec<Pair>,
+    Vec<(Origin, u16, u32, u16)>,
+    Vec<Obligation>,
+    Option<Term>,
+);
 
 /// Per context atom, the atoms it unifies with (one shard of [`Tables::instances`]).
 type Instances = HashMap<Term, Arc<[AtomId]>, Quick>;
@@ -1930,66 +1949,82 @@ impl<W: Runs> Model for Explained<'_, W> {
 
     fn fingerprint(&self, s: &Self::State) -> u64 {
         let v = &s.view.0 .1;
+        let at = Arc::as_ptr(&s.view.0) as usize;
         let renamed = self.runs.fingerprint_with(&s.state, |r| {
-            let obs = |o: &Observation| match o {
-                Observation::Request(t) => Observation::Request(r.term(t)),
-                Observation::Action(t) => Observation::Action(r.term(t)),
-            };
-            let pairs = |n: &ExpectedSuccessors| {
-                let mut v: Vec<Pair> = n
-                    .learned()
-                    .iter()
-                    .map(|p| Pair {
-                        prev: p.prev.as_ref().map(obs),
-                        next: obs(&p.next),
-                    })
-                    .collect();
-                v.sort();
-                v
-            };
-            let mut marks: Vec<(Origin, u16, u32, u16)> = v
-                .marks
-                .iter()
-                .map(|m| (r.origin(m.origin), m.depth, m.plan, m.pos))
-                .collect();
-            marks.sort();
-            let open: Vec<Obligation> = v
-                .open
-                .iter()
-                .map(|o| Obligation {
-                    origin: r.origin(o.origin),
-                    gamma: o
-                        .gamma
-                        .iter()
-                        .map(|l| ContextLiteral {
-                            atom: r.term(&l.atom),
-                            positive: l.positive,
-                        })
-                        .collect(),
-                    action: r.term(&o.action),
-                    steps: o
-                        .steps
-                        .iter()
-                        .map(|p| match p {
-                            PlanStep::Action(t) => PlanStep::Action(r.term(t)),
-                            PlanStep::Subgoal(t) => PlanStep::Subgoal(r.term(t)),
-                        })
-                        .collect(),
-                    ..Obligation::clone(o)
-                })
-                .collect();
-            (
-                pairs(&v.n),
-                v.prev.as_ref().map(obs),
-                pairs(&v.adoption),
-                marks,
-                open,
-                v.emitted.as_ref().map(|t| r.term(t)),
-            )
+            let key = (at, SmallVec::from_slice(r.perm()));
+            let known = shard(&self.tables.renamed, mix(at as u64))
+                .get(&key)
+                .copied();
+            known.unwrap_or_else(|| {
+                let h = fingerprint(&self.renamed_view(v, r));
+                shard(&self.tables.renamed, mix(at as u64)).insert(key, h);
+                h
+            })
         });
         renamed
             .or_else(|| self.runs.fingerprint_numbered(&s.state, s.view.0 .0))
             .unwrap_or_else(|| fingerprint(s))
+    }
+}
+
+impl<'a, W: Runs> Explained<'a, W> {
+    /// The parts of view `v` that a fingerprint reads, renamed by `r`.
+    fn renamed_view(&self, v: &View, r: &Renaming) -> RenamedView {
+        let obs = |o: &Observation| match o {
+            Observation::Request(t) => Observation::Request(r.term(t)),
+            Observation::Action(t) => Observation::Action(r.term(t)),
+        };
+        let pairs = |n: &ExpectedSuccessors| {
+            let mut v: Vec<Pair> = n
+                .learned()
+                .iter()
+                .map(|p| Pair {
+                    prev: p.prev.as_ref().map(obs),
+                    next: obs(&p.next),
+                })
+                .collect();
+            v.sort();
+            v
+        };
+        let mut marks: Vec<(Origin, u16, u32, u16)> = v
+            .marks
+            .iter()
+            .map(|m| (r.origin(m.origin), m.depth, m.plan, m.pos))
+            .collect();
+        marks.sort();
+        let open: Vec<Obligation> = v
+            .open
+            .iter()
+            .map(|o| Obligation {
+                origin: r.origin(o.origin),
+                gamma: o
+                    .gamma
+                    .iter()
+                    .map(|l| ContextLiteral {
+                        atom: r.term(&l.atom),
+                        positive: l.positive,
+                    })
+                    .collect(),
+                action: r.term(&o.action),
+                steps: o
+                    .steps
+                    .iter()
+                    .map(|p| match p {
+                        PlanStep::Action(t) => PlanStep::Action(r.term(t)),
+                        PlanStep::Subgoal(t) => PlanStep::Subgoal(r.term(t)),
+                    })
+                    .collect(),
+                ..Obligation::clone(o)
+            })
+            .collect();
+        (
+            pairs(&v.n),
+            v.prev.as_ref().map(obs),
+            pairs(&v.adoption),
+            marks,
+            open,
+            v.emitted.as_ref().map(|t| r.term(t)),
+        )
     }
 }
 
@@ -2358,6 +2393,43 @@ fn verify_runs<W: Runs + Clone>(
 
 #[cfg(test)]
 mod tests {
+    /// Under symmetry, a user's state's fingerprint takes the renamed view's hash from a
+    /// memo per view and renaming: on a walk of the kitchen's users' searches (two cups,
+    /// both renamings met), each is the one made without the memo.
+    #[test]
+    fn renamed_views_are_remembered_per_view_and_renaming() {
+        use super::*;
+        use crate::check::model::Model;
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+        let project = crate::model::project::load_project(&root).expect("the kitchen loads");
+        let sem = Semantics::new(&project).expect("the semantics");
+        let sym = Symmetry::new(&project, &sem)
+            .expect("symmetry is sound here")
+            .expect("the kitchen declares symmetry");
+        let compiled = Compiled::new(&sem).expect("a local library");
+        let ex = crate::explain::agent::Explainer::new(&project, &sem);
+        let users = crate::explain::agent::users(&project, None).expect("the users");
+        let renamed = std::cell::Cell::new(0usize);
+        for user in &users {
+            let model = Explained::watching(AloneCompiled::new(&compiled, Some(&sym)), &ex, user);
+            let mut seen = std::collections::HashSet::new();
+            let mut queue: std::collections::VecDeque<_> = model.init_states().take(20).collect();
+            while let Some(s) = queue.pop_front() {
+                if seen.len() == 3_000 || !seen.insert(model.fingerprint(&s)) {
+                    continue;
+                }
+                let direct = sym.fingerprint_with_compiled(&compiled, &s.state, |r| {
+                    let moves = r.perm().iter().enumerate().any(|(i, &x)| x as usize != i);
+                    renamed.set(renamed.get() + usize::from(moves));
+                    fingerprint(&model.renamed_view(&s.view.0 .1, r))
+                });
+                assert_eq!(model.fingerprint(&s), direct, "{}", user.name);
+                queue.extend(model.next_states(&s).into_iter().map(|(_, t)| t));
+            }
+        }
+        assert!(renamed.get() > 100, "{} renamed views", renamed.get());
+    }
+
     /// `demand-exact`'s check that `N` grew by exactly the novel pair: every other change
     /// of the sorted pairs is told from it.
     #[test]

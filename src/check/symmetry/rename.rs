@@ -21,6 +21,12 @@ pub struct Renaming<'a> {
 }
 
 impl Renaming<'_> {
+    /// The renaming as the image of each symmetric object (by index): one slice, one
+    /// renaming, for keys of what is computed per renaming.
+    pub fn perm(&self) -> &[u16] {
+        self.perm
+    }
+
     /// A term with its symmetric objects renamed.
     pub fn term(&self, t: &Term) -> Term {
         self.sym.term(t, self.perm)
