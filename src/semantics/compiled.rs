@@ -1251,24 +1251,28 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
     }
 
+    /// The image of `part` under the map `id` in `table`, made by `make` the first time.
+    fn image<'c, T>(
+        &'c self,
+        table: &Images<T>,
+        part: &Part<T>,
+        id: u64,
+        make: impl FnOnce() -> Held<Part<T>>,
+    ) -> &'c Part<T> {
+        // SAFETY: images are interned parts of this system's tables.
+        unsafe { table.get(part, id, make).get(self) }
+    }
+
     /// The image of a belief base under the map `id`, `f` (as [`Compiled::map`] makes it).
     fn image_base<'c>(&'c self, b: &Part<Base>, id: u64, f: &impl PartMap) -> &'c Part<Base> {
-        // SAFETY: images are in this system's tables.
-        unsafe {
-            self.mapped_bases
-                .get(b, id, || self.belief_set(f.base(&b.value)))
-                .get(self)
-        }
+        self.image(&self.mapped_bases, b, id, || {
+            self.belief_set(f.base(&b.value))
+        })
     }
 
     /// The image of an event (see [`Compiled::image_base`]).
     fn image_event<'c>(&'c self, e: &Part<Event>, id: u64, f: &impl PartMap) -> &'c Part<Event> {
-        // SAFETY: as above.
-        unsafe {
-            self.mapped_events
-                .get(e, id, || self.event(f.event(&e.value)))
-                .get(self)
-        }
+        self.image(&self.mapped_events, e, id, || self.event(f.event(&e.value)))
     }
 
     /// The image of an intention (see [`Compiled::image_base`]).
@@ -1278,12 +1282,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
         id: u64,
         f: &impl PartMap,
     ) -> &'c Part<Intention> {
-        // SAFETY: as above.
-        unsafe {
-            self.mapped_intentions
-                .get(i, id, || self.intention(f.intention(&i.value)))
-                .get(self)
-        }
+        self.image(&self.mapped_intentions, i, id, || {
+            self.intention(f.intention(&i.value))
+        })
     }
 
     /// The image of an intention that waits for its action's feedback (see
@@ -1294,12 +1295,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
         id: u64,
         f: &impl PartMap,
     ) -> &'c Part<Pending> {
-        // SAFETY: as above.
-        unsafe {
-            self.mapped_pendings
-                .get(p, id, || self.pending(f.pending(&p.value)))
-                .get(self)
-        }
+        self.image(&self.mapped_pendings, p, id, || {
+            self.pending(f.pending(&p.value))
+        })
     }
 
     /// How much the tables hold.
