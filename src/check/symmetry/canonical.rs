@@ -109,7 +109,11 @@ impl Symmetry {
         let mut shared: Features<bool> = smallvec![false; n];
         self.belief_features(&s.beliefs, &mut hash, &mut shared);
         self.request_features(s.requested, &mut hash, &mut shared);
-        self.sort(&self.occurrences(s), &hash, &shared)
+        let mut first: Features<u32> = smallvec![u32::MAX; n];
+        for (k, &o) in self.occurrences(s).iter().enumerate() {
+            first[o as usize] = k as u32;
+        }
+        self.sort(&first, &hash, &shared)
     }
 
     /// [`Symmetry::sorting`] of a compiled state, without unpacking it: what its agenda
@@ -138,16 +142,23 @@ impl Symmetry {
                 .chain(order.iter().map(|&o| u64::from(o)))
                 .collect()
         });
-        let mut occurrences = Occurrences::from_slice(named);
-        for &o in &base[2 * n..] {
-            if !occurrences.contains(&(o as u16)) {
-                occurrences.push(o as u16);
+        // Where each object first occurs: in the agenda's terms, then in the beliefs' order.
+        let mut first: Features<u32> = smallvec![u32::MAX; n];
+        let mut next = 0;
+        for o in named
+            .iter()
+            .map(|&o| o as usize)
+            .chain(base[2 * n..].iter().map(|&o| o as usize))
+        {
+            if first[o] == u32::MAX {
+                first[o] = next;
+                next += 1;
             }
         }
         let mut hash = Features::from_slice(&base[..n]);
         let mut shared: Features<bool> = base[n..2 * n].iter().map(|&x| x != 0).collect();
         self.request_features(p.requested(), &mut hash, &mut shared);
-        self.sort(&occurrences, &hash, &shared)
+        self.sort(&first, &hash, &shared)
     }
 
     /// Adds, per object, the hash of the atoms of `beliefs` that involve it alone, and
@@ -190,31 +201,31 @@ impl Symmetry {
         }
     }
 
-    /// The sorting renaming and the ties of a state whose symmetric objects first occur in
-    /// the order `occurrences`, with per object the `hash` of the atoms and requests that
-    /// involve it alone and whether it is `shared` with another symmetric object.
-    fn sort(&self, occurrences: &[u16], hash: &[u64], shared: &[bool]) -> (Perm, Vec<Vec<u16>>) {
-        let mut first: Features<u32> = smallvec![u32::MAX; self.objects.len()];
-        for (k, &o) in occurrences.iter().enumerate() {
-            first[o as usize] = k as u32;
-        }
+    /// The sorting renaming and the ties of a state with, per symmetric object, where it
+    /// `first` occurs (`u32::MAX`: nowhere), the `hash` of the atoms and requests that
+    /// involve it alone, and whether it is `shared` with another symmetric object.
+    fn sort(&self, first: &[u32], hash: &[u64], shared: &[bool]) -> (Perm, Vec<Vec<u16>>) {
         let mut perm = self.identity();
         let mut ties = Vec::new();
         for g in &self.groups {
-            let mut order: SmallVec<[u16; 16]> = SmallVec::from_slice(g);
-            order.sort_by_key(|&o| (first[o as usize], hash[o as usize], shared[o as usize], o));
-            for (slot, &o) in order.iter().enumerate() {
+            // Each object's signature, then the object: every key is distinct.
+            let mut keyed: SmallVec<[(u32, u64, bool, u16); 16]> = g
+                .iter()
+                .map(|&o| (first[o as usize], hash[o as usize], shared[o as usize], o))
+                .collect();
+            keyed.sort_unstable();
+            for (slot, &(_, _, _, o)) in keyed.iter().enumerate() {
                 perm[o as usize] = g[slot];
             }
             // Runs of equal signatures among objects that are not interchangeable.
-            let key = |o: u16| (first[o as usize], hash[o as usize], shared[o as usize]);
+            let signature = |k: &(u32, u64, bool, u16)| (k.0, k.1, k.2);
             let mut i = 0;
-            while i < order.len() {
+            while i < keyed.len() {
                 let mut j = i + 1;
-                while j < order.len() && key(order[j]) == key(order[i]) {
+                while j < keyed.len() && signature(&keyed[j]) == signature(&keyed[i]) {
                     j += 1;
                 }
-                if j - i > 1 && shared[order[i] as usize] {
+                if j - i > 1 && keyed[i].2 {
                     ties.push(g[i..j].to_vec());
                 }
                 i = j;
