@@ -386,75 +386,49 @@ impl std::fmt::Debug for Agenda {
     }
 }
 
+/// Per part (by address) and a key: a value computed once, without the shard's lock held
+/// (computing interns parts, which takes other locks). Two kinds: [`Images`], and what a
+/// client derives from a part ([`Compiled::derived`]).
+struct PerPart<V> {
+    shards: Vec<Mutex<PerPartShard<V>>>,
+}
+
+/// One shard of [`PerPart`]: per part address and key, the value.
+type PerPartShard<V> = HashMap<(usize, u64), V, Quick>;
+
+impl<V> PerPart<V> {
+    fn new() -> PerPart<V> {
+        PerPart {
+            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
+        }
+    }
+
+    /// `read` of the value for the part at `address` (whose hash is `hash`) and `key`,
+    /// made by `compute` the first time.
+    fn get<R>(
+        &self,
+        (address, hash): (usize, u64),
+        key: u64,
+        read: impl Fn(&V) -> R,
+        compute: impl FnOnce() -> V,
+    ) -> R {
+        let shard = &self.shards[shard_of(mix(hash ^ key.rotate_left(32)))];
+        if let Some(v) = lock(shard).get(&(address, key)) {
+            return read(v);
+        }
+        let v = compute();
+        read(lock(shard).entry((address, key)).or_insert(v))
+    }
+}
+
 /// The image of each part under each map (by the part's address and the map's id), computed
 /// once: a symmetric search maps every state it meets by several renamings, and a memo
 /// [`Key`] (which gathers beliefs read) costs more than this lookup.
-struct Images<T> {
-    shards: Vec<Mutex<ImageShard<T>>>,
-}
+type Images<T> = PerPart<Held<Part<T>>>;
 
-/// One shard of [`Images`]: per part address and map id, the part's image.
-type ImageShard<T> = HashMap<(usize, u64), Held<Part<T>>, Quick>;
-
-impl<T> Images<T> {
-    fn new() -> Images<T> {
-        Images {
-            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
-        }
-    }
-
-    fn get(
-        &self,
-        part: &Part<T>,
-        id: u64,
-        compute: impl FnOnce() -> Held<Part<T>>,
-    ) -> Held<Part<T>> {
-        let key = (part as *const Part<T> as usize, id);
-        let shard = &self.shards[shard_of(mix(part.hash ^ id.rotate_left(32)))];
-        if let Some(v) = lock(shard).get(&key) {
-            return *v;
-        }
-        // Computed without the lock: computing interns parts, which takes other locks.
-        let v = compute();
-        *lock(shard).entry(key).or_insert(v)
-    }
-}
-
-/// Per part (by address) and a client's tag: numbers the client derived from it, each
-/// list boxed so that it stays where it is while the table grows.
-struct Derived<T> {
-    shards: Vec<Mutex<DerivedShard<T>>>,
-}
-
-/// One shard of [`Derived`]: per part address and tag, the list.
-type DerivedShard<T> = HashMap<(usize, u64), Box<[T]>, Quick>;
-
-impl<T> Derived<T> {
-    fn new() -> Derived<T> {
-        Derived {
-            shards: (0..SHARDS).map(|_| Mutex::default()).collect(),
-        }
-    }
-
-    /// What `derive` makes of the part at `address` (whose hash is `hash`) for `tag`,
-    /// made once.
-    fn get(
-        &self,
-        address: usize,
-        hash: u64,
-        tag: u64,
-        derive: impl FnOnce() -> Vec<T>,
-    ) -> Held<[T]> {
-        let key = (address, tag);
-        let shard = &self.shards[shard_of(mix(hash ^ tag.rotate_left(32)))];
-        let found = lock(shard).get(&key).map(|b| Held::new(&**b));
-        found.unwrap_or_else(|| {
-            // Derived without the lock, as images are.
-            let list = derive().into_boxed_slice();
-            Held::new(&**lock(shard).entry(key).or_insert(list))
-        })
-    }
-}
+/// Per part and a client's tag: numbers the client derived from it, each list boxed so
+/// that it stays where it is while the table grows.
+type Derived<T> = PerPart<Box<[T]>>;
 
 /// The next [`Compiled`]'s serial.
 static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
@@ -815,13 +789,13 @@ impl<'s, 'p> Compiled<'s, 'p> {
             applicable: Memo::new(),
             map_ids: Default::default(),
             mapped_requests: Default::default(),
-            mapped_bases: Images::new(),
-            mapped_events: Images::new(),
-            mapped_intentions: Images::new(),
-            mapped_pendings: Images::new(),
-            mapped_agendas: Images::new(),
-            derived: Derived::new(),
-            derived_from_beliefs: Derived::new(),
+            mapped_bases: PerPart::new(),
+            mapped_events: PerPart::new(),
+            mapped_intentions: PerPart::new(),
+            mapped_pendings: PerPart::new(),
+            mapped_agendas: PerPart::new(),
+            derived: PerPart::new(),
+            derived_from_beliefs: PerPart::new(),
             requests: Vec::new(),
             phases: Mutex::default(),
         };
@@ -1016,9 +990,12 @@ impl<'s, 'p> Compiled<'s, 'p> {
         tag: u64,
         derive: impl FnOnce(&Packed<'c>) -> Vec<u16>,
     ) -> &'c [u16] {
-        let held = self
-            .derived
-            .get(p.agenda_key(), p.agenda.hash, tag, || derive(p));
+        let held = self.derived.get(
+            (p.agenda_key(), p.agenda.hash),
+            tag,
+            |list| Held::new(&**list),
+            || derive(p).into_boxed_slice(),
+        );
         // SAFETY: the list is boxed in this system's table, never moved out, replaced or
         // dropped before the table is.
         unsafe { held.get(self) }
@@ -1032,8 +1009,12 @@ impl<'s, 'p> Compiled<'s, 'p> {
         tag: u64,
         derive: impl FnOnce(&Packed<'c>) -> Vec<u64>,
     ) -> &'c [u64] {
-        let held =
-            (self.derived_from_beliefs).get(p.beliefs_key(), p.beliefs.hash, tag, || derive(p));
+        let held = (self.derived_from_beliefs).get(
+            (p.beliefs_key(), p.beliefs.hash),
+            tag,
+            |list| Held::new(&**list),
+            || derive(p).into_boxed_slice(),
+        );
         // SAFETY: as in `derived`.
         unsafe { held.get(self) }
     }
@@ -1104,21 +1085,16 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// [`Compiled::map`] through the tables every thread shares.
     fn map_shared<'c>(&'c self, p: &Packed<'c>, id: u64, f: &impl PartMap) -> Packed<'c> {
         let a = &p.agenda.value;
-        // SAFETY: the agenda's image is in this system's tables.
-        let agenda = unsafe {
-            // An agenda's image is its parts' images: kept per agenda and map too.
-            self.mapped_agendas
-                .get(p.agenda, id, || {
-                    self.agenda(
-                        a.events().iter().map(|e| self.image_event(e, id, f)),
-                        a.intentions()
-                            .iter()
-                            .map(|i| self.image_intention(i, id, f)),
-                        a.pending().map(|x| self.image_pending(x, id, f)),
-                    )
-                })
-                .get(self)
-        };
+        // An agenda's image is its parts' images: kept per agenda and map too.
+        let agenda = self.image(&self.mapped_agendas, p.agenda, id, || {
+            self.agenda(
+                a.events().iter().map(|e| self.image_event(e, id, f)),
+                a.intentions()
+                    .iter()
+                    .map(|i| self.image_intention(i, id, f)),
+                a.pending().map(|x| self.image_pending(x, id, f)),
+            )
+        });
         Packed {
             beliefs: self.image_base(p.beliefs, id, f),
             agenda,
@@ -1260,7 +1236,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
         make: impl FnOnce() -> Held<Part<T>>,
     ) -> &'c Part<T> {
         // SAFETY: images are interned parts of this system's tables.
-        unsafe { table.get(part, id, make).get(self) }
+        unsafe {
+            table
+                .get((address(part), part.hash), id, |v| *v, make)
+                .get(self)
+        }
     }
 
     /// The image of a belief base under the map `id`, `f` (as [`Compiled::map`] makes it).
