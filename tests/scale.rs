@@ -293,6 +293,46 @@ fn naming_an_interchangeable_object_is_refused_where_it_is_named() {
     assert_eq!((r["verdict"].as_str(), code), (Some("pass"), 0));
 }
 
+/// Symmetry with explanation properties that fail (`tests/verify/symmetric_store`: three
+/// interchangeable cups, untruthful explanations): the reduced search reports the failures
+/// the exact one does, with the same messages and runs of the same length, and each run
+/// replays to its violation.
+#[test]
+fn explanation_failures_under_symmetry_are_the_exact_ones_and_replay() {
+    let p = Path::new("tests/verify/symmetric_store");
+    let (sym, code) = verify_json(p, &[]);
+    let (exact, exact_code) = verify_json(p, &["--no-symmetry"]);
+    assert_eq!((code, exact_code), (1, 1), "{sym:#}");
+    assert!(states(&sym) < states(&exact), "{sym:#}");
+    let failures = |r: &Value| -> std::collections::BTreeMap<String, (Value, usize)> {
+        (r["findings"].as_array().expect("findings").iter())
+            .filter(|f| f["status"] == "fail" && f["severity"] == "error")
+            .map(|f| {
+                let steps = f["counterexample"]["steps"].as_array().map_or(0, Vec::len);
+                (
+                    f["id"].as_str().expect("an id").to_string(),
+                    (f["message"].clone(), steps),
+                )
+            })
+            .collect()
+    };
+    let found = failures(&sym);
+    assert_eq!(found, failures(&exact));
+    for user in ["newcomer", "regular"] {
+        let prefix = format!("content-truthful:{user}:");
+        assert!(found.keys().any(|id| id.starts_with(&prefix)), "{found:#?}");
+    }
+    let report = common::temp_dir("scale-symmetric-store").join("report.json");
+    std::fs::write(&report, sym.to_string()).unwrap();
+    for (id, (_, steps)) in &found {
+        assert!(*steps > 0, "{id}: a run");
+        let out = bdi_check(&["replay", report.to_str().unwrap(), "--finding", id]);
+        let said = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(1), "{id}: {said}");
+        assert!(said.contains("still reaches its violation"), "{id}: {said}");
+    }
+}
+
 #[test]
 fn counterexamples_found_under_symmetry_replay() {
     // A property the kitchen breaks: cups do reach the cupboard.

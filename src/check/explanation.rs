@@ -2437,6 +2437,72 @@ mod tests {
         assert!(renamed.get() > 100, "{} renamed views", renamed.get());
     }
 
+    /// Under symmetry a user's search stores exactly one state per class: as many states
+    /// as the exact search's reachable pairs of agent state and view have orbits under the
+    /// whole group of renamings. Each orbit is named here by the least hash of all its
+    /// renamings: the unpacked state renamed whole, the view by `renamed_view` (the
+    /// search's own renaming of views), without the canonical sort's choice of renamings,
+    /// the compiled images or the memo of renamed views that the search uses. (A memo keyed
+    /// by the view alone, not the renaming, passed every other test; this one fails it.)
+    #[test]
+    fn symmetric_users_store_one_state_per_class() {
+        use super::*;
+        use crate::check::model::Model;
+        let limits = Limits {
+            max_states: 10_000_000,
+            max_depth: 100_000,
+            timeout: None,
+        };
+        let opts = Options {
+            threads: 1,
+            ..Options::default()
+        };
+        // Two cups (the group is its generator and the identity), and three (six
+        // renamings from two generators).
+        for (dir, renamings) in [("specs/kitchen", 2), ("tests/verify/symmetric_store", 6)] {
+            let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+            let project = crate::model::project::load_project(&root).expect("the project loads");
+            let sem = Semantics::new(&project).expect("the semantics");
+            let sym = Symmetry::new(&project, &sem)
+                .expect("symmetry is sound here")
+                .expect("the project declares symmetry");
+            let group = sym.group();
+            assert_eq!(group.len(), renamings, "{dir}");
+            let compiled = Compiled::new(&sem).expect("a local library");
+            let ex = crate::explain::agent::Explainer::new(&project, &sem);
+            let users = crate::explain::agent::users(&project, None).expect("the users");
+            assert!(!users.is_empty(), "{dir}");
+            for user in &users {
+                let exact = Explained::watching(AloneCompiled::new(&compiled, None), &ex, user);
+                let symmetric =
+                    Explained::watching(AloneCompiled::new(&compiled, Some(&sym)), &ex, user);
+                let mut seen = HashSet::new();
+                let mut classes = HashSet::new();
+                let mut queue: std::collections::VecDeque<_> = exact.init_states().collect();
+                while let Some(s) = queue.pop_front() {
+                    if !seen.insert(exact.fingerprint(&s)) {
+                        continue;
+                    }
+                    let whole = compiled.unpack(&s.state);
+                    let least = (group.iter())
+                        .map(|p| {
+                            let view = symmetric.renamed_view(&s.view.0 .1, &sym.renaming(p));
+                            fingerprint(&(sym.renamed(&whole, p), fingerprint(&view)))
+                        })
+                        .min();
+                    classes.insert(least);
+                    queue.extend(exact.next_states(&s).into_iter().map(|(_, t)| t));
+                }
+                let searched = check_user(&symmetric, limits, &opts, |_, _, _| {});
+                let who = format!("{dir}, {}", user.name);
+                assert!(searched.graph.complete(), "{who}");
+                assert_eq!(searched.graph.len(), classes.len(), "{who}");
+                // Symmetry merges states here, so a search that kept them apart would show.
+                assert!(classes.len() < seen.len(), "{who}");
+            }
+        }
+    }
+
     /// `demand-exact`'s check that `N` grew by exactly the novel pair: every other change
     /// of the sorted pairs is told from it.
     #[test]

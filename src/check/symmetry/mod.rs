@@ -309,6 +309,41 @@ impl Symmetry {
     }
 }
 
+/// What tests that count classes need: every renaming of the group, and each applied.
+#[cfg(test)]
+impl Symmetry {
+    /// Every renaming the generators make (their closure under composition), the identity
+    /// first.
+    pub(crate) fn group(&self) -> Vec<Perm> {
+        let mut all = vec![self.identity()];
+        let mut k = 0;
+        while k < all.len() {
+            for g in self.generators() {
+                let next: Perm = all[k].iter().map(|&x| g[x as usize]).collect();
+                if !all.contains(&next) {
+                    all.push(next);
+                }
+            }
+            k += 1;
+        }
+        all
+    }
+
+    /// The renaming `perm`, to rename terms and views with.
+    pub(crate) fn renaming<'a>(&'a self, perm: &'a [u16]) -> Renaming<'a> {
+        Renaming { sym: self, perm }
+    }
+
+    /// `s` with every object renamed by `perm`.
+    pub(crate) fn renamed(
+        &self,
+        s: &crate::semantics::State,
+        perm: &[u16],
+    ) -> crate::semantics::State {
+        self.apply(s, perm)
+    }
+}
+
 /// A 64-bit mixer (splitmix64's finaliser), so that sums of features rarely collide.
 pub(super) fn mix(mut x: u64) -> u64 {
     x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
