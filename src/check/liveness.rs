@@ -241,7 +241,7 @@ pub(super) fn on_cycles<'g>(
 }
 
 /// The bit set of the states `0..n`.
-fn all_of(n: usize) -> Vec<u64> {
+pub(super) fn all_of(n: usize) -> Vec<u64> {
     let mut set = vec![u64::MAX; n.div_ceil(64)];
     if !n.is_multiple_of(64) {
         if let Some(last) = set.last_mut() {
