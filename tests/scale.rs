@@ -293,6 +293,42 @@ fn naming_an_interchangeable_object_is_refused_where_it_is_named() {
     assert_eq!((r["verdict"].as_str(), code), (Some("pass"), 0));
 }
 
+/// Under symmetry, once the exact search that decides the properties naming every cup
+/// (phase `ltl search`) completes, the users' searches are exact and follow its graph: the
+/// kitchen's users count the states `--no-symmetry` counts. Without such a search
+/// (`tests/verify/symmetric_store` has no `ltl` property) they stay reduced.
+#[test]
+fn users_follow_the_exact_ltl_search_when_there_is_one() {
+    let users = |r: &Value| -> Vec<(String, u64)> {
+        (r["stats"]["phases"].as_array().expect("phases").iter())
+            .filter(|p| {
+                p["name"]
+                    .as_str()
+                    .is_some_and(|n| n.starts_with("explanation:"))
+            })
+            .map(|p| (p["name"].to_string(), p["states"].as_u64().expect("states")))
+            .collect()
+    };
+    let kitchen = Path::new("specs/kitchen");
+    let (sym, _) = verify_json(kitchen, &[]);
+    let (exact, _) = verify_json(kitchen, &["--no-symmetry"]);
+    assert!(common::phase_names(&sym).contains(&"ltl search"), "{sym:#}");
+    assert!(states(&sym) < states(&exact));
+    assert_eq!(users(&sym).len(), 2, "{sym:#}");
+    assert_eq!(users(&sym), users(&exact));
+    let store = Path::new("tests/verify/symmetric_store");
+    let (sym, _) = verify_json(store, &[]);
+    let (exact, _) = verify_json(store, &["--no-symmetry"]);
+    assert!(
+        !common::phase_names(&sym).contains(&"ltl search"),
+        "{sym:#}"
+    );
+    for ((a, fewer), (b, all)) in users(&sym).into_iter().zip(users(&exact)) {
+        assert_eq!(a, b);
+        assert!(fewer < all, "{a}: {fewer} states against {all}");
+    }
+}
+
 /// Symmetry with explanation properties that fail (`tests/verify/symmetric_store`: three
 /// interchangeable cups, untruthful explanations): the reduced search reports the failures
 /// the exact one does, with the same messages and runs of the same length, and each run

@@ -277,13 +277,22 @@ pub fn verify_with(
     // The users' searches follow the agent's transitions again, once per view: an exact
     // search keeps its states and notes for them (about 30 bytes a state), so that they
     // read its graph instead of running the cycle again.
-    let mut stored = (compiled.is_some()
-        && agent.symmetry.is_none()
+    // Declared before the graphs that borrow them. The searches that decide run properties with their objects fixed, each with the
+    // renamings that leave those objects in place (none: an exact search).
+    let fixed_agents: Vec<Agent> = (plan.iter().flat_map(|p| &p.fixing))
+        .map(|fixing| Agent {
+            sem: &sem,
+            symmetry: (agent.symmetry.as_ref())
+                .and_then(|s| s.fixing(project, &sem, &fixing.objects)),
+        })
+        .collect();
+    let users_may_read_a_graph = compiled.is_some()
         && opts.stored_users
         && search.shard.is_none()
         && search.sample.is_none()
-        && (project.manifest.explanation.as_ref()).is_some_and(|e| !e.users.is_empty()))
-    .then(explanation::Stored::default);
+        && (project.manifest.explanation.as_ref()).is_some_and(|e| !e.users.is_empty());
+    let mut stored =
+        (users_may_read_a_graph && agent.symmetry.is_none()).then(explanation::Stored::default);
     // Reduction is only exact if renaming a state renames its successors: on the compiled
     // cycle every memoized phase is checked for it once the search ends
     // (Symmetry::phase_violation), on the reference cycle every stored state
@@ -346,22 +355,48 @@ pub fn verify_with(
         });
         let mut reached = 0;
         let mut seconds = 0.0;
-        for fixing in plan.iter().flat_map(|p| &p.fixing) {
+        // Under symmetry, once one of those searches is exact and complete, the users'
+        // searches are exact too, and the first such search keeps its graph for them, as
+        // the agent's exact search does: following its transitions costs a user's state
+        // about a quarter of what running the cycle and finding the canonical renaming
+        // costs, which more than pays for the states symmetry would have merged (4-cup
+        // kitchen: 2.2 M exact user states against 1.3 M). Whether the users' searches are
+        // exact depends on that search alone, not on whether its graph was kept, so that
+        // every way of running them counts the same states.
+        let mut exact: Option<(explanation::Stored, explore::Graph)> = None;
+        let mut exact_complete = false;
+        for (fixing, fixed) in plan.iter().flat_map(|p| &p.fixing).zip(&fixed_agents) {
+            let mut keep = (users_may_read_a_graph
+                && stored_runs.is_none()
+                && exact.is_none()
+                && fixed.symmetry.is_none())
+            .then(explanation::Stored::default);
             let ran = fixing_runs(
-                (project, &sem, &agent, compiled.as_ref()),
+                (project, fixed, compiled.as_ref()),
                 (&atomics, fixing),
                 (remaining(), &search),
-                &mut found,
+                (&mut found, keep.as_mut()),
                 &mut progress,
             );
             run_phases.push(ran.phase);
             reached += ran.reached;
             seconds += ran.product_seconds;
             caveat = caveat.take().or(ran.not_equivariant);
+            exact_complete |= fixed.symmetry.is_none()
+                && ran.graph.complete()
+                && room_for_exact_users(ran.graph.len(), search.max_memory);
+            if let Some(st) = keep {
+                exact = Some((st, ran.graph));
+            }
         }
+        let exact_runs = match (&compiled, &exact) {
+            (Some(c), Some((st, g))) => explanation::AloneStored::new(c, st, g),
+            _ => None,
+        };
+        let symmetry = agent.symmetry.as_ref().filter(|_| !exact_complete);
         let users = users_and_explanations(
-            (project, &sem, compiled.as_ref(), agent.symmetry.as_ref()),
-            stored_runs,
+            (project, &sem, compiled.as_ref(), symmetry),
+            stored_runs.or(exact_runs),
             (&run_props, run_atoms.as_ref()),
             (&remaining, &search),
             &mut progress,
@@ -397,6 +432,26 @@ pub fn verify_with(
         v.warnings.push("symmetry reduction was not checked to rename the successors of the states stored after `--timeout` passed (the check is made on every other state): `--no-symmetry` gives the exact verdict".into());
     }
     Ok(v)
+}
+
+/// Bytes of memory that the users' exact searches (a manifest's usual two) take per state
+/// of the exact agent graph they follow: about 125 on the kitchen (6 cups: 1.65 user
+/// states per agent state and user at about 25 bytes each with their frontiers, and the
+/// stored graph's 30; the run's peak went from 8.9 to 13.6 GB for 65.6 M agent states),
+/// with some room for libraries whose users meet more views per agent state. A library
+/// whose users meet many more is cut short at the memory bound (`incomplete`, exit 3)
+/// where reduced searches might have fitted.
+const EXACT_USER_BYTES: u64 = 160;
+
+/// Whether the users' searches may follow an exact graph of `states` states instead of
+/// running reduced by symmetry, within the memory bound (`max`): exact, they take about
+/// twice the memory the reduced ones take on the kitchen, and a search that reaches the
+/// bound is cut short (`incomplete`), so they only do when the room left holds them.
+fn room_for_exact_users(states: usize, max: Option<u64>) -> bool {
+    let (Some(max), Some(now)) = (max, explore::resident_memory()) else {
+        return true;
+    };
+    (states as u64).saturating_mul(EXACT_USER_BYTES) <= max.saturating_sub(now)
 }
 
 /// What the users' searches found: the findings, the phases of the searches that decide
@@ -495,26 +550,26 @@ struct FixingRuns {
     product_seconds: f64,
     /// As [`Verification::symmetry_caveat`].
     not_equivariant: Option<String>,
+    /// The search's graph.
+    graph: explore::Graph,
 }
 
 /// Decides the run properties of `fixing` on a search reduced by the renamings that leave
 /// its objects in place (exact, phase `ltl search`, when no type keeps two objects to
 /// rename), adding one numbered finding per property to `found`.
-fn fixing_runs(
-    (project, sem, agent, compiled): (&Project, &Semantics, &Agent, Option<&Compiled>),
+/// With `stored`, every state of the search and its transitions' notes are kept there.
+fn fixing_runs<'c>(
+    (project, fixed, compiled): (&Project, &'c Agent, Option<&'c Compiled>),
     (atomics, fixing): (&crate::model::property::Atomics, &symmetry::Fixing),
     (limits, search): (Limits, &Options),
-    found: &mut Vec<(usize, Finding)>,
+    (found, stored): (
+        &mut Vec<(usize, Finding)>,
+        Option<&mut explanation::Stored<'c>>,
+    ),
     progress: &mut dyn FnMut(&str, usize, u32, f64),
 ) -> FixingRuns {
     let t = std::time::Instant::now();
-    let fixed = Agent {
-        sem,
-        symmetry: agent
-            .symmetry
-            .as_ref()
-            .and_then(|s| s.fixing(project, sem, &fixing.objects)),
-    };
+    let sem = fixed.sem;
     let atoms = runs::RunAtoms::for_props(atomics, sem, &fixing.props);
     let conditions = Conditions {
         invariants: Vec::new(),
@@ -529,18 +584,18 @@ fn fixing_runs(
     };
     let mut facts = Facts::default();
     let (graph, not_equivariant, _) = agent_search(
-        &fixed,
+        fixed,
         compiled,
         &conditions,
         (limits, search),
         (&mut facts, &[], &mut Failures::default()),
-        None,
+        stored,
         &mut |n, d, t| progress(&name, n, d, t),
     );
     let searched = t.elapsed().as_secs_f64();
     let c = Checker {
         project,
-        agent: &fixed,
+        agent: fixed,
         graph: &graph,
         facts: &facts,
         conditions: &conditions,
@@ -557,6 +612,7 @@ fn fixing_runs(
         reached,
         product_seconds: t.elapsed().as_secs_f64(),
         not_equivariant,
+        graph,
     }
 }
 
@@ -741,6 +797,20 @@ mod tests {
     use super::*;
     use crate::check::model::CycleNotes;
     use std::collections::{HashMap, VecDeque};
+
+    /// The users' searches follow an exact graph only when the memory bound leaves room
+    /// for them: always without a bound, never without room, and by the graph's size in
+    /// between.
+    #[test]
+    fn exact_users_need_room_under_the_memory_bound() {
+        assert!(room_for_exact_users(1_000_000, None));
+        assert!(!room_for_exact_users(1, Some(0)));
+        assert!(room_for_exact_users(1_000_000, Some(u64::MAX)));
+        let now = explore::resident_memory().expect("Linux tells the resident memory");
+        let bound = now + (1 << 30);
+        assert!(room_for_exact_users(1_000, Some(bound)));
+        assert!(!room_for_exact_users(1_000_000_000, Some(bound)));
+    }
 
     /// The graph an exact search keeps for the users' searches holds every state, and from
     /// each the compiled cycle's transitions, in its order, with the very same notes: a
