@@ -274,11 +274,9 @@ pub fn verify_with(
     } else {
         None
     };
-    // The users' searches follow the agent's transitions again, once per view: an exact
-    // search keeps its states and notes for them (about 30 bytes a state), so that they
-    // read its graph instead of running the cycle again.
-    // Declared before the graphs that borrow them. The searches that decide run properties with their objects fixed, each with the
-    // renamings that leave those objects in place (none: an exact search).
+    // The agents of the searches that decide run properties with their objects fixed, each
+    // with the renamings that leave those objects in place (none: an exact search);
+    // declared before the graphs that borrow them.
     let fixed_agents: Vec<Agent> = (plan.iter().flat_map(|p| &p.fixing))
         .map(|fixing| Agent {
             sem: &sem,
@@ -291,6 +289,9 @@ pub fn verify_with(
         && search.shard.is_none()
         && search.sample.is_none()
         && (project.manifest.explanation.as_ref()).is_some_and(|e| !e.users.is_empty());
+    // The users' searches follow the agent's transitions again, once per view: an exact
+    // search keeps its states and notes for them (about 30 bytes a state), so that they
+    // read its graph instead of running the cycle again.
     let mut stored =
         (users_may_read_a_graph && agent.symmetry.is_none()).then(explanation::Stored::default);
     // Reduction is only exact if renaming a state renames its successors: on the compiled
