@@ -159,6 +159,7 @@ fn threads() {
             max_memory: None,
             shard: None,
             sample: None,
+            room_for: 0,
         };
         let limits = Limits {
             max_states: u64::MAX,

@@ -74,6 +74,10 @@ pub struct Options {
     pub shard: Option<(u32, u32)>,
     /// Follow random runs only ([`super::sample`]): at each depth, expand this many states.
     pub sample: Option<super::sample::Sample>,
+    /// States the store's table makes room for at the start, instead of doubling, and
+    /// moving every state, on its way there. A guess: with too few the table grows as it
+    /// would have; too many cost about 7 bytes each.
+    pub room_for: usize,
 }
 
 impl Default for Options {
@@ -84,6 +88,7 @@ impl Default for Options {
             max_memory: None,
             shard: None,
             sample: None,
+            room_for: 0,
         }
     }
 }
@@ -558,7 +563,7 @@ fn search<M: Model, T>(
 ) -> Graph<M::State> {
     let start = Instant::now();
     let mut g = Graph {
-        store: Store::new(),
+        store: Store::with_room(opts.room_for),
         levels: vec![0],
         edges: opts.keep_edges.then(Edges::default),
         initial: 0,

@@ -267,6 +267,7 @@ pub fn verify_with(
         max_memory: opts.max_memory,
         shard: opts.shard,
         sample: opts.sample,
+        room_for: 0,
     };
     let mut failures = Failures::default();
     let compiled = if opts.compiled {

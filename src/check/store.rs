@@ -64,6 +64,22 @@ impl Store {
         Store::default()
     }
 
+    /// An empty store whose table holds `states` states without growing (an empty one
+    /// when memory for it cannot be had: it then grows as it fills).
+    pub fn with_room(states: usize) -> Store {
+        let mut s = Store::default();
+        if states > 0 {
+            // Below three quarters full, as `insert` keeps it.
+            let cap = (states.saturating_mul(4) / 3 + 1)
+                .next_power_of_two()
+                .max(1024);
+            if s.slots.try_reserve_exact(cap).is_ok() {
+                s.slots.resize(cap, EMPTY);
+            }
+        }
+        s
+    }
+
     /// Number of states stored.
     pub fn len(&self) -> usize {
         self.fps.len()
@@ -186,5 +202,24 @@ mod tests {
         assert_eq!(s.fingerprint(9), fp(9));
         // At most (8 + 4) * 5/4 + 5 / (3/8) bytes per state, plus the first allocations.
         assert!(s.bytes() <= 10_000 * 29 + 1024 * 17, "{} bytes", s.bytes());
+    }
+
+    #[test]
+    fn a_store_with_room_holds_that_many_states_without_growing() {
+        let fp = |k: u64| k.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ 0x5555;
+        for room in [1, 1_000, 10_000, 12_289] {
+            let mut s = Store::with_room(room);
+            let slots = s.slots.len();
+            assert!(slots >= 1024, "{room}: {slots} slots");
+            for k in 0..room as u64 {
+                assert_eq!(s.insert(fp(k), None), Ok((k as u32, true)), "{room}");
+            }
+            assert_eq!(s.slots.len(), slots, "{room}: the table grew");
+            assert!((0..room as u64).all(|k| s.find(fp(k)) == Some(k as u32)));
+            // One more than it made room for may grow it, and everything is still found.
+            s.insert(fp(room as u64), None).expect("memory");
+            assert!((0..=room as u64).all(|k| s.find(fp(k)) == Some(k as u32)));
+        }
+        assert!(Store::with_room(0).slots.is_empty());
     }
 }

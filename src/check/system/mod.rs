@@ -296,6 +296,7 @@ pub fn verify_system(
         // `simulate`: random runs only.
         sample: options.sample,
         shard: None,
+        room_for: 0,
     };
     // The run properties read the exact graph: no reduction when there are any.
     let exact = graph_atoms.is_some();
