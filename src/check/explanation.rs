@@ -356,17 +356,24 @@ impl Default for Recent<'_> {
 }
 
 impl<'c> Recent<'c> {
-    /// The successors of `s` in `compiled`: kept ones when `s` was met last in its slot.
+    /// Whether the successors of `s` are to be computed without the table: `s` is not
+    /// a counted lookup, and fewer than half of the counted ones hit.
+    fn bypassed(&self, s: &Packed<'c>) -> bool {
+        let c = self.counts.load(std::sync::atomic::Ordering::Relaxed);
+        !Self::counted(s.address_hash()) && (c & 0xffff_ffff) * 2 < c >> 32
+    }
+
+    /// Whether a lookup of the state with this address hash is counted.
+    fn counted(hash: u64) -> bool {
+        (hash >> 32).is_multiple_of(SAMPLE)
+    }
+
+    /// The successors of `s` in `compiled` through the table: kept ones when `s` was met
+    /// last in its slot.
     fn successors(&self, compiled: &'c Compiled, s: &Packed<'c>) -> Arc<[(Notes<'c>, Packed<'c>)]> {
         use std::sync::atomic::Ordering::Relaxed;
         let hash = s.address_hash();
-        let counted = (hash >> 32).is_multiple_of(SAMPLE);
-        if !counted {
-            let c = self.counts.load(Relaxed);
-            if (c & 0xffff_ffff) * 2 < c >> 32 {
-                return compiled.successors(s).into();
-            }
-        }
+        let counted = Self::counted(hash);
         let slot = &self.slots[hash as usize & (RECENT - 1)];
         // A panic in another search thread is re-raised by the explorer; a slot holds
         // a whole entry or none.
@@ -429,6 +436,11 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
     }
 
     fn successors(&self, s: &Packed<'c>) -> Vec<(u8, Notes<'c>, Packed<'c>)> {
+        if self.recent.bypassed(s) {
+            return (self.compiled.successors(s).into_iter())
+                .map(|(notes, next)| (0, notes, next))
+                .collect();
+        }
         (self.recent.successors(self.compiled, s).iter())
             .map(|(notes, next)| (0, notes.clone(), *next))
             .collect()
@@ -2570,25 +2582,26 @@ mod tests {
             states.extend(compiled.successors(&states[k]).into_iter().map(|(_, t)| t));
             k += 1;
         }
-        // (lookups, hits): half of them hit, and none do.
-        for counts in [(1_000u64 << 32) | 900, 1_000u64 << 32] {
-            let recent = Recent::default();
-            recent.counts.store(counts, Relaxed);
+        let sampled = (states.iter())
+            .filter(|s| Recent::counted(s.address_hash()))
+            .count();
+        assert!(sampled > 0 && sampled < states.len());
+        // (lookups, hits): most of them hit, and none do.
+        for (counts, bypassing) in [((1_000u64 << 32) | 900, false), (1_000u64 << 32, true)] {
+            let runs = AloneCompiled::new(&compiled, None);
+            runs.recent.counts.store(counts, Relaxed);
             for s in states.iter().chain(&states) {
+                let counted = Recent::counted(s.address_hash());
+                assert_eq!(runs.recent.bypassed(s), bypassing && !counted);
                 let want = compiled.successors(s);
-                let got = recent.successors(&compiled, s);
+                let got = Runs::successors(&runs, s);
                 assert_eq!(got.len(), want.len());
-                for ((n, t), (m, u)) in got.iter().zip(&want) {
+                for ((_, n, t), (m, u)) in got.iter().zip(&want) {
                     assert!(t == u && n.key() == m.key());
                 }
             }
-            let counted = (recent.counts.load(Relaxed) >> 32) - (counts >> 32);
-            let sampled = (states
-                .iter()
-                .filter(|s| (s.address_hash() >> 32).is_multiple_of(SAMPLE)))
-            .count() as u64;
-            assert!(sampled > 0);
-            assert_eq!(counted, 2 * sampled);
+            let counted = (runs.recent.counts.load(Relaxed) >> 32) - (counts >> 32);
+            assert_eq!(counted, 2 * sampled as u64);
         }
     }
 
