@@ -335,6 +335,8 @@ enum Command {
 
 fn main() -> ExitCode {
     no_transparent_huge_pages();
+    // One command per process: what a verification allocated goes with the process.
+    bdi_check::check::leave_memory_to_exit();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {

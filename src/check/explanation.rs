@@ -2457,6 +2457,7 @@ fn verify_runs<W: Runs + Clone>(
             });
         }
     }
+    crate::check::done_with((results, models));
     Ok((out, complete, phases))
 }
 
