@@ -794,6 +794,51 @@ pub struct Explained<'a, W = Alone<'a>> {
     ex: &'a Explainer<'a>,
     user: &'a User,
     tables: Tables,
+    /// Tells this search's entries from another's in the threads' caches ([`recently`]).
+    serial: u64,
+}
+
+/// How many entries of a memo each thread keeps at hand ([`recently`]; a power of two).
+const READ_RECENTLY: usize = 1 << 14;
+
+/// Entries of a memo a thread read last: the [`Explained`] (by serial), the key, the entry.
+type ReadRecently<K, V> = std::cell::RefCell<Vec<(u64, K, Option<Arc<V>>)>>;
+
+thread_local! {
+    /// [`Tables::seen`]'s entries for notes of one word ([`Runs::notes_key`]) on which no
+    /// explanation is due, by view (address) and word. A user's search on a stored graph
+    /// reads that memo at most transitions, and few of its entries at a time: 98.5% of
+    /// the reads hit a table of 2^14 (5-cup kitchen), and the shared memo's lock, hashing
+    /// and probe were a tenth of the search.
+    static SEEN_RECENTLY: ReadRecently<(usize, usize), Seen> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The entry of `key` in this thread's `cache` of the memo of search `serial`, or
+/// `find`'s, read by `read` without counting a reference to it (see [`memo_read`]).
+fn recently<K: Copy + PartialEq + Hash, V, R>(
+    cache: &'static std::thread::LocalKey<ReadRecently<K, V>>,
+    (serial, key): (u64, K),
+    find: impl FnOnce() -> Arc<V>,
+    read: impl Fn(&V) -> R,
+) -> R {
+    let slot = (mix(quick(&key) ^ serial) as usize) & (READ_RECENTLY - 1);
+    let hit = cache.with_borrow(|r| {
+        (r.get(slot))
+            .filter(|e| (e.0, e.1) == (serial, key))
+            .and_then(|e| e.2.as_deref().map(&read))
+    });
+    if let Some(r) = hit {
+        return r;
+    }
+    let v = find();
+    let r = read(&v);
+    cache.with_borrow_mut(|c| {
+        if c.is_empty() {
+            c.resize_with(READ_RECENTLY, || (0, key, None));
+        }
+        c[slot] = (serial, key, Some(v));
+    });
+    r
 }
 
 /// Tables are split in this many shards, each behind its own lock.
@@ -1188,6 +1233,10 @@ impl<'a, W: Runs> Explained<'a, W> {
             ex,
             user,
             tables: Tables::default(),
+            serial: {
+                static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+                SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+            },
         }
     }
 
@@ -1410,12 +1459,17 @@ impl<'a, W: Runs> Explained<'a, W> {
                 let beliefs = Some(self.runs.beliefs_key(before));
                 // Most notes do not read the beliefs (no explanation is due): one entry for
                 // every state then.
-                let seen = memo_read(
-                    &self.tables.seen,
-                    SeenKey(at, key.clone(), SmallVec::new()),
-                    || self.see(view, before, &notes, None, beliefs),
-                    |s| s.read_unless_due(),
-                );
+                let first = || SeenKey(at, key.clone(), SmallVec::new());
+                let see = || self.see(view, before, &notes, None, beliefs);
+                let seen = match key.as_slice() {
+                    &[word] => recently(
+                        &SEEN_RECENTLY,
+                        (self.serial, (at, word)),
+                        || memo(&self.tables.seen, first(), see),
+                        Seen::read_unless_due,
+                    ),
+                    _ => memo_read(&self.tables.seen, first(), see, |s| s.read_unless_due()),
+                };
                 match seen {
                     Ok(seen) => seen,
                     Err(due) => {
@@ -2125,6 +2179,8 @@ pub fn check_user<W: Runs>(
         },
         progress,
     );
+    // The searching threads other than this one are gone, and their caches with them.
+    SEEN_RECENTLY.with_borrow_mut(Vec::clear);
     UserResult {
         user: model.user.name.clone(),
         violations,
@@ -2604,6 +2660,43 @@ mod tests {
             let counted = (runs.recent.counts.load(Relaxed) >> 32) - (counts >> 32);
             assert_eq!(counted, 2 * sampled as u64);
         }
+    }
+
+    /// A thread's cache of memo entries gives an entry again only to the search (serial)
+    /// and key it was read for, and reads it without taking it from the memo again.
+    #[test]
+    fn memo_entries_read_recently_are_the_same_searchs_and_keys() {
+        use super::*;
+        thread_local! {
+            static CACHE: ReadRecently<(usize, usize), u32> = const { std::cell::RefCell::new(Vec::new()) };
+        }
+        let found = std::cell::Cell::new(0);
+        let read = |serial, key, value| {
+            recently(
+                &CACHE,
+                (serial, key),
+                || {
+                    found.set(found.get() + 1);
+                    Arc::new(value)
+                },
+                |v: &u32| *v,
+            )
+        };
+        assert_eq!(read(1, (8, 3), 10), 10);
+        assert_eq!(read(1, (8, 3), 99), 10);
+        assert_eq!(found.get(), 1);
+        // Another search, another key: each its own entry.
+        assert_eq!(read(2, (8, 3), 20), 20);
+        assert_eq!(read(1, (8, 4), 30), 30);
+        assert_eq!(found.get(), 3);
+        // Many keys: entries that share a slot replace each other, and none is mistaken
+        // for another.
+        for round in 0..2 {
+            for k in 0..3 * READ_RECENTLY {
+                assert_eq!(read(3, (k, 0), k as u32), k as u32, "round {round}");
+            }
+        }
+        assert!(found.get() > 3 * READ_RECENTLY);
     }
 
     /// `demand-exact`'s check that `N` grew by exactly the novel pair: every other change
