@@ -11,7 +11,6 @@ use crate::findings::{Finding, Phase};
 use crate::model::project::Project;
 use crate::model::property::RunProperty;
 use crate::semantics::Note;
-use std::collections::HashMap;
 
 /// How the runs of a user's search are read.
 pub(super) struct Reading<'r, S> {
@@ -42,7 +41,7 @@ pub(super) fn decide<W: Runs>(
     let mut busy: Vec<u64> = Vec::new();
     // Per state, per transition: the agent that moved (`None`: a request).
     let mut moves: Vec<Vec<Option<u8>>> = Vec::new();
-    let mut steps: HashMap<(u32, u32), Letter> = HashMap::new();
+    let mut steps = runs::StepLetters::default();
     let phase = format!("ltl search:{user}");
     let opts = Options {
         keep_edges: true,

@@ -45,6 +45,11 @@ pub(crate) fn agents_runs(fair: bool) -> &'static str {
 /// The propositions that hold in one state (or one step), one bit per [`Atomic`].
 pub(crate) type Letter = smallvec::SmallVec<[u64; 1]>;
 
+/// The letters of the transitions that make a proposition true (`did`), by source state and
+/// position. Keyed with the quick hasher: the merging thread inserts one per such
+/// transition, and SipHash was most of that.
+pub(crate) type StepLetters = HashMap<(u32, u32), Letter, crate::semantics::compiled::Quick>;
+
 /// The letters of a search's states in the order the search stored them, each distinct
 /// letter kept once (few differ: a search has far more states than letters).
 #[derive(Default)]
@@ -53,7 +58,8 @@ pub(crate) struct Letters {
     pub(crate) ids: Vec<u32>,
     /// The distinct letters.
     pub(crate) table: Vec<Letter>,
-    index: HashMap<Letter, u32>,
+    /// Keyed with the quick hasher: one lookup per state stored, on the merging thread.
+    index: HashMap<Letter, u32, crate::semantics::compiled::Quick>,
 }
 
 impl Letters {
@@ -72,6 +78,16 @@ impl Letters {
 pub(crate) struct RunAtoms {
     evals: Vec<Eval>,
     words: usize,
+    /// The propositions about an agent's goals or the requests (the others are about
+    /// beliefs, or about transitions): a state's letter evaluates these on each state.
+    per_state: Vec<usize>,
+    /// The agents (one bit each, the 64th and later all bits) whose actions some `did`
+    /// proposition is about.
+    doers: u64,
+    /// Per agent and action: the `did` propositions it makes true. The merging thread
+    /// asks at every action a search takes, and unifying the action with every pattern
+    /// each time was a tenth of that thread.
+    did: std::sync::Mutex<HashMap<(u8, Term), Letter, crate::semantics::compiled::Quick>>,
 }
 
 enum Eval {
@@ -130,15 +146,45 @@ impl RunAtoms {
                 Atomic::Explained(a) => Eval::Explained(a.clone()),
             })
             .collect::<Vec<_>>();
+        let per_state = (evals.iter().enumerate())
+            .filter(|(_, e)| matches!(e, Eval::Goal(..) | Eval::Requested(_)))
+            .map(|(j, _)| j)
+            .collect();
+        let doers = evals.iter().fold(0u64, |m, e| match e {
+            // Agents past the 64th share every bit.
+            Eval::Did(k, _) => m | 1u64.checked_shl(u32::from(*k)).unwrap_or(u64::MAX),
+            _ => m,
+        });
         RunAtoms {
             words: evals.len().div_ceil(64).max(1),
             evals,
+            per_state,
+            doers,
+            did: Default::default(),
         }
     }
 
     /// The propositions about states that hold in `s`.
     pub(crate) fn state_letter<S: AgentState>(&self, s: &S) -> Letter {
-        self.letter(s.beliefs(), &[s], s.pending_requests())
+        self.state_letter_on(self.beliefs_letter(s.beliefs()), s)
+    }
+
+    /// The propositions about beliefs alone that hold on `beliefs`: a search keeps them
+    /// per belief base, which far fewer than its states have.
+    pub(crate) fn beliefs_letter(&self, beliefs: &crate::model::atoms::AtomSet) -> Letter {
+        let mut out: Letter = smallvec::smallvec![0; self.words];
+        for (j, e) in self.evals.iter().enumerate() {
+            if matches!(e, Eval::Beliefs(c) if c.eval(beliefs)) {
+                out[j / 64] |= 1 << (j % 64);
+            }
+        }
+        out
+    }
+
+    /// The propositions about states that hold in `s`, where `on_beliefs` are those about
+    /// its beliefs alone ([`RunAtoms::beliefs_letter`]).
+    pub(crate) fn state_letter_on<S: AgentState>(&self, on_beliefs: Letter, s: &S) -> Letter {
+        self.letter_on(on_beliefs, &[s], s.pending_requests())
     }
 
     /// The propositions about states that hold in a state of several agents: `everything`
@@ -151,20 +197,16 @@ impl RunAtoms {
     ) -> Letter {
         let minds: Vec<&crate::semantics::State> = agents.iter().collect();
         let pending = agents.first().map_or(0, |a| a.pending_requests());
-        self.letter(everything, &minds, pending)
+        self.letter_on(self.beliefs_letter(everything), &minds, pending)
     }
 
-    fn letter<S: AgentState>(
-        &self,
-        beliefs: &crate::model::atoms::AtomSet,
-        minds: &[&S],
-        pending: u64,
-    ) -> Letter {
-        let mut out: Letter = smallvec::smallvec![0; self.words];
+    /// `on_beliefs` ([`RunAtoms::beliefs_letter`]) with the propositions about the agents'
+    /// goals (`minds`) and the requests `pending`.
+    fn letter_on<S: AgentState>(&self, on_beliefs: Letter, minds: &[&S], pending: u64) -> Letter {
+        let mut out = on_beliefs;
         let mut goals: HashMap<(u8, bool), Vec<&Term>> = HashMap::new();
-        for (j, e) in self.evals.iter().enumerate() {
-            let holds = match e {
-                Eval::Beliefs(c) => c.eval(beliefs),
+        for &j in &self.per_state {
+            let holds = match &self.evals[j] {
                 Eval::Goal(k, g, events) => minds.get(*k as usize).is_some_and(|m| {
                     goals
                         .entry((*k, *events))
@@ -173,7 +215,8 @@ impl RunAtoms {
                         .any(|t| unifier(g, t).is_some())
                 }),
                 Eval::Requested(mask) => pending & mask != 0,
-                Eval::Did(..) | Eval::Explained(_) | Eval::Unread => false,
+                // Not in `per_state`.
+                Eval::Beliefs(_) | Eval::Did(..) | Eval::Explained(_) | Eval::Unread => false,
             };
             if holds {
                 out[j / 64] |= 1 << (j % 64);
@@ -227,11 +270,7 @@ impl RunAtoms {
         agent: u8,
         notes: impl Iterator<Item = &'n Note>,
     ) -> Option<Letter> {
-        if !self
-            .evals
-            .iter()
-            .any(|e| matches!(e, Eval::Did(k, _) if *k == agent))
-        {
+        if self.doers & 1u64.checked_shl(u32::from(agent)).unwrap_or(u64::MAX) == 0 {
             return None;
         }
         let mut out: Letter = smallvec::smallvec![0; self.words];
@@ -240,14 +279,35 @@ impl RunAtoms {
             let Note::Action { term, .. } = n else {
                 continue;
             };
-            for (j, e) in self.evals.iter().enumerate() {
-                if matches!(e, Eval::Did(k, a) if *k == agent && unifier(a, term).is_some()) {
-                    out[j / 64] |= 1 << (j % 64);
-                    any = true;
+            let mut or = |did: &Letter| {
+                for (o, d) in out.iter_mut().zip(did) {
+                    *o |= d;
                 }
+                any |= did.iter().any(|&d| d != 0);
+            };
+            // A poisoned lock: a panic on another thread, re-raised there; the map holds
+            // only complete entries.
+            let lock = || self.did.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some(did) = lock().get(&(agent, term.clone())) {
+                or(did);
+                continue;
             }
+            let did = self.did_by(agent, term);
+            or(&did);
+            lock().insert((agent, term.clone()), did);
         }
         any.then_some(out)
+    }
+
+    /// The `did` propositions that action `term` of agent `agent` makes true.
+    fn did_by(&self, agent: u8, term: &Term) -> Letter {
+        let mut did: Letter = smallvec::smallvec![0; self.words];
+        for (j, e) in self.evals.iter().enumerate() {
+            if matches!(e, Eval::Did(k, a) if *k == agent && unifier(a, term).is_some()) {
+                did[j / 64] |= 1 << (j % 64);
+            }
+        }
+        did
     }
 }
 
@@ -410,7 +470,7 @@ pub(crate) struct RunFacts<'a> {
     pub(crate) letters: &'a [u32],
     pub(crate) letter_table: &'a [Letter],
     /// Per transition (source, position) that did a `did` action: those propositions.
-    pub(crate) steps: &'a HashMap<(u32, u32), Letter>,
+    pub(crate) steps: &'a StepLetters,
     /// With several agents and weak fairness of agents: how many agents, the agents that
     /// can move from a state (one bit each), and the agent of a transition.
     pub(crate) fairness: Option<Fairness<'a>>,
@@ -1302,6 +1362,51 @@ mod tests {
     //! The product search against a brute-force check of every lasso up to a bound, on
     //! random small graphs and formulas, with LTL's own semantics as the judge.
     use super::*;
+
+    /// The `did` propositions a transition makes true are those its actions unify with,
+    /// as found afresh, whether or not the memo of actions met them before; another
+    /// agent's actions make none true.
+    #[test]
+    fn step_letters_are_the_did_patterns_unified_afresh() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+        let project = crate::model::project::load_project(&root).expect("the kitchen loads");
+        let sem = crate::semantics::Semantics::new(&project).expect("the semantics");
+        let (_, atomics) = crate::model::property::compile(&project).expect("the properties");
+        let atoms = RunAtoms::new(&atomics, &sem);
+        let afresh = |notes: &[Note]| {
+            let mut out: Letter = smallvec::smallvec![0; atoms.words];
+            for term in notes.iter().filter_map(|n| match n {
+                Note::Action { term, .. } => Some(term),
+                _ => None,
+            }) {
+                for (j, e) in atoms.evals.iter().enumerate() {
+                    if matches!(e, Eval::Did(0, a) if unifier(a, term).is_some()) {
+                        out[j / 64] |= 1 << (j % 64);
+                    }
+                }
+            }
+            out.iter().any(|&w| w != 0).then_some(out)
+        };
+        let mut states: Vec<crate::semantics::State> =
+            sem.initial_states().into_iter().take(20).collect();
+        let (mut k, mut did) = (0, 0);
+        while k < states.len() && states.len() < 3_000 {
+            for t in sem.successors(&states[k]) {
+                let want = afresh(&t.notes);
+                did += usize::from(want.is_some());
+                for _ in 0..2 {
+                    assert_eq!(atoms.step_letter(0, t.notes.iter()), want);
+                }
+                assert_eq!(atoms.step_letter(1, t.notes.iter()), None);
+                states.push(t.next);
+            }
+            k += 1;
+        }
+        assert!(
+            did > 10,
+            "{did} transitions did something the properties name"
+        );
+    }
 
     struct Toy {
         initial: u32,

@@ -43,8 +43,9 @@ impl Conditions<'_> {
         self.invariants.len() + self.props.len() + self.overlaps.len()
     }
 
-    /// Which invariants and properties hold on `beliefs`: bit `j` for condition `j`.
-    fn on_beliefs(&self, beliefs: &crate::model::atoms::AtomSet) -> Holds {
+    /// Which invariants and properties hold on `beliefs` (bit `j` for condition `j`), and
+    /// which propositions of the run properties about beliefs alone.
+    fn on_beliefs(&self, beliefs: &crate::model::atoms::AtomSet) -> (Holds, Letter) {
         let mut holds = Holds::from_elem(0u64, self.len().div_ceil(64).max(1));
         let conds = self.invariants.iter().chain(&self.props);
         for (j, c) in conds.enumerate() {
@@ -52,7 +53,10 @@ impl Conditions<'_> {
                 holds[j / 64] |= 1 << (j % 64);
             }
         }
-        holds
+        let letter = (self.runs)
+            .map(|r| r.beliefs_letter(beliefs))
+            .unwrap_or_default();
+        (holds, letter)
     }
 
     /// `applicable`: the plans applicable to the first event of a state; `memo`: the
@@ -63,7 +67,7 @@ impl Conditions<'_> {
         applicable: &impl Fn(&S) -> Plans,
         memo: &ByBeliefs,
     ) -> Summary {
-        let mut holds = match s.beliefs_key() {
+        let (mut holds, on_beliefs) = match s.beliefs_key() {
             Some(key) => memo.get(key, || self.on_beliefs(s.beliefs())),
             None => self.on_beliefs(s.beliefs()),
         };
@@ -81,7 +85,9 @@ impl Conditions<'_> {
             holds,
             pending: s.pending_requests(),
             idle: s.is_idle(),
-            letter: self.runs.map(|r| r.state_letter(s)).unwrap_or_default(),
+            letter: (self.runs)
+                .map(|r| r.state_letter_on(on_beliefs, s))
+                .unwrap_or_default(),
         }
     }
 }
@@ -93,12 +99,15 @@ type Holds = smallvec::SmallVec<[u64; 2]>;
 const SHARDS: usize = 64;
 
 /// The invariants' and properties' values per belief base ([`AgentState::beliefs_key`]),
-/// for one search: far fewer belief bases than states occur, and evaluating the
-/// conditions on every state took a third of the exploring threads' time.
+/// for one search, and the run properties' propositions about beliefs: far fewer belief
+/// bases than states occur. Evaluating the conditions on every state took a third of the
+/// exploring threads' time, and the propositions of the kitchen's four `ltl` properties
+/// another quarter of the search.
 struct ByBeliefs {
     /// Keyed by address with the quick hasher: SipHash on every state was a tenth of
     /// summarizing it.
-    shards: Vec<std::sync::Mutex<HashMap<usize, Holds, crate::semantics::compiled::Quick>>>,
+    shards:
+        Vec<std::sync::Mutex<HashMap<usize, (Holds, Letter), crate::semantics::compiled::Quick>>>,
 }
 
 impl ByBeliefs {
@@ -108,7 +117,7 @@ impl ByBeliefs {
         }
     }
 
-    fn get(&self, key: usize, compute: impl FnOnce() -> Holds) -> Holds {
+    fn get(&self, key: usize, compute: impl FnOnce() -> (Holds, Letter)) -> (Holds, Letter) {
         // Keys are addresses: their low bits are alignment, their middle bits vary.
         let shard = &self.shards[(key >> 6) % SHARDS];
         // A panicking search thread is re-raised by the explorer; the map it left is
@@ -145,7 +154,7 @@ pub(super) struct Facts {
     pub(super) letters: super::runs::Letters,
     /// Per transition (source, position) that did an action some `did` names: those
     /// propositions.
-    pub(super) steps: HashMap<(u32, u32), Letter>,
+    pub(super) steps: super::runs::StepLetters,
     /// Bit per condition: whether its first state where it holds (`[0]`) and where it
     /// fails (`[1]`) are still to be found. Most conditions hold in every state, so most
     /// states have nothing to record: looking at every condition of every state was a
@@ -250,7 +259,7 @@ where
         .and_then(|t| std::time::Duration::try_from_secs_f64(t).ok())
         .and_then(|d| std::time::Instant::now().checked_add(d));
     let unchecked = std::sync::atomic::AtomicBool::new(false);
-    let mut steps = HashMap::new();
+    let mut steps = super::runs::StepLetters::default();
     let by_beliefs = ByBeliefs::new();
     let graph = explore_with(
         model,

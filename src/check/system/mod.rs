@@ -28,7 +28,7 @@ use crate::model::project::Project;
 use crate::semantics::{Note, Step, System, SystemState};
 use crate::syntax::manifest::PropertyKind;
 use crate::syntax::{Diagnostic, Severity, Span};
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 mod deadlock;
 mod liveness;
@@ -349,7 +349,7 @@ pub fn verify_system(
     // Per state: its letter; per transition doing a `did` action: those propositions (when
     // there are run properties).
     let mut letters = super::runs::Letters::default();
-    let mut did: HashMap<(u32, u32), super::runs::Letter> = HashMap::new();
+    let mut did = super::runs::StepLetters::default();
     let graph: Graph<SystemState> = explore_with(
         &model,
         limits,
