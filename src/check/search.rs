@@ -95,6 +95,10 @@ impl Conditions<'_> {
 /// Bit `j`: condition `j` of [`Conditions`] holds.
 type Holds = smallvec::SmallVec<[u64; 2]>;
 
+/// One shard of [`ByBeliefs`]: per belief base (by address), the conditions' values and
+/// the propositions about beliefs.
+type OnBeliefs = HashMap<usize, (Holds, Letter), crate::semantics::compiled::Quick>;
+
 /// Shards of [`ByBeliefs`], each behind its own lock.
 const SHARDS: usize = 64;
 
@@ -106,8 +110,7 @@ const SHARDS: usize = 64;
 struct ByBeliefs {
     /// Keyed by address with the quick hasher: SipHash on every state was a tenth of
     /// summarizing it.
-    shards:
-        Vec<std::sync::Mutex<HashMap<usize, (Holds, Letter), crate::semantics::compiled::Quick>>>,
+    shards: Vec<std::sync::Mutex<OnBeliefs>>,
 }
 
 impl ByBeliefs {
