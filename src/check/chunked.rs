@@ -87,6 +87,18 @@ impl<T: Copy> Chunked<T> {
         self.chunks[k][at]
     }
 
+    /// Element `i` and the next one, if any (panics past the end): a list's start and
+    /// end, found once when they are in one chunk (all but one pair per chunk).
+    pub fn pair(&self, i: usize) -> (T, Option<T>) {
+        assert!(i < self.len, "index {i} past the end ({})", self.len);
+        let (k, at) = locate(i);
+        let chunk = &self.chunks[k];
+        match chunk.get(at + 1) {
+            Some(&next) => (chunk[at], Some(next)),
+            None => (chunk[at], (i + 1 < self.len).then(|| self.get(i + 1))),
+        }
+    }
+
     /// Appends `x`; a new chunk that cannot be allocated is [`OutOfMemory`].
     pub fn push(&mut self, x: T) -> Result<(), OutOfMemory> {
         let (k, _) = locate(self.len);
@@ -127,6 +139,11 @@ impl<T: Copy> Chunked<T> {
 mod tests {
     use super::*;
 
+    /// Where chunk `k + 1` starts.
+    fn locate_start(k: usize) -> usize {
+        (0..=k).map(capacity).sum()
+    }
+
     #[test]
     fn chunks_tile_the_indices_without_gaps() {
         let mut next = 0;
@@ -148,6 +165,13 @@ mod tests {
         assert_eq!(a.len(), n);
         assert!((0..n).step_by(997).all(|i| a.get(i) == i as u64 * 3));
         assert_eq!(a.get(n - 1), (n as u64 - 1) * 3);
+        // Pairs, across every chunk boundary and at the end.
+        let boundaries = (0..20).map(|k| locate_start(k) - 1).filter(|&i| i < n);
+        for i in (0..n).step_by(997).chain(boundaries) {
+            let next = (i + 1 < n).then(|| (i as u64 + 1) * 3);
+            assert_eq!(a.pair(i), (i as u64 * 3, next), "{i}");
+        }
+        assert_eq!(a.pair(n - 1), ((n as u64 - 1) * 3, None));
         assert_eq!(a.pop(), Some((n as u64 - 1) * 3));
         assert_eq!(a.iter().count(), n - 1);
         assert!(a.iter().enumerate().all(|(i, x)| x == i as u64 * 3));

@@ -151,12 +151,9 @@ impl Edges {
 
     /// State `i`'s list.
     fn list(&self, i: u32) -> &[u32] {
-        let a = self.start.get(i as usize);
+        let (a, next) = self.start.pair(i as usize);
         let chunk = &self.to[(a >> 32) as usize];
-        let z = match self.start.len() > i as usize + 1 {
-            true => self.start.get(i as usize + 1),
-            false => self.end(),
-        };
+        let z = next.unwrap_or_else(|| self.end());
         let z = if z >> 32 == a >> 32 {
             z as u32 as usize
         } else {
