@@ -836,6 +836,21 @@ mod tests {
     use crate::check::model::CycleNotes;
     use std::collections::{HashMap, VecDeque};
 
+    /// A library caller's verification frees what it is done with: only the command line
+    /// leaves it to the process's exit (`leave_memory_to_exit`, never called in tests).
+    #[test]
+    fn what_a_verification_is_done_with_is_freed_by_default() {
+        struct Counted<'a>(&'a std::cell::Cell<u32>);
+        impl Drop for Counted<'_> {
+            fn drop(&mut self) {
+                self.0.set(self.0.get() + 1);
+            }
+        }
+        let dropped = std::cell::Cell::new(0);
+        done_with((Counted(&dropped), Counted(&dropped)));
+        assert_eq!(dropped.get(), 2);
+    }
+
     /// The users' searches follow an exact graph only when the memory bound leaves room
     /// for them: always without a bound, never without room, and by the graph's size in
     /// between.
