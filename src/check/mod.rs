@@ -339,6 +339,7 @@ pub fn verify_with(
         goals: goal_failures,
         no_plan,
         applied,
+        ..
     } = failures;
     let c = Checker {
         project,

@@ -60,17 +60,24 @@ pub(crate) struct Letters {
     pub(crate) table: Vec<Letter>,
     /// Keyed with the quick hasher: one lookup per state stored, on the merging thread.
     index: HashMap<Letter, u32, crate::semantics::compiled::Quick>,
+    /// The last letter's index: a state stored after another often has its letter.
+    last: Option<u32>,
 }
 
 impl Letters {
     /// The letter of the next state stored.
     pub(crate) fn push(&mut self, letter: Letter) {
+        if let Some(id) = self.last.filter(|&id| self.table[id as usize] == letter) {
+            self.ids.push(id);
+            return;
+        }
         let next = self.table.len() as u32;
         let id = *self.index.entry(letter.clone()).or_insert(next);
         if id == next {
             self.table.push(letter);
         }
         self.ids.push(id);
+        self.last = Some(id);
     }
 }
 
@@ -1362,6 +1369,22 @@ mod tests {
     //! The product search against a brute-force check of every lasso up to a bound, on
     //! random small graphs and formulas, with LTL's own semantics as the judge.
     use super::*;
+
+    /// Each state's letter is found again through its index, whether it repeats the
+    /// last one stored, an earlier one, or is new.
+    #[test]
+    fn letters_keep_each_states_letter() {
+        let mut letters = Letters::default();
+        let pushed: Vec<u64> = vec![3, 3, 5, 3, 5, 5, 7, 0, 3, 7, 7];
+        for &w in &pushed {
+            letters.push(smallvec::smallvec![w]);
+        }
+        let got: Vec<u64> = (letters.ids.iter())
+            .map(|&id| letters.table[id as usize][0])
+            .collect();
+        assert_eq!(got, pushed);
+        assert_eq!(letters.table.len(), 4, "each distinct letter once");
+    }
 
     /// The `did` propositions a transition makes true are those its actions unify with,
     /// as found afresh, whether or not the memo of actions met them before; another
