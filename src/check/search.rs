@@ -126,8 +126,10 @@ impl ByBeliefs {
         // A panicking search thread is re-raised by the explorer; the map it left is
         // consistent (every insertion is one call).
         let lock = || shard.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(h) = lock().get(&key) {
-            return h.clone();
+        // Copied as slices: SmallVec's `clone` goes through a generic `extend`, which
+        // cost more than the lookup.
+        if let Some((holds, letter)) = lock().get(&key) {
+            return (Holds::from_slice(holds), Letter::from_slice(letter));
         }
         let h = compute();
         lock().insert(key, h.clone());

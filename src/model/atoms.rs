@@ -244,9 +244,20 @@ impl AtomTable {
 }
 
 /// A set of ground atoms: the environment (and mental-note) part of a state.
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+#[derive(PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
 pub struct AtomSet {
     words: SmallVec<[u64; 4]>,
+}
+
+impl Clone for AtomSet {
+    /// The words copied as a slice: SmallVec's own `clone` goes through a generic
+    /// `extend`, several times the cost of the copy, and searches clone belief sets at
+    /// every transition.
+    fn clone(&self) -> AtomSet {
+        AtomSet {
+            words: SmallVec::from_slice(&self.words),
+        }
+    }
 }
 
 impl AtomSet {

@@ -862,10 +862,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// `p` opened for a transition to change it.
     fn open<'c>(&'c self, p: &Packed<'c>) -> Open<'c> {
         let a = &p.agenda.value;
+        // Copied as slices: collecting through an iterator cost several times the copy.
         Open {
             beliefs: p.beliefs,
-            events: a.events().iter().copied().collect(),
-            intentions: a.intentions().iter().copied().collect(),
+            events: SmallVec::from_slice(a.events()),
+            intentions: SmallVec::from_slice(a.intentions()),
             pending: a.pending(),
             requested: p.requested,
         }
