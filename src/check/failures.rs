@@ -15,11 +15,10 @@ pub(super) struct Failures {
     pub(super) actions: BTreeMap<(u32, u32), Failure>,
     pub(super) goals: BTreeMap<String, Failure>,
     pub(super) no_plan: BTreeMap<(String, usize), Failure>,
-    /// The plans some run adopts.
-    pub(super) applied: std::collections::BTreeSet<u32>,
-    /// `applied` as bits: the merging thread meets a plan's adoption at most transitions,
-    /// and looking it up in the tree each time cost more than the rest of this record.
-    applied_bits: Vec<u64>,
+    /// The plans some run adopts, a bit per plan ([`super::search::bit`]): the merging
+    /// thread meets a plan's adoption at most transitions, and a tree's lookup each time
+    /// cost more than the rest of this record.
+    pub(super) applied: Vec<u64>,
 }
 
 impl Failures {
@@ -58,16 +57,7 @@ impl Failures {
                     );
                     self.no_plan.entry(key).or_insert_with(at);
                 }
-                Note::Plan { plan, .. } => {
-                    let (word, bit) = (*plan as usize / 64, 1u64 << (*plan % 64));
-                    if self.applied_bits.len() <= word {
-                        self.applied_bits.resize(word + 1, 0);
-                    }
-                    if self.applied_bits[word] & bit == 0 {
-                        self.applied_bits[word] |= bit;
-                        self.applied.insert(*plan);
-                    }
-                }
+                Note::Plan { plan, .. } => super::search::set_bit(&mut self.applied, *plan, true),
                 _ => {}
             }
         }

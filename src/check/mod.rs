@@ -339,7 +339,6 @@ pub fn verify_with(
         goals: goal_failures,
         no_plan,
         applied,
-        ..
     } = failures;
     let c = Checker {
         project,
@@ -352,7 +351,8 @@ pub fn verify_with(
         .iter()
         .map(|f| c.settle(f, &action_failures, &no_plan))
         .collect();
-    settle_undecided(&mut findings, project, &applied, &no_plan, graph.complete());
+    let adopted = |plan| search::bit(&applied, plan);
+    settle_undecided(&mut findings, project, adopted, &no_plan, graph.complete());
     c.safety(&mut findings, &props);
     settle_non_inductive(&mut findings, project, graph.complete());
     note_handled_gaps(&mut findings, project, &goal_failures);

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 pub(super) fn settle_undecided(
     findings: &mut [Finding],
     project: &Project,
-    applied: &std::collections::BTreeSet<u32>,
+    applied: impl Fn(u32) -> bool,
     no_plan: &BTreeMap<(String, usize), Failure>,
     complete: bool,
 ) {
@@ -37,17 +37,17 @@ pub(super) fn settle_undecided(
         };
         let plan = &project.plans.plans[i];
         match f.check.as_str() {
-            "dead-plan" if applied.contains(&(i as u32)) => {
+            "dead-plan" if applied(i as u32) => {
                 f.status = Status::Pass;
                 f.message = format!("{} is applicable: a run adopts it", plan.name());
             }
-            "shadowed-plan" if first && applied.contains(&(i as u32)) => {
+            "shadowed-plan" if first && applied(i as u32) => {
                 f.status = Status::Pass;
                 f.message = format!("no earlier plan hides {}: a run adopts it", plan.name());
             }
             // Decided for the model, not for every state: no run adopts the plan. True and
             // worth saying, but a warning (a bound such as `[requests] max` may be why).
-            "dead-plan" | "shadowed-plan" if complete && !applied.contains(&(i as u32)) => {
+            "dead-plan" | "shadowed-plan" if complete && !applied(i as u32) => {
                 f.status = Status::Fail;
                 f.severity = Severity::Warning;
                 f.message = format!(

@@ -687,7 +687,7 @@ pub fn verify_system(
         let same: Vec<usize> = (0..projects.len())
             .filter(|&j| projects[j].manifest.agent.plans.path == file)
             .collect();
-        let adopted = same
+        let adopted: std::collections::BTreeSet<u32> = same
             .iter()
             .flat_map(|&j| applied[j].iter().copied())
             .collect();
@@ -702,7 +702,8 @@ pub fn verify_system(
                 });
             }
         }
-        super::settle::settle_undecided(&mut all, p, &adopted, &gaps, graph.complete());
+        let adopted = |plan| adopted.contains(&plan);
+        super::settle::settle_undecided(&mut all, p, adopted, &gaps, graph.complete());
     }
     super::settle::settle_non_inductive(&mut all, project, graph.complete());
     // A warning of lint about one step or plan: reached by a run, an error with that run;
