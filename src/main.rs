@@ -155,7 +155,7 @@ struct Search {
     /// Write one replayable scenario file per counterexample into this folder.
     #[arg(long)]
     scenarios: Option<PathBuf>,
-    /// Worker threads for the search (default: every core). Results do not depend on it.
+    /// Threads that search (default: every core). Results do not depend on it.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
     /// Turn symmetry reduction off: over `[bounds] symmetry` types, and over instances of

@@ -2,9 +2,10 @@
 //! to any state is a shortest one.
 //!
 //! The search is level-synchronous: the states of one depth (the frontier) go in jobs to
-//! `threads` worker threads, which compute their summaries and successors, while this
+//! `threads - 1` worker threads, which compute their summaries and successors, while this
 //! thread merges the finished jobs' successors into the [`Store`] one by one, in frontier
-//! order and successor order, a few jobs behind the workers. The merge alone decides the
+//! order and successor order, a few jobs behind the workers, and expands a queued job
+//! itself whenever the next result is not ready. The merge alone decides the
 //! numbering, so the graph, the first transition seen for each check, and therefore every
 //! verdict and counterexample, are the same for any number of threads.
 //!
@@ -64,7 +65,7 @@ pub struct Limits {
 /// How to search, beyond the limits.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
-    /// Worker threads (at least 1).
+    /// Threads that expand states (at least 1), the merging one included.
     pub threads: usize,
     /// Keep every state's successors (liveness checks need them).
     pub keep_edges: bool,
@@ -285,18 +286,21 @@ type Done<S, T, L> = std::thread::Result<Expansion<S, T, L>>;
 type Job<S> = (u64, Batch<S>, bool);
 
 /// Expands jobs on worker threads; results are put back in submission order.
-struct Workers<S, T, L, F> {
+struct Workers<'q, S, T, L, F> {
     threads: usize,
-    /// Expands a job in this thread: small jobs are not worth a hand-over.
+    /// Expands a job in this thread: small jobs are not worth a hand-over, and a job still
+    /// queued when the oldest result is not ready is expanded here rather than waited for.
     local: F,
     jobs: Option<std::sync::mpsc::Sender<Job<S>>>,
+    /// The workers' end of `jobs`, from which this thread takes a job while it waits.
+    queue: &'q std::sync::Mutex<std::sync::mpsc::Receiver<Job<S>>>,
     done: std::sync::mpsc::Receiver<(u64, Done<S, T, L>)>,
     submitted: u64,
     taken: u64,
     early: std::collections::BTreeMap<u64, Done<S, T, L>>,
 }
 
-impl<S, T, L, F> Expander<S, T, L> for Workers<S, T, L, F>
+impl<S, T, L, F> Expander<S, T, L> for Workers<'_, S, T, L, F>
 where
     F: FnMut(Batch<S>, bool) -> Expansion<S, T, L>,
 {
@@ -325,6 +329,19 @@ where
         let result = loop {
             if let Some(r) = self.early.remove(&self.taken) {
                 break r;
+            }
+            if let Ok((seq, r)) = self.done.try_recv() {
+                self.early.insert(seq, r);
+                continue;
+            }
+            // Waiting idles a core (this thread merges while `threads - 1` workers expand):
+            // a job that no worker has taken yet is expanded here instead. A worker that
+            // holds the lock is taking one itself.
+            let queued = (self.queue.try_lock().ok()).and_then(|q| q.try_recv().ok());
+            if let Some((seq, states, expand)) = queued {
+                let r = (self.local)(states, expand);
+                self.early.insert(seq, Ok(r));
+                continue;
             }
             match self.done.recv() {
                 Ok((seq, r)) => {
@@ -363,10 +380,11 @@ pub fn explore<M: Model>(
     )
 }
 
-/// Explores a model with `opts.threads` worker threads expanding states while this thread
-/// merges their successors into the store. `summarize` runs on every stored state (in a
-/// worker thread), with its successors when it was expanded; `on_state` then receives its
-/// summary, in state number order;
+/// Explores a model with `opts.threads` threads expanding states, this one among them: it
+/// merges their successors into the store, and expands while no result is ready (two
+/// workers and a merging thread on two cores left a fifth of them idle at 5 cups).
+/// `summarize` runs on every stored state (in an expanding thread), with its successors
+/// when it was expanded; `on_state` then receives its summary, in state number order;
 /// `on_transition` sees every transition with the fingerprint of its target, in a fixed
 /// order.
 pub fn explore_with<M, T>(
@@ -405,7 +423,8 @@ where
     let queue = std::sync::Mutex::new(queue);
     let (results, done) = std::sync::mpsc::channel();
     std::thread::scope(|scope| {
-        for _ in 0..threads {
+        // This thread expands too while it waits for a result (`Workers::take`).
+        for _ in 0..threads - 1 {
             let (queue, results, summarize) = (&queue, results.clone(), &summarize);
             scope.spawn(move || loop {
                 let job = queue.lock().unwrap_or_else(|e| e.into_inner()).recv();
@@ -436,6 +455,7 @@ where
                 (states, out)
             },
             jobs: Some(jobs),
+            queue: &queue,
             done,
             submitted: 0,
             taken: 0,
@@ -1029,6 +1049,25 @@ mod tests {
         }
     }
 
+    /// A binary tree over `0..n`, with an edge across: levels wide enough for many jobs.
+    struct Tree(u32);
+
+    impl Model for Tree {
+        type State = u32;
+        type Label = u32;
+        fn init_states(&self) -> Box<dyn Iterator<Item = u32> + '_> {
+            Box::new(std::iter::once(0))
+        }
+        fn next_states(&self, s: &u32) -> Vec<(u32, u32)> {
+            let n = u64::from(self.0);
+            [2 * u64::from(*s) + 1, 2 * u64::from(*s) + 2, u64::from(*s) * 7 + 3]
+                .into_iter()
+                .enumerate()
+                .map(|(k, t)| (k as u32, (t % n) as u32))
+                .collect()
+        }
+    }
+
     /// A search with no checks.
     fn bare<M>(m: &M, limits: Limits, opts: Options) -> Graph<M::State>
     where
@@ -1153,7 +1192,16 @@ mod tests {
 
     #[test]
     fn threads_do_not_change_the_graph() {
-        let m = Counter(50_000);
+        threads_do_not_change(&Counter(50_000));
+        // Levels of thousands of states: jobs go to workers, and the merging thread
+        // expands those still queued when it waits.
+        threads_do_not_change(&Tree(50_000));
+    }
+
+    fn threads_do_not_change<M: Model<State = u32> + Sync>(m: &M)
+    where
+        M::Label: Send,
+    {
         let run = |threads| {
             let opts = Options {
                 threads,
@@ -1161,10 +1209,10 @@ mod tests {
             };
             let mut seen = Vec::new();
             let g = explore_with(
-                &m,
+                m,
                 unbounded(),
                 &opts,
-                |s, succ: Option<&Successors<Counter>>| (*s, succ.map(|v| v.len())),
+                |s, succ: Option<&Successors<M>>| (*s, succ.map(|v| v.len())),
                 |i, s| seen.push((i, s)),
                 |_, _, _, _| {},
                 |_, _, _| {},
@@ -1175,8 +1223,9 @@ mod tests {
         };
         let one = run(1);
         assert_eq!(one.0.len(), 50_000);
-        assert_eq!(one, run(2));
-        assert_eq!(one, run(3));
+        for threads in 2..=4 {
+            assert_eq!(one, run(threads), "threads {threads}");
+        }
     }
 
     #[test]
