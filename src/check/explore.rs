@@ -105,6 +105,10 @@ struct Edges {
     to: Vec<Vec<u32>>,
     /// Bit `i`: state `i` was expanded completely.
     expanded: Vec<u64>,
+    /// Bit `i`: some edge enters state `i` from a state numbered no lower (recorded as the
+    /// merge meets it, so that the liveness checks begin from these rather than find them
+    /// in a pass over every edge: [`Graph::entered_back`]).
+    back: Vec<u64>,
 }
 
 /// The largest chunk of [`Edges`] (4 MiB), unless one state has more successors.
@@ -136,11 +140,19 @@ impl Edges {
         Ok(())
     }
 
-    /// Appends an edge to the last chunk, which has room ([`Edges::room`]).
-    fn push(&mut self, target: u32) {
+    /// Appends an edge from `source` to `target` to the last chunk, which has room
+    /// ([`Edges::room`]).
+    fn push(&mut self, source: u32, target: u32) {
         let c = self.to.last_mut().expect("room was made");
         debug_assert!(c.len() < c.capacity());
         c.push(target);
+        if target <= source {
+            let w = target as usize / 64;
+            if w >= self.back.len() {
+                self.back.resize(w + 1, 0);
+            }
+            self.back[w] |= 1 << (target % 64);
+        }
     }
 
     /// Removes the edges from `at` (a position [`Edges::end`] gave) on, in the last chunk.
@@ -166,7 +178,7 @@ impl Edges {
     fn bytes(&self) -> usize {
         self.start.bytes()
             + self.to.iter().map(Vec::capacity).sum::<usize>() * 4
-            + self.expanded.capacity() * 8
+            + (self.expanded.capacity() + self.back.capacity()) * 8
     }
 }
 
@@ -813,7 +825,7 @@ fn search<M: Model, T>(
                         },
                     };
                     if let Some(e) = &mut g.edges {
-                        e.push(target);
+                        e.push(*src, target);
                     }
                 }
                 // A state some of whose successors were cut off counts as not expanded: it
@@ -912,6 +924,14 @@ impl<S> Graph<S> {
             return None;
         }
         Some(e.list(i))
+    }
+
+    /// The states some kept edge enters from a state numbered no lower (itself included),
+    /// as a bit set (shorter than the states when the last ones are not among them);
+    /// `None` when edges were not kept. Every cycle has such an edge. An edge dropped
+    /// since (a state cut off by a bound) may have left its target in the set.
+    pub fn entered_back(&self) -> Option<&[u64]> {
+        self.edges.as_ref().map(|e| &e.back[..])
     }
 
     /// The shortest path from an initial state to `target`: state indices, initial first.
@@ -1060,11 +1080,15 @@ mod tests {
         }
         fn next_states(&self, s: &u32) -> Vec<(u32, u32)> {
             let n = u64::from(self.0);
-            [2 * u64::from(*s) + 1, 2 * u64::from(*s) + 2, u64::from(*s) * 7 + 3]
-                .into_iter()
-                .enumerate()
-                .map(|(k, t)| (k as u32, (t % n) as u32))
-                .collect()
+            [
+                2 * u64::from(*s) + 1,
+                2 * u64::from(*s) + 2,
+                u64::from(*s) * 7 + 3,
+            ]
+            .into_iter()
+            .enumerate()
+            .map(|(k, t)| (k as u32, (t % n) as u32))
+            .collect()
         }
     }
 
@@ -1188,6 +1212,18 @@ mod tests {
                 .collect();
             assert_eq!(g.successors(i), Some(&want[..]), "state {s}");
         }
+        // The states entered backwards are those of the edges to a state numbered no
+        // higher than their source.
+        let mut entered = vec![0u64; g.len().div_ceil(64)];
+        for i in 0..g.len() as u32 {
+            for &w in g.successors(i).into_iter().flatten().filter(|&&w| w <= i) {
+                entered[w as usize / 64] |= 1 << (w % 64);
+            }
+        }
+        let recorded = g.entered_back().expect("edges were kept");
+        assert!(entered.iter().any(|&w| w != 0));
+        assert_eq!(recorded, &entered[..recorded.len()]);
+        assert!(entered[recorded.len()..].iter().all(|&w| w == 0));
     }
 
     #[test]

@@ -155,7 +155,7 @@ impl Checker<'_> {
     /// contain a cycle; each sorted, components in order of their first state.
     fn cyclic_components(&self, keep: impl Fn(u32) -> bool) -> Vec<Vec<u32>> {
         let succ = |i: u32| -> &[u32] { self.graph.successors(i).unwrap_or(&[]) };
-        cyclic_components(self.graph.len(), &succ, keep)
+        cyclic_components(self.graph.len(), &succ, self.graph.entered_back(), keep)
     }
 
     /// The shallowest state of a loop, and a cycle through it (state indices, ending back at
@@ -204,13 +204,22 @@ impl Checker<'_> {
 /// Tarjan's search gives every state it visits two numbers; on graphs of millions of
 /// states, most often without a cycle, that was most of the checks after the search. So it
 /// runs only on the states [`cycle_candidates`] keeps, narrowed until they stop shrinking,
-/// and numbers them among themselves.
+/// and numbers them among themselves. `entered`, when known, holds every state that an
+/// edge from a state numbered no lower enters ([`Graph::entered_back`]): the first pass
+/// then begins from them ([`seeded_candidates`]).
+///
+/// [`Graph::entered_back`]: super::explore::Graph::entered_back
 fn cyclic_components<'g>(
     n: usize,
     succ: &impl Fn(u32) -> &'g [u32],
+    entered: Option<&[u64]>,
     keep: impl Fn(u32) -> bool,
 ) -> Vec<Vec<u32>> {
-    match on_cycles(n, succ, true) {
+    let first = match entered {
+        Some(entered) => seeded_candidates(n, succ, entered),
+        None => cycle_candidates(succ, &all_of(n), true),
+    };
+    match first.and_then(|c| narrowed(succ, c, n, true)) {
         Some(within) => tarjan(succ, &within, keep),
         None => Vec::new(),
     }
@@ -225,8 +234,18 @@ pub(super) fn on_cycles<'g>(
     succ: &impl Fn(u32) -> &'g [u32],
     self_loops: bool,
 ) -> Option<Vec<u64>> {
-    let mut within = all_of(n);
-    let mut count = n;
+    narrowed(succ, all_of(n), n, self_loops)
+}
+
+/// `within` (a bit set of every state on a cycle, out of `count` states before its pass)
+/// narrowed by [`cycle_candidates`] until a pass removes little; `None` when a pass finds
+/// no cycle.
+fn narrowed<'g>(
+    succ: &impl Fn(u32) -> &'g [u32],
+    mut within: Vec<u64>,
+    mut count: usize,
+    self_loops: bool,
+) -> Option<Vec<u64>> {
     loop {
         let c = cycle_candidates(succ, &within, self_loops)?;
         let left: usize = c.iter().map(|w| w.count_ones() as usize).sum();
@@ -299,6 +318,46 @@ fn cycle_candidates<'g>(
         *f &= r;
     }
     Some(from)
+}
+
+/// [`cycle_candidates`] of every state of a graph of `n` states, self-loops counted, when
+/// `entered` already holds the targets of the backward edges (and perhaps other states):
+/// the states reached from them first, then among those the states that reach a backward
+/// edge's source. Every state of a cycle is in both, and the first pass of the 5-cup
+/// kitchen then looks at 7.6 M lists instead of 13.5 M. `None` when there is no cycle.
+fn seeded_candidates<'g>(
+    n: usize,
+    succ: &impl Fn(u32) -> &'g [u32],
+    entered: &[u64],
+) -> Option<Vec<u64>> {
+    let set = |v: &mut [u64], i: u32| v[i as usize / 64] |= 1 << (i % 64);
+    let mut from = all_of(n);
+    for (f, e) in from
+        .iter_mut()
+        .zip(entered.iter().chain(std::iter::repeat(&0)))
+    {
+        *f &= e;
+    }
+    for i in 0..n as u32 {
+        if bit(&from, i) {
+            for &w in succ(i) {
+                set(&mut from, w);
+            }
+        }
+    }
+    let mut reaches = vec![0u64; from.len()];
+    let mut any = false;
+    for i in members(&from).rev() {
+        let mut r = false;
+        for &w in succ(i).iter().filter(|&&w| bit(&from, w)) {
+            r |= w <= i || bit(&reaches, w);
+        }
+        if r {
+            any = true;
+            set(&mut reaches, i);
+        }
+    }
+    any.then_some(reaches)
 }
 
 /// The members of a bit set, in increasing order (reversible).
@@ -450,8 +509,23 @@ mod tests {
             let keep = |i: u32| round % 2 == 0 || mask >> (i % 20) & 1 == 1;
             let every = all_of(n);
             let all = tarjan(&succ, &every, keep);
-            let reduced = cyclic_components(n, &succ, keep);
+            let reduced = cyclic_components(n, &succ, None, keep);
             assert_eq!(reduced, all, "{lists:?}");
+            // Beginning from the states edges enter backwards, as the search records them
+            // (and a few more, as edges dropped since may leave): the same components.
+            let mut entered = vec![0u64; n.div_ceil(64)];
+            for (i, list) in lists.iter().enumerate() {
+                for &w in list.iter().filter(|&&w| w as usize <= i || next(50) == 0) {
+                    entered[w as usize / 64] |= 1 << (w % 64);
+                }
+            }
+            let seeded = cyclic_components(n, &succ, Some(&entered), keep);
+            assert_eq!(seeded, all, "{lists:?}");
+            if let Some(first) = seeded_candidates(n, &succ, &entered) {
+                assert!(all.iter().flatten().all(|&i| bit(&first, i)), "{lists:?}");
+            } else {
+                assert!(tarjan(&succ, &every, |_| true).is_empty(), "{lists:?}");
+            }
             // Without self-loops, the set still holds every component of several states.
             let several = on_cycles(n, &succ, false);
             for comp in tarjan(&succ, &every, |_| true) {
