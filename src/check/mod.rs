@@ -347,16 +347,7 @@ pub fn verify_with(
         facts: &facts,
         conditions: &conditions,
     };
-    let mut findings: Vec<Finding> = lint
-        .iter()
-        .map(|f| c.settle(f, &action_failures, &no_plan))
-        .collect();
-    let adopted = |plan| search::bit(&applied, plan);
-    settle_undecided(&mut findings, project, adopted, &no_plan, graph.complete());
-    c.safety(&mut findings, &props);
-    settle_non_inductive(&mut findings, project, graph.complete());
-    note_handled_gaps(&mut findings, project, &goal_failures);
-    c.failures(&mut findings, action_failures, goal_failures);
+    let mut findings: Vec<Finding> = Vec::new();
     let mut run_phases = Vec::new();
     let mut caveat = not_equivariant;
     let mut found = Vec::new();
@@ -365,13 +356,24 @@ pub fn verify_with(
     // the products run beside those searches, on a thread of their own. Findings are
     // merged by property number, so the order they come in does not matter.
     // The liveness checks (a pass or more over every edge of the agent's graph) also run
-    // beside the searches that follow, instead of before them.
+    // beside the searches that follow, instead of before them, and beside settling the
+    // lint findings.
     let (live, run_and_user_findings) = std::thread::scope(|scope| {
         let live = scope.spawn(|| {
             let mut out = Vec::new();
             c.liveness(&mut out, &props);
             out
         });
+        findings = lint
+            .iter()
+            .map(|f| c.settle(f, &action_failures, &no_plan))
+            .collect();
+        let adopted = |plan| search::bit(&applied, plan);
+        settle_undecided(&mut findings, project, adopted, &no_plan, graph.complete());
+        c.safety(&mut findings, &props);
+        settle_non_inductive(&mut findings, project, graph.complete());
+        note_handled_gaps(&mut findings, project, &goal_failures);
+        c.failures(&mut findings, action_failures, goal_failures);
         let products = on_agent_graph.then(|| {
             scope.spawn(|| {
                 let t = std::time::Instant::now();
