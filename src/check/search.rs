@@ -111,23 +111,65 @@ struct ByBeliefs {
     /// Keyed by address with the quick hasher: SipHash on every state was a tenth of
     /// summarizing it.
     shards: Vec<std::sync::Mutex<OnBeliefs>>,
+    /// Tells this memo's entries from another's in the threads' [`RECENT_BELIEFS`].
+    serial: u64,
+}
+
+/// An entry of a [`ByBeliefs`] (by serial) a thread keeps: the key and its value.
+type Recent = (u64, usize, (Holds, Letter));
+
+/// How many entries of a [`ByBeliefs`] each thread keeps at hand.
+const RECENT: usize = 4;
+
+thread_local! {
+    /// The entries of a [`ByBeliefs`] this thread read last (by serial and key), newest
+    /// first: a job's states are mostly successors of a few states, and share their belief
+    /// bases. The last four answered 84% of the reads of the 5-cup search (236 k bases),
+    /// without the shard's lock and the probe's cache miss, a third of summarizing a state.
+    static RECENT_BELIEFS: std::cell::RefCell<Vec<Recent>> =
+        const { std::cell::RefCell::new(Vec::new()) };
 }
 
 impl ByBeliefs {
     fn new() -> ByBeliefs {
+        static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         ByBeliefs {
             shards: (0..SHARDS).map(|_| Default::default()).collect(),
+            serial: SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         }
     }
 
     fn get(&self, key: usize, compute: impl FnOnce() -> (Holds, Letter)) -> (Holds, Letter) {
+        let copy = |(holds, letter): &(Holds, Letter)| {
+            // Copied as slices: SmallVec's `clone` goes through a generic `extend`, which
+            // cost more than the lookup.
+            (Holds::from_slice(holds), Letter::from_slice(letter))
+        };
+        let hit = RECENT_BELIEFS.with_borrow(|r| {
+            (r.iter())
+                .find(|e| (e.0, e.1) == (self.serial, key))
+                .map(|e| copy(&e.2))
+        });
+        if let Some(h) = hit {
+            return h;
+        }
+        let h = self.shared(key, compute);
+        RECENT_BELIEFS.with_borrow_mut(|r| {
+            if r.len() == RECENT {
+                r.pop();
+            }
+            r.insert(0, (self.serial, key, copy(&h)));
+        });
+        h
+    }
+
+    /// [`ByBeliefs::get`] from the shared map.
+    fn shared(&self, key: usize, compute: impl FnOnce() -> (Holds, Letter)) -> (Holds, Letter) {
         // Keys are addresses: their low bits are alignment, their middle bits vary.
         let shard = &self.shards[(key >> 6) % SHARDS];
         // A panicking search thread is re-raised by the explorer; the map it left is
         // consistent (every insertion is one call).
         let lock = || shard.lock().unwrap_or_else(|e| e.into_inner());
-        // Copied as slices: SmallVec's `clone` goes through a generic `extend`, which
-        // cost more than the lookup.
         if let Some((holds, letter)) = lock().get(&key) {
             return (Holds::from_slice(holds), Letter::from_slice(letter));
         }
@@ -312,4 +354,34 @@ where
     facts.steps = steps;
     let unchecked = unchecked.into_inner() && graph.complete();
     (graph.cast(), not_equivariant, unchecked)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn beliefs_read_recently_are_the_same_memos_and_keys() {
+        // Two searches' memos with the same keys and different values, read in turns on
+        // one thread, over more keys than a thread keeps at hand.
+        let (a, b) = (ByBeliefs::new(), ByBeliefs::new());
+        let value = |memo: u64, key: usize| {
+            let holds = Holds::from_slice(&[memo, key as u64]);
+            (holds, Letter::from_slice(&[key as u64 * 3 + memo]))
+        };
+        let computed = std::cell::Cell::new(0);
+        for round in 0..3 {
+            for key in (0..3 * RECENT).chain((0..3 * RECENT).rev()) {
+                for (memo, m) in [(1, &a), (2, &b)] {
+                    let got = m.get(key, || {
+                        computed.set(computed.get() + 1);
+                        value(memo, key)
+                    });
+                    assert_eq!(got, value(memo, key), "round {round}, key {key}");
+                }
+            }
+        }
+        // Each value computed once, whatever the thread kept.
+        assert_eq!(computed.get(), 2 * 3 * RECENT);
+    }
 }
