@@ -800,19 +800,19 @@ fn search<M: Model, T>(
                     }
                     on_transition(*src, k as u32, &label, fp);
                     g.transitions += 1;
-                    let target = match g.store.find(fp) {
-                        Some(i) => i,
-                        None if stopped => {
+                    let target = match g.store.lookup(fp) {
+                        Ok(i) => i,
+                        Err(_) if stopped => {
                             cut = true;
                             continue;
                         }
-                        None if g.store.len() as u64 >= limits.max_states => {
+                        Err(_) if g.store.len() as u64 >= limits.max_states => {
                             g.bound = Some(Bound::States);
                             cut = true;
                             continue;
                         }
-                        None => match g.store.insert(fp, Some(*src)) {
-                            Ok((i, _)) => {
+                        Err(vacant) => match g.store.insert_vacant(vacant, fp, Some(*src)) {
+                            Ok(i) => {
                                 push_chunked(&mut next, &mut pool, (i, t));
                                 i
                             }

@@ -21,7 +21,7 @@ type Slot = [u8; 5];
 
 const EMPTY: Slot = [0xff, 0xff, 0xff, 0xff, 0];
 
-fn slot(i: u32, fp: u64) -> Slot {
+fn slot_of(i: u32, fp: u64) -> Slot {
     let [a, b, c, d] = i.to_le_bytes();
     [a, b, c, d, tag(fp)]
 }
@@ -43,7 +43,15 @@ fn place(slots: &mut [Slot], i: u32, fp: u64) {
     while number(&slots[at]) != NONE {
         at = (at + 1) & mask;
     }
-    slots[at] = slot(i, fp);
+    slots[at] = slot_of(i, fp);
+}
+
+/// Where a state not found by [`Store::lookup`] goes: the empty slot the probe ended at
+/// (none in an empty table), and how many states were stored then.
+#[derive(Clone, Copy, Debug)]
+pub struct Vacant {
+    slot: Option<usize>,
+    len: usize,
 }
 
 /// The store could not grow: memory is exhausted.
@@ -103,8 +111,16 @@ impl Store {
 
     /// The number of the state with fingerprint `fp`, if stored.
     pub fn find(&self, fp: u64) -> Option<u32> {
+        self.lookup(fp).ok()
+    }
+
+    /// The number of the state with fingerprint `fp`, or where [`Store::insert_vacant`]
+    /// puts it: the merge looks a successor up, then stores it if it is new, and the
+    /// probe (most often through several slots: the table is up to 3/4 full) is made once.
+    pub fn lookup(&self, fp: u64) -> Result<u32, Vacant> {
+        let len = self.fps.len();
         if self.slots.is_empty() {
-            return None;
+            return Err(Vacant { slot: None, len });
         }
         let mask = self.slots.len() - 1;
         let mut at = fp as usize & mask;
@@ -113,13 +129,36 @@ impl Store {
             let s = &self.slots[at];
             let i = number(s);
             if i == NONE {
-                return None;
+                return Err(Vacant {
+                    slot: Some(at),
+                    len,
+                });
             }
             if s[4] == t && self.fps.get(i as usize) == fp {
-                return Some(i);
+                return Ok(i);
             }
             at = (at + 1) & mask;
         }
+    }
+
+    /// Stores `fp` (reached from `parent`), which [`Store::lookup`] did not find when the
+    /// store was as it is (else it is looked up again): its number.
+    pub fn insert_vacant(
+        &mut self,
+        vacant: Vacant,
+        fp: u64,
+        parent: Option<u32>,
+    ) -> Result<u32, OutOfMemory> {
+        let slot = vacant.slot.filter(|_| {
+            vacant.len == self.fps.len() && (self.fps.len() + 1) * 4 <= self.slots.len() * 3
+        });
+        let Some(at) = slot else {
+            return self.insert(fp, parent).map(|(i, _)| i);
+        };
+        debug_assert!(number(&self.slots[at]) == NONE && self.find(fp).is_none());
+        let i = self.push(fp, parent)?;
+        self.slots[at] = slot_of(i, fp);
+        Ok(i)
     }
 
     /// Asks the processor to bring the slot where a lookup of `fp` starts into its cache,
@@ -153,14 +192,23 @@ impl Store {
         if (self.fps.len() + 1) * 4 > self.slots.len() * 3 {
             self.grow()?;
         }
+        let i = self.push(fp, parent)?;
+        place(&mut self.slots, i, fp);
+        Ok((i, true))
+    }
+
+    /// Appends a state's fingerprint and parent (not yet in the table): its number.
+    fn push(&mut self, fp: u64, parent: Option<u32>) -> Result<u32, OutOfMemory> {
+        if self.fps.len() >= NONE as usize - 1 {
+            return Err(OutOfMemory);
+        }
         let i = self.fps.len() as u32;
         self.fps.push(fp)?;
         if let Err(e) = self.parent.push(parent.unwrap_or(NONE)) {
             self.fps.pop();
             return Err(e);
         }
-        place(&mut self.slots, i, fp);
-        Ok((i, true))
+        Ok(i)
     }
 
     fn grow(&mut self) -> Result<(), OutOfMemory> {
@@ -202,6 +250,41 @@ mod tests {
         assert_eq!(s.fingerprint(9), fp(9));
         // At most (8 + 4) * 5/4 + 5 / (3/8) bytes per state, plus the first allocations.
         assert!(s.bytes() <= 10_000 * 29 + 1024 * 17, "{} bytes", s.bytes());
+    }
+
+    #[test]
+    fn a_vacant_slot_stores_what_insert_would() {
+        // States looked up then stored where the probe ended, across the table's growths,
+        // and a stale vacancy (the store changed since): the same numbers, parents and
+        // lookups as inserting them.
+        let fp = |k: u64| k.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ 0xa5a5;
+        let (mut a, mut b) = (Store::new(), Store::new());
+        let mut stale = 0;
+        for k in 0..20_000u64 {
+            let parent = k.checked_sub(1).map(|p| p as u32);
+            let key = fp(k % 15_000);
+            match b.lookup(key) {
+                Ok(i) => assert_eq!(a.insert(key, parent), Ok((i, false)), "state {k}"),
+                Err(v) => {
+                    if k % 7 == 3 {
+                        // Another state is stored in between: the vacancy is stale.
+                        let other = fp(1 << 40 | k);
+                        a.insert(other, None).expect("memory");
+                        b.insert(other, None).expect("memory");
+                        stale += 1;
+                    }
+                    let i = b.insert_vacant(v, key, parent).expect("memory");
+                    assert_eq!(a.insert(key, parent), Ok((i, true)), "state {k}");
+                }
+            }
+        }
+        assert!(stale > 1000, "{stale}");
+        assert_eq!(a.len(), b.len());
+        for i in 0..a.len() as u32 {
+            assert_eq!(a.fingerprint(i), b.fingerprint(i));
+            assert_eq!(a.parent(i), b.parent(i));
+            assert_eq!(b.find(a.fingerprint(i)), Some(i));
+        }
     }
 
     #[test]
