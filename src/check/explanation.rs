@@ -783,7 +783,7 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
 
     fn fingerprint_numbered(&self, s: &Node<'g, 'c>, view: u64) -> Option<u64> {
         // Equal only if `view ^ mix(index + 1)` is: for another state, a chance of 2^-64
-        // with views hashed by SipHash, as a fingerprint of both would have.
+        // with views hashed by `part_hash`, as a fingerprint of both would have.
         Some(mix(view ^ mix(u64::from(s.index) + 1)))
     }
 }

@@ -9,8 +9,9 @@
 //! numbering, so the graph, the first transition seen for each check, and therefore every
 //! verdict and counterexample, are the same for any number of threads.
 //!
-//! States are identified by a 64-bit fingerprint ([`Model::fingerprint`]: std's SipHash
-//! with fixed keys, of the state or of its canonical member under symmetry). Two distinct
+//! States are identified by a 64-bit fingerprint ([`Model::fingerprint`]: foldhash's
+//! quality hash with a fixed seed, of the state or of its canonical member under symmetry,
+//! through [`part_hash`](crate::semantics::state::part_hash)). Two distinct
 //! states with one fingerprint would be merged; with `n` states the probability of that is
 //! about `n² / 2⁶⁵`, printed with the statistics. Only fingerprints, parent links and (when
 //! asked) edges are kept, never whole states beyond the frontier: [`Graph::state`] and
@@ -20,15 +21,13 @@ use super::chunked::Chunked;
 use super::model::Model;
 use super::store::{OutOfMemory, Store};
 use crate::semantics::State;
-use std::hash::{Hash, Hasher};
+use std::hash::Hash;
 use std::marker::PhantomData;
 use std::time::Instant;
 
 /// A state's fingerprint.
 pub fn fingerprint<S: Hash>(s: &S) -> u64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    s.hash(&mut h);
-    h.finish()
+    crate::semantics::state::part_hash(s)
 }
 
 /// Why exploration stopped before covering everything.
