@@ -325,6 +325,14 @@ unsafe fn refs<T>(parts: &[Held<T>]) -> &[&T] {
     unsafe { std::slice::from_raw_parts(parts.as_ptr().cast::<&T>(), parts.len()) }
 }
 
+/// References as parts held: copied as a slice (collecting through an iterator, SmallVec's
+/// generic `extend`, cost several times the copy on every transition).
+fn helds<'a, T>(parts: &'a [&'a T]) -> &'a [Held<T>] {
+    // SAFETY: same layout (`Held` is a transparent non-null pointer), and a reference is
+    // a valid non-null pointer.
+    unsafe { std::slice::from_raw_parts(parts.as_ptr().cast::<Held<T>>(), parts.len()) }
+}
+
 // SAFETY (every method): an agenda's parts are in the tables of the [`Compiled`] whose table
 // holds the agenda, so they live at least as long as it.
 impl Agenda {
@@ -874,11 +882,11 @@ impl<'s, 'p> Compiled<'s, 'p> {
 
     /// `o` packed again: its agenda interned.
     fn close<'c>(&'c self, o: Open<'c>) -> Packed<'c> {
-        let agenda = self.agenda(
-            o.events.iter().copied(),
-            o.intentions.iter().copied(),
-            o.pending,
-        );
+        let agenda = self.agenda_of(Agenda {
+            events: SmallVec::from_slice(helds(&o.events)),
+            intentions: SmallVec::from_slice(helds(&o.intentions)),
+            pending: o.pending.map(Held::new),
+        });
         Packed {
             beliefs: o.beliefs,
             // SAFETY: the agenda's part is in this system's tables.
@@ -894,11 +902,15 @@ impl<'s, 'p> Compiled<'s, 'p> {
         intentions: impl Iterator<Item = &'c Part<Intention>>,
         pending: Option<&'c Part<Pending>>,
     ) -> Held<Part<Agenda>> {
-        let agenda = Agenda {
+        self.agenda_of(Agenda {
             events: events.map(Held::new).collect(),
             intentions: intentions.map(Held::new).collect(),
             pending: pending.map(Held::new),
-        };
+        })
+    }
+
+    /// `agenda` interned; its parts must be in this system's tables.
+    fn agenda_of(&self, agenda: Agenda) -> Held<Part<Agenda>> {
         self.agendas
             .intern_hashed(agenda.mixed(), agenda, |_| AtomSet::default())
     }
@@ -1351,8 +1363,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
             next.events.drain(..taken);
             // SAFETY: as above.
             unsafe {
-                next.events.extend(c.events.iter().map(|e| e.get(self)));
-                next.intentions.extend(c.intention.map(|i| i.get(self)));
+                next.events.extend_from_slice(refs(&c.events));
+                if let Some(i) = c.intention {
+                    next.intentions.push(i.get(self));
+                }
             }
             let mut notes = before.clone();
             notes.0.push(&c.notes[..]);
@@ -1378,8 +1392,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     self.compute_proc_act(pending)
                 })
                 .get(self);
-            p.events.extend(done.events.iter().map(|e| e.get(self)));
-            p.intentions.extend(done.back.map(|i| i.get(self)));
+            p.events.extend_from_slice(refs(&done.events));
+            if let Some(i) = done.back {
+                p.intentions.push(i.get(self));
+            }
             notes.0.push(&done.notes[..]);
         }
     }
@@ -1411,8 +1427,10 @@ impl<'s, 'p> Compiled<'s, 'p> {
                     .reorder_front(&mut order, &acted.front, &acted.removed, &acted.added);
                 p.beliefs = self.belief_set((next, order)).get(self);
             }
-            p.events.extend(acted.events.iter().map(|e| e.get(self)));
-            p.intentions.extend(acted.back.map(|i| i.get(self)));
+            p.events.extend_from_slice(refs(&acted.events));
+            if let Some(i) = acted.back {
+                p.intentions.push(i.get(self));
+            }
             if let Some(pending) = acted.pending {
                 p.pending = Some(pending.get(self));
             }
