@@ -62,6 +62,7 @@ fn locate(i: usize) -> (usize, usize) {
 
 impl<T> Chunked<T> {
     /// Element `i`, borrowed (panics past the end, as slices do).
+    #[inline]
     pub fn at(&self, i: usize) -> &T {
         assert!(i < self.len, "index {i} past the end ({})", self.len);
         let (k, at) = locate(i);
@@ -81,6 +82,7 @@ impl<T: Copy> Chunked<T> {
     }
 
     /// Element `i` (panics past the end, as slices do).
+    #[inline]
     pub fn get(&self, i: usize) -> T {
         assert!(i < self.len, "index {i} past the end ({})", self.len);
         let (k, at) = locate(i);
@@ -89,6 +91,7 @@ impl<T: Copy> Chunked<T> {
 
     /// Element `i` and the next one, if any (panics past the end): a list's start and
     /// end, found once when they are in one chunk (all but one pair per chunk).
+    #[inline]
     pub fn pair(&self, i: usize) -> (T, Option<T>) {
         assert!(i < self.len, "index {i} past the end ({})", self.len);
         let (k, at) = locate(i);
@@ -100,18 +103,29 @@ impl<T: Copy> Chunked<T> {
     }
 
     /// Appends `x`; a new chunk that cannot be allocated is [`OutOfMemory`].
+    // Inlined, with the new chunk out of line: the merge pushes to several arrays per
+    // state, and a call's prologue and epilogue were half of each push.
+    #[inline]
     pub fn push(&mut self, x: T) -> Result<(), OutOfMemory> {
         let (k, _) = locate(self.len);
         if k == self.chunks.len() {
-            let mut chunk = Vec::new();
-            chunk
-                .try_reserve_exact(capacity(k))
-                .map_err(|_| OutOfMemory)?;
-            self.chunks.try_reserve(1).map_err(|_| OutOfMemory)?;
-            self.chunks.push(chunk);
+            self.add_chunk(k)?;
         }
         self.chunks[k].push(x);
         self.len += 1;
+        Ok(())
+    }
+
+    /// Adds chunk `k` (the next one).
+    #[cold]
+    #[inline(never)]
+    fn add_chunk(&mut self, k: usize) -> Result<(), OutOfMemory> {
+        let mut chunk = Vec::new();
+        chunk
+            .try_reserve_exact(capacity(k))
+            .map_err(|_| OutOfMemory)?;
+        self.chunks.try_reserve(1).map_err(|_| OutOfMemory)?;
+        self.chunks.push(chunk);
         Ok(())
     }
 
