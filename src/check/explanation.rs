@@ -49,6 +49,7 @@
 use super::chunked::Chunked;
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
 use super::model::{CycleNotes, Model};
+use super::recent::{recently, Recently};
 use super::store::OutOfMemory;
 use super::symmetry::{Renaming, Symmetry};
 use super::trace::Builder;
@@ -546,24 +547,19 @@ type NotesShard<'c> = (HashMap<SmallVec<[usize; 4]>, u32, Quick>, Vec<Notes<'c>>
 /// How many numbers of notes each thread keeps at hand (a power of two).
 const RECENT_IDS: usize = 1 << 10;
 
-/// A number a thread gave last to notes of one key: the [`NoteIds`] (by serial), the
-/// key (notes of at most two phases) and the number.
-type RecentId = (u64, [usize; 4], u32);
-
 thread_local! {
     /// Numbering notes through the shards' locks and maps was most of what keeping the
     /// graph cost the agent's search (7% of it): each thread keeps the numbers it gave
-    /// last.
-    static NUMBERED: std::cell::RefCell<Vec<RecentId>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// last, by the notes' key (of at most two phases).
+    static NUMBERED: Recently<[usize; 4], u32> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 impl Default for NoteIds<'_> {
     fn default() -> Self {
-        static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         NoteIds {
             shards: Default::default(),
             full: Default::default(),
-            serial: SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            serial: super::recent::serial(),
         }
     }
 }
@@ -574,23 +570,13 @@ impl<'c> NoteIds<'c> {
         let Some(words) = notes.short_key() else {
             return self.numbered(notes.key(), notes);
         };
-        let slot = (mix(words[0] as u64 ^ mix(words[2] as u64)) as usize) & (RECENT_IDS - 1);
-        let hit = NUMBERED.with_borrow(|r| {
-            r.get(slot)
-                .filter(|e| e.0 == self.serial && e.1 == words)
-                .map(|e| e.2)
-        });
-        if let Some(id) = hit {
-            return id;
-        }
-        let id = self.numbered(notes.key(), notes);
-        NUMBERED.with_borrow_mut(|r| {
-            if r.is_empty() {
-                r.resize(RECENT_IDS, (0, [0; 4], 0));
-            }
-            r[slot] = (self.serial, words, id);
-        });
-        id
+        recently(
+            &NUMBERED,
+            RECENT_IDS,
+            (self.serial, words),
+            || self.numbered(notes.key(), notes),
+            |id| *id,
+        )
     }
 
     /// The number of `notes`, of key `key`, from the shards.
@@ -801,44 +787,13 @@ pub struct Explained<'a, W = Alone<'a>> {
 /// How many entries of a memo each thread keeps at hand ([`recently`]; a power of two).
 const READ_RECENTLY: usize = 1 << 14;
 
-/// Entries of a memo a thread read last: the [`Explained`] (by serial), the key, the entry.
-type ReadRecently<K, V> = std::cell::RefCell<Vec<(u64, K, Option<Arc<V>>)>>;
-
 thread_local! {
     /// [`Tables::seen`]'s entries for notes of one word ([`Runs::notes_key`]) on which no
     /// explanation is due, by view (address) and word. A user's search on a stored graph
     /// reads that memo at most transitions, and few of its entries at a time: 98.5% of
     /// the reads hit a table of 2^14 (5-cup kitchen), and the shared memo's lock, hashing
     /// and probe were a tenth of the search.
-    static SEEN_RECENTLY: ReadRecently<(usize, usize), Seen> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
-/// The entry of `key` in this thread's `cache` of the memo of search `serial`, or
-/// `find`'s, read by `read` without counting a reference to it (see [`memo_read`]).
-fn recently<K: Copy + PartialEq + Hash, V, R>(
-    cache: &'static std::thread::LocalKey<ReadRecently<K, V>>,
-    (serial, key): (u64, K),
-    find: impl FnOnce() -> Arc<V>,
-    read: impl Fn(&V) -> R,
-) -> R {
-    let slot = (mix(quick(&key) ^ serial) as usize) & (READ_RECENTLY - 1);
-    let hit = cache.with_borrow(|r| {
-        (r.get(slot))
-            .filter(|e| (e.0, e.1) == (serial, key))
-            .and_then(|e| e.2.as_deref().map(&read))
-    });
-    if let Some(r) = hit {
-        return r;
-    }
-    let v = find();
-    let r = read(&v);
-    cache.with_borrow_mut(|c| {
-        if c.is_empty() {
-            c.resize_with(READ_RECENTLY, || (0, key, None));
-        }
-        c[slot] = (serial, key, Some(v));
-    });
-    r
+    static SEEN_RECENTLY: Recently<(usize, usize), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// Tables are split in this many shards, each behind its own lock.
@@ -1233,10 +1188,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             ex,
             user,
             tables: Tables::default(),
-            serial: {
-                static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
-                SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
-            },
+            serial: super::recent::serial(),
         }
     }
 
@@ -1464,9 +1416,10 @@ impl<'a, W: Runs> Explained<'a, W> {
                 let seen = match key.as_slice() {
                     &[word] => recently(
                         &SEEN_RECENTLY,
+                        READ_RECENTLY,
                         (self.serial, (at, word)),
                         || memo(&self.tables.seen, first(), see),
-                        Seen::read_unless_due,
+                        |s| s.read_unless_due(),
                     ),
                     _ => memo_read(&self.tables.seen, first(), see, |s| s.read_unless_due()),
                 };
@@ -2660,43 +2613,6 @@ mod tests {
             let counted = (runs.recent.counts.load(Relaxed) >> 32) - (counts >> 32);
             assert_eq!(counted, 2 * sampled as u64);
         }
-    }
-
-    /// A thread's cache of memo entries gives an entry again only to the search (serial)
-    /// and key it was read for, and reads it without taking it from the memo again.
-    #[test]
-    fn memo_entries_read_recently_are_the_same_searchs_and_keys() {
-        use super::*;
-        thread_local! {
-            static CACHE: ReadRecently<(usize, usize), u32> = const { std::cell::RefCell::new(Vec::new()) };
-        }
-        let found = std::cell::Cell::new(0);
-        let read = |serial, key, value| {
-            recently(
-                &CACHE,
-                (serial, key),
-                || {
-                    found.set(found.get() + 1);
-                    Arc::new(value)
-                },
-                |v: &u32| *v,
-            )
-        };
-        assert_eq!(read(1, (8, 3), 10), 10);
-        assert_eq!(read(1, (8, 3), 99), 10);
-        assert_eq!(found.get(), 1);
-        // Another search, another key: each its own entry.
-        assert_eq!(read(2, (8, 3), 20), 20);
-        assert_eq!(read(1, (8, 4), 30), 30);
-        assert_eq!(found.get(), 3);
-        // Many keys: entries that share a slot replace each other, and none is mistaken
-        // for another.
-        for round in 0..2 {
-            for k in 0..3 * READ_RECENTLY {
-                assert_eq!(read(3, (k, 0), k as u32), k as u32, "round {round}");
-            }
-        }
-        assert!(found.get() > 3 * READ_RECENTLY);
     }
 
     /// `demand-exact`'s check that `N` grew by exactly the novel pair: every other change

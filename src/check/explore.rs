@@ -30,6 +30,23 @@ pub fn fingerprint<S: Hash>(s: &S) -> u64 {
     crate::semantics::state::part_hash(s)
 }
 
+/// Bit `i` of the bit set `v` (clear past its end).
+pub(super) fn bit(v: &[u64], i: u32) -> bool {
+    v.get(i as usize / 64)
+        .is_some_and(|w| w >> (i % 64) & 1 == 1)
+}
+
+/// Grows the bit set `v` to hold bit `i`, and sets that bit if `value`.
+pub(super) fn set_bit(v: &mut Vec<u64>, i: u32, value: bool) {
+    let w = i as usize / 64;
+    if v.len() <= w {
+        v.resize(w + 1, 0);
+    }
+    if value {
+        v[w] |= 1 << (i % 64);
+    }
+}
+
 /// Why exploration stopped before covering everything.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Bound {
@@ -146,11 +163,7 @@ impl Edges {
         debug_assert!(c.len() < c.capacity());
         c.push(target);
         if target <= source {
-            let w = target as usize / 64;
-            if w >= self.back.len() {
-                self.back.resize(w + 1, 0);
-            }
-            self.back[w] |= 1 << (target % 64);
+            set_bit(&mut self.back, target, true);
         }
     }
 
@@ -880,13 +893,7 @@ impl<S> Graph<S> {
             self.bound = Some(Bound::Memory);
             return;
         }
-        let (w, b) = (i as usize / 64, i % 64);
-        if e.expanded.len() <= w {
-            e.expanded.resize(w + 1, 0);
-        }
-        if complete {
-            e.expanded[w] |= 1 << b;
-        }
+        set_bit(&mut e.expanded, i, complete);
     }
 
     /// Number of states reached.
@@ -918,11 +925,7 @@ impl<S> Graph<S> {
     /// when it was not expanded completely (or edges were not kept).
     pub fn successors(&self, i: u32) -> Option<&[u32]> {
         let e = self.edges.as_ref()?;
-        let (w, b) = (i as usize / 64, i % 64);
-        if e.expanded.get(w).is_none_or(|x| x >> b & 1 == 0) {
-            return None;
-        }
-        Some(e.list(i))
+        bit(&e.expanded, i).then(|| e.list(i))
     }
 
     /// The states some kept edge enters from a state numbered no lower (itself included),
