@@ -46,7 +46,7 @@
 //! running the cycle again: a state of a user's search then costs less than a state of
 //! the agent's (`docs/benchmarks.md`).
 
-use super::chunked::Chunked;
+use super::chunked::{prefetch, Chunked};
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
 use super::model::{CycleNotes, Model};
 use super::recent::{recently, Recently};
@@ -153,6 +153,10 @@ pub trait Runs: Sync {
     fn intentions_key(&self, _s: &Self::State) -> Option<SmallVec<[usize; 8]>> {
         None
     }
+
+    /// Asks the processor to bring in what the successors of `s` will read
+    /// ([`Model::prefetch`]).
+    fn prefetch(&self, _s: &Self::State, _stage: usize) {}
 
     /// Without symmetry reduction, the fingerprint of `s` with a user's view whose hash is
     /// `view`, when the runs number their states: cheaper than hashing both.
@@ -753,6 +757,29 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
                 (0, StoredNotes { id, notes }, self.node(t))
             })
             .collect()
+    }
+
+    fn prefetch(&self, s: &Node<'g, 'c>, stage: usize) {
+        let (st, i) = (self.stored, s.index as usize);
+        match stage {
+            // The state itself was read when it was met, long before.
+            0 => {
+                self.graph.prefetch_successors(s.index, false);
+                st.starts.prefetch(i);
+                prefetch(s.state);
+            }
+            1 => {
+                self.graph.prefetch_successors(s.index, true);
+                st.notes.prefetch(st.starts.get(i) as usize);
+                prefetch(s.state.beliefs());
+                prefetch(s.state.agenda_key() as *const u8);
+            }
+            _ => {
+                for &t in self.graph.successors_unchecked(s.index) {
+                    st.states.prefetch(t as usize);
+                }
+            }
+        }
     }
 
     fn notes_key(&self, notes: &StoredNotes<'g, 'c>) -> Option<SmallVec<[usize; 4]>> {
@@ -2001,6 +2028,10 @@ impl<W: Runs> Model for Explained<'_, W> {
                 self.transition(s, agent, notes, next, sensed)
             })
             .collect()
+    }
+
+    fn prefetch(&self, s: &Self::State, stage: usize) {
+        self.runs.prefetch(&s.state, stage);
     }
 
     fn fingerprint(&self, s: &Self::State) -> u64 {

@@ -174,6 +174,19 @@ impl Edges {
         }
     }
 
+    /// Prefetches where state `i`'s list begins, or (`near`) the list itself.
+    fn prefetch(&self, i: u32, near: bool) {
+        if !near {
+            return self.start.prefetch(i as usize);
+        }
+        if (i as usize) < self.start.len() {
+            let a = self.start.get(i as usize);
+            if let Some(chunk) = self.to.get((a >> 32) as usize) {
+                super::chunked::prefetch(chunk.as_ptr().wrapping_add(a as u32 as usize));
+            }
+        }
+    }
+
     /// State `i`'s list.
     fn list(&self, i: u32) -> &[u32] {
         let (a, next) = self.start.pair(i as usize);
@@ -295,10 +308,7 @@ impl<M: Model, T, F: Fn(&M::State, Option<&Successors<M>>) -> T> Expander<M::Sta
 
     fn take(&mut self) -> Expansion<M::State, T, M::Label> {
         let (states, expand) = self.queue.pop_front().expect("a job was submitted");
-        let out = states
-            .iter()
-            .map(|(_, s)| expand_one(self.model, s, expand, &self.summarize))
-            .collect();
+        let out = expand_batch(self.model, &states, expand, &self.summarize);
         (states, out)
     }
 }
@@ -456,10 +466,7 @@ where
                     return;
                 };
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    let out = states
-                        .iter()
-                        .map(|(_, s)| expand_one(model, s, expand, summarize))
-                        .collect();
+                    let out = expand_batch(model, &states, expand, summarize);
                     (states, out)
                 }));
                 let failed = r.is_err();
@@ -472,10 +479,7 @@ where
         let mut workers = Workers {
             threads,
             local: |states: Batch<M::State>, expand| {
-                let out = states
-                    .iter()
-                    .map(|(_, s)| expand_one(model, s, expand, &summarize))
-                    .collect();
+                let out = expand_batch(model, &states, expand, &summarize);
                 (states, out)
             },
             jobs: Some(jobs),
@@ -498,6 +502,32 @@ where
         workers.jobs = None;
         g
     })
+}
+
+/// How many states ahead of the one it expands a search asks for the memory of each
+/// stage of [`Model::prefetch`]: far enough for a read from memory to arrive.
+const PREFETCH: [usize; 3] = [9, 6, 3];
+
+/// Expands the states of a batch in order ([`expand_one`]), each some after the model
+/// was asked to prefetch what it reads ([`Model::prefetch`]).
+fn expand_batch<M: Model, T>(
+    model: &M,
+    states: &Batch<M::State>,
+    expand: bool,
+    summarize: &impl Fn(&M::State, Option<&Successors<M>>) -> T,
+) -> Vec<Expanded<T, M::Label, M::State>> {
+    (0..states.len())
+        .map(|i| {
+            if expand {
+                for (stage, ahead) in PREFETCH.into_iter().enumerate() {
+                    if let Some((_, s)) = states.get(i + ahead) {
+                        model.prefetch(s, stage);
+                    }
+                }
+            }
+            expand_one(model, &states[i].1, expand, summarize)
+        })
+        .collect()
 }
 
 fn expand_one<M: Model, T>(
@@ -928,6 +958,23 @@ impl<S> Graph<S> {
         bit(&e.expanded, i).then(|| e.list(i))
     }
 
+    /// Prefetches where state `i`'s successors begin in the edges, or (`near`) the
+    /// successors themselves ([`Model::prefetch`]).
+    pub fn prefetch_successors(&self, i: u32, near: bool) {
+        if let Some(e) = &self.edges {
+            e.prefetch(i, near);
+        }
+    }
+
+    /// The successors of state `i` as [`Graph::successors`] gives them, without checking
+    /// that it was expanded: for prefetching only (any list, maybe empty, when it was not).
+    pub fn successors_unchecked(&self, i: u32) -> &[u32] {
+        match &self.edges {
+            Some(e) if (i as usize) < e.start.len() => e.list(i),
+            _ => &[],
+        }
+    }
+
     /// The states some kept edge enters from a state numbered no lower (itself included),
     /// as a bit set (shorter than the states when the last ones are not among them);
     /// `None` when edges were not kept. Every cycle has such an edge. An edge dropped
@@ -1213,6 +1260,14 @@ mod tests {
                 .map(|(_, t)| fp[&m.fingerprint(t)])
                 .collect();
             assert_eq!(g.successors(i), Some(&want[..]), "state {s}");
+            // What prefetching reads is the same list.
+            assert_eq!(g.successors_unchecked(i), &want[..], "state {s}");
+            g.prefetch_successors(i, false);
+            g.prefetch_successors(i, true);
+        }
+        for past in [g.len() as u32, u32::MAX] {
+            assert!(g.successors_unchecked(past).is_empty());
+            g.prefetch_successors(past, true);
         }
         // The states entered backwards are those of the edges to a state numbered no
         // higher than their source.

@@ -51,6 +51,12 @@ pub trait Model {
         None
     }
 
+    /// Asks the processor to bring in what expanding `s` will read, some states before
+    /// the search expands it: at `stage` 0 what the state itself tells the address of,
+    /// then at each next stage, closer to its turn, what the last one brought in points
+    /// to. A hint: it changes no result.
+    fn prefetch(&self, _s: &Self::State, _stage: usize) {}
+
     /// Partial-order reduction: the successors (a range of `successors`, the list
     /// [`Model::next_states`] gave for `s`) that are enough to follow from `s`, an ample
     /// set meeting conditions C0 to C2 of Clarke, Grumberg and Peled (nonempty; no
