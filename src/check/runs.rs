@@ -599,8 +599,10 @@ impl Nodes {
 #[derive(Default)]
 pub(crate) struct Scratch {
     nodes: Nodes,
-    /// Per node: the node it was first reached from, and by which transition.
-    parent: Vec<(u32, u32)>,
+    /// Per node: the node it was first reached from (`u32::MAX` for an initial one). The
+    /// transition is found again for the nodes of a counterexample ([`Product::via`]):
+    /// four bytes a node, of hundreds of millions at 6 cups.
+    parent: Vec<u32>,
     edges: Csr,
     /// Per graph state: the last node found of it, or `u32::MAX`. A dense index per
     /// (graph state, Büchi state, ended) took 8 bytes per Büchi state for every graph
@@ -685,6 +687,9 @@ impl<'r, G: RunGraph> Product<'r, G> {
             chain,
         } = scratch;
         let (nodes, parent) = (&mut *nodes, &mut *parent);
+        // The transitions of the product's edges are found again where a lasso reads them,
+        // but for fairness of agents, which reads them on every node.
+        let keep_via = self.graph.fair_agents() > 0;
         let states = self.graph.len() as usize;
         if head.len() == states {
             // Only what the last search set is reset.
@@ -700,30 +705,29 @@ impl<'r, G: RunGraph> Product<'r, G> {
         parent.clear();
         edges.clear();
         chain.clear();
-        let mut add =
-            |n: Node, from: (u32, u32), nodes: &mut Nodes, parent: &mut Vec<(u32, u32)>| {
-                let (i, q, ended) = n;
-                let key = q * 2 + u32::from(ended);
-                let mut at = head[i as usize];
-                while at != u32::MAX {
-                    if nodes.key(at) == key {
-                        return (at, false);
-                    }
-                    at = chain[at as usize];
+        let mut add = |n: Node, from: u32, nodes: &mut Nodes, parent: &mut Vec<u32>| {
+            let (i, q, ended) = n;
+            let key = q * 2 + u32::from(ended);
+            let mut at = head[i as usize];
+            while at != u32::MAX {
+                if nodes.key(at) == key {
+                    return (at, false);
                 }
-                let x = nodes.len() as u32;
-                chain.push(head[i as usize]);
-                head[i as usize] = x;
-                nodes.push(n);
-                parent.push(from);
-                (x, true)
-            };
+                at = chain[at as usize];
+            }
+            let x = nodes.len() as u32;
+            chain.push(head[i as usize]);
+            head[i as usize] = x;
+            nodes.push(n);
+            parent.push(from);
+            (x, true)
+        };
         let init = &self.buchi.states[self.buchi.initial as usize];
         for i in 0..self.graph.initial() {
             let letter = self.graph.state_letter(i);
             for (guard, q) in &init.edges {
                 if guard.matches(letter) {
-                    let (x, new) = add((i, *q, false), (u32::MAX, STAYS), nodes, parent);
+                    let (x, new) = add((i, *q, false), u32::MAX, nodes, parent);
                     if new && self.universal[*q as usize] {
                         self.reached.set(nodes.len());
                         return Ok(Some(self.prefix(nodes, parent, x)));
@@ -741,10 +745,12 @@ impl<'r, G: RunGraph> Product<'r, G> {
                 edges.start.push(edges.to.len() as u32);
             }
             for &(n, k) in &succ {
-                let (y, new) = add(n, (x, k), nodes, parent);
+                let (y, new) = add(n, x, nodes, parent);
                 if keep {
                     edges.to.push(y);
-                    edges.via.push(k);
+                    if keep_via {
+                        edges.via.push(k);
+                    }
                 }
                 if new && self.universal[n.1 as usize] {
                     self.reached.set(nodes.len());
@@ -764,11 +770,15 @@ impl<'r, G: RunGraph> Product<'r, G> {
 
     /// The graph states of the run to product node `x`, and the transition of each step
     /// (the steps where the run ends or stays ended are left out: the state repeats).
-    fn run_to(&self, nodes: &Nodes, parent: &[(u32, u32)], x: u32) -> (Vec<u32>, Vec<u32>) {
+    fn run_to(&self, nodes: &Nodes, parent: &[u32], x: u32) -> (Vec<u32>, Vec<u32>) {
         let (mut states, mut via) = (Vec::new(), Vec::new());
         let mut at = x;
         loop {
-            let (p, k) = parent[at as usize];
+            let p = parent[at as usize];
+            let k = match p {
+                u32::MAX => STAYS,
+                p => self.via(nodes, p, at),
+            };
             if k != STAYS {
                 via.push(k);
             }
@@ -789,7 +799,29 @@ impl<'r, G: RunGraph> Product<'r, G> {
         (states, via)
     }
 
-    fn prefix(&self, nodes: &Nodes, parent: &[(u32, u32)], x: u32) -> Violation {
+    /// The transition by which node `y` was first reached from node `x`: the first of
+    /// `x`'s successors that is `y`'s node, as the search found it.
+    fn via(&self, nodes: &Nodes, x: u32, y: u32) -> u32 {
+        let mut out = Vec::new();
+        self.successors(nodes.get(x), &mut out);
+        let y = nodes.get(y);
+        let first = out.iter().find(|(n, _)| *n == y);
+        first.expect("a node is a successor of its parent").1
+    }
+
+    /// The transitions of node `x`'s edges in `edges`, in their order: as the search kept
+    /// them, or found again (the search pushed an edge for every successor).
+    fn vias<'e>(&self, nodes: &Nodes, edges: &'e Csr, x: u32) -> std::borrow::Cow<'e, [u32]> {
+        if !edges.via.is_empty() {
+            return std::borrow::Cow::Borrowed(edges.via_of(x));
+        }
+        let mut out = Vec::new();
+        self.successors(nodes.get(x), &mut out);
+        debug_assert_eq!(out.len(), edges.of(x).len());
+        std::borrow::Cow::Owned(out.into_iter().map(|(_, k)| k).collect())
+    }
+
+    fn prefix(&self, nodes: &Nodes, parent: &[u32], x: u32) -> Violation {
         let (path, path_via) = self.run_to(nodes, parent, x);
         Violation {
             path,
@@ -804,7 +836,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// The shallowest accepting node on a cycle of a fair component, and a shortest cycle
     /// through it (with fairness of agents, through a step of every agent that could move
     /// everywhere in the component).
-    fn lasso(&self, nodes: &Nodes, parent: &[(u32, u32)], edges: &Csr) -> Option<Violation> {
+    fn lasso(&self, nodes: &Nodes, parent: &[u32], edges: &Csr) -> Option<Violation> {
         let comp = components(edges);
         let on_cycle = |x: u32| {
             let c = comp[x as usize];
@@ -821,7 +853,11 @@ impl<'r, G: RunGraph> Product<'r, G> {
                 // A run that ended stays: no agent is owed a step there.
                 let can = if ended { 0 } else { self.graph.enabled(i) };
                 *everywhere.entry(c).or_insert(u64::MAX) &= can;
-                for (&y, &k) in edges.of(x as u32).iter().zip(edges.via_of(x as u32)) {
+                for (&y, &k) in edges
+                    .of(x as u32)
+                    .iter()
+                    .zip(&*self.vias(nodes, edges, x as u32))
+                {
                     if comp[y as usize] == c && k != STAYS {
                         if let Some(a) = self.graph.mover(i, k) {
                             *moved.entry(c).or_insert(0) |= 1 << a;
@@ -860,13 +896,13 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let disabled = |y: u32, a: u8| self.graph.enabled(nodes.get(y).0) >> a & 1 == 0;
         for a in 0..agents {
             let steps = if owed(c) >> a & 1 == 1 {
-                self.path_within(edges, (&comp, c), at, |x, _, k| {
+                self.path_within(nodes, edges, (&comp, c), at, |x, _, k| {
                     k != STAYS && self.graph.mover(nodes.get(x).0, k) == Some(a)
                 })?
             } else if disabled(entry, a) {
                 continue;
             } else {
-                self.path_within(edges, (&comp, c), at, |_, y, _| disabled(y, a))?
+                self.path_within(nodes, edges, (&comp, c), at, |_, y, _| disabled(y, a))?
             };
             for &(y, k) in &steps {
                 cycle.push(nodes.get(y).0);
@@ -874,7 +910,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
             }
             at = steps.last().map_or(at, |s| s.0);
         }
-        for (y, k) in self.path_within(edges, (&comp, c), at, |_, y, _| y == entry)? {
+        for (y, k) in self.path_within(nodes, edges, (&comp, c), at, |_, y, _| y == entry)? {
             cycle.push(nodes.get(y).0);
             cycle_via.push(k);
         }
@@ -893,6 +929,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// with its transition.
     fn path_within(
         &self,
+        nodes: &Nodes,
         edges: &Csr,
         (comp, c): (&[u32], u32),
         from: u32,
@@ -902,7 +939,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         let mut queue = VecDeque::from([from]);
         let mut seen = std::collections::HashSet::from([from]);
         while let Some(x) = queue.pop_front() {
-            for (&y, &k) in edges.of(x).iter().zip(edges.via_of(x)) {
+            for (&y, &k) in edges.of(x).iter().zip(&*self.vias(nodes, edges, x)) {
                 if comp[y as usize] != c {
                     continue;
                 }
