@@ -153,6 +153,12 @@ impl<T: Copy> Chunked<T> {
         Ok(())
     }
 
+    /// Removes every element, keeping the chunks for the next ones.
+    pub fn clear(&mut self) {
+        self.chunks.iter_mut().for_each(Vec::clear);
+        self.len = 0;
+    }
+
     /// Removes the last element.
     pub fn pop(&mut self) -> Option<T> {
         let last = self.len.checked_sub(1)?;
@@ -219,6 +225,15 @@ mod tests {
         assert!(a.iter().enumerate().all(|(i, x)| x == i as u64 * 3));
         // Slack: less than one largest chunk.
         assert!(a.bytes() < (n + MAX_CHUNK) * 8 + 4096, "{}", a.bytes());
+        // Cleared, it keeps its chunks and fills them again.
+        let bytes = a.bytes();
+        a.clear();
+        assert_eq!((a.len(), a.iter().count(), a.bytes()), (0, 0, bytes));
+        for i in 0..n as u64 {
+            a.push(i + 7).unwrap();
+        }
+        assert!((0..n).step_by(997).all(|i| a.get(i) == i as u64 + 7));
+        assert_eq!((a.len(), a.bytes()), (n, bytes));
     }
 
     #[test]

@@ -15,6 +15,7 @@
 
 use super::buchi::Buchi;
 use super::checker::Checker;
+use super::chunked::Chunked;
 use super::model::AgentState;
 use super::search::{bit, set_bit};
 use super::store::OutOfMemory;
@@ -563,29 +564,25 @@ type Node = (u32, u32, bool);
 /// Product nodes in the order found: per node its graph state and `2 q + ended` (8 bytes
 /// where a [`Node`] takes 12: products reach hundreds of millions of nodes).
 #[derive(Default)]
-struct Nodes(Vec<(u32, u32)>);
+struct Nodes(Chunked<(u32, u32)>);
 
 impl Nodes {
     fn get(&self, x: u32) -> Node {
-        let (i, key) = self.0[x as usize];
+        let (i, key) = self.0.get(x as usize);
         (i, key >> 1, key & 1 == 1)
     }
 
     /// Node `x`'s Büchi state and whether the run ended, as `2 q + ended`.
     fn key(&self, x: u32) -> u32 {
-        self.0[x as usize].1
+        self.0.get(x as usize).1
     }
 
-    fn push(&mut self, (i, q, ended): Node) {
-        self.0.push((i, q * 2 + u32::from(ended)));
+    fn push(&mut self, (i, q, ended): Node) -> Result<(), OutOfMemory> {
+        self.0.push((i, q * 2 + u32::from(ended)))
     }
 
     fn len(&self) -> usize {
         self.0.len()
-    }
-
-    fn clear(&mut self) {
-        self.0.clear();
     }
 
     fn iter(&self) -> impl Iterator<Item = Node> + '_ {
@@ -594,15 +591,18 @@ impl Nodes {
 }
 
 /// The memory a product search fills, kept for the next: the products of one graph are
-/// searched one after the other, and fresh pages cost (the kernel clears them, and a
-/// vector that grows copies itself into fresh ones).
+/// searched one after the other, and fresh pages cost (the kernel clears them). Its
+/// arrays grow by chunks that never move ([`Chunked`]): vectors that doubled copied
+/// themselves into fresh pages, and clearing those was half of the 6-cup kitchen's
+/// products (perf: 63 k of their 118 k samples). Chunks a search drops are the
+/// allocator's to give the next one.
 #[derive(Default)]
 pub(crate) struct Scratch {
     nodes: Nodes,
     /// Per node: the node it was first reached from (`u32::MAX` for an initial one). The
     /// transition is found again for the nodes of a counterexample ([`Product::via`]):
     /// four bytes a node, of hundreds of millions at 6 cups.
-    parent: Vec<u32>,
+    parent: Chunked<u32>,
     edges: Csr,
     /// Per graph state: the last node found of it, or `u32::MAX`. A dense index per
     /// (graph state, Büchi state, ended) took 8 bytes per Büchi state for every graph
@@ -610,7 +610,7 @@ pub(crate) struct Scratch {
     /// graph state.
     head: Vec<u32>,
     /// Per node: the node found before it of the same graph state (or `u32::MAX`).
-    chain: Vec<u32>,
+    chain: Chunked<u32>,
 }
 
 /// What the product searches of one graph share: the product states they reached, and
@@ -701,33 +701,33 @@ impl<'r, G: RunGraph> Product<'r, G> {
             head.try_reserve_exact(states).map_err(|_| OutOfMemory)?;
             head.resize(states, u32::MAX);
         }
-        nodes.clear();
+        nodes.0.clear();
         parent.clear();
-        edges.clear();
+        *edges = Csr::default();
         chain.clear();
-        let mut add = |n: Node, from: u32, nodes: &mut Nodes, parent: &mut Vec<u32>| {
+        let mut add = |n: Node, from: u32, nodes: &mut Nodes, parent: &mut Chunked<u32>| {
             let (i, q, ended) = n;
             let key = q * 2 + u32::from(ended);
             let mut at = head[i as usize];
             while at != u32::MAX {
                 if nodes.key(at) == key {
-                    return (at, false);
+                    return Ok((at, false));
                 }
-                at = chain[at as usize];
+                at = chain.get(at as usize);
             }
-            let x = nodes.len() as u32;
-            chain.push(head[i as usize]);
+            let x = u32::try_from(nodes.len()).map_err(|_| OutOfMemory)?;
+            chain.push(head[i as usize])?;
+            nodes.push(n)?;
+            parent.push(from)?;
             head[i as usize] = x;
-            nodes.push(n);
-            parent.push(from);
-            (x, true)
+            Ok((x, true))
         };
         let init = &self.buchi.states[self.buchi.initial as usize];
         for i in 0..self.graph.initial() {
             let letter = self.graph.state_letter(i);
             for (guard, q) in &init.edges {
                 if guard.matches(letter) {
-                    let (x, new) = add((i, *q, false), u32::MAX, nodes, parent);
+                    let (x, new) = add((i, *q, false), u32::MAX, nodes, parent)?;
                     if new && self.universal[*q as usize] {
                         self.reached.set(nodes.len());
                         return Ok(Some(self.prefix(nodes, parent, x)));
@@ -742,15 +742,12 @@ impl<'r, G: RunGraph> Product<'r, G> {
         while (x as usize) < nodes.len() {
             self.successors(nodes.get(x), &mut succ);
             if keep {
-                edges.start.push(edges.to.len() as u32);
+                edges.begin(succ.len(), keep_via)?;
             }
             for &(n, k) in &succ {
-                let (y, new) = add(n, x, nodes, parent);
+                let (y, new) = add(n, x, nodes, parent)?;
                 if keep {
-                    edges.to.push(y);
-                    if keep_via {
-                        edges.via.push(k);
-                    }
+                    edges.push(y, k);
                 }
                 if new && self.universal[n.1 as usize] {
                     self.reached.set(nodes.len());
@@ -764,17 +761,17 @@ impl<'r, G: RunGraph> Product<'r, G> {
         if !keep || !nodes.iter().any(|n| accepting(&n)) {
             return Ok(None);
         }
-        edges.start.push(edges.to.len() as u32);
+        edges.begin(0, keep_via)?;
         Ok(self.lasso(nodes, parent, edges))
     }
 
     /// The graph states of the run to product node `x`, and the transition of each step
     /// (the steps where the run ends or stays ended are left out: the state repeats).
-    fn run_to(&self, nodes: &Nodes, parent: &[u32], x: u32) -> (Vec<u32>, Vec<u32>) {
+    fn run_to(&self, nodes: &Nodes, parent: &Chunked<u32>, x: u32) -> (Vec<u32>, Vec<u32>) {
         let (mut states, mut via) = (Vec::new(), Vec::new());
         let mut at = x;
         loop {
-            let p = parent[at as usize];
+            let p = parent.get(at as usize);
             let k = match p {
                 u32::MAX => STAYS,
                 p => self.via(nodes, p, at),
@@ -821,7 +818,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
         std::borrow::Cow::Owned(out.into_iter().map(|(_, k)| k).collect())
     }
 
-    fn prefix(&self, nodes: &Nodes, parent: &[u32], x: u32) -> Violation {
+    fn prefix(&self, nodes: &Nodes, parent: &Chunked<u32>, x: u32) -> Violation {
         let (path, path_via) = self.run_to(nodes, parent, x);
         Violation {
             path,
@@ -836,7 +833,7 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// The shallowest accepting node on a cycle of a fair component, and a shortest cycle
     /// through it (with fairness of agents, through a step of every agent that could move
     /// everywhere in the component).
-    fn lasso(&self, nodes: &Nodes, parent: &[u32], edges: &Csr) -> Option<Violation> {
+    fn lasso(&self, nodes: &Nodes, parent: &Chunked<u32>, edges: &Csr) -> Option<Violation> {
         let comp = components(edges);
         let on_cycle = |x: u32| {
             let c = comp[x as usize];
@@ -964,35 +961,79 @@ impl<'r, G: RunGraph> Product<'r, G> {
     }
 }
 
-/// Edges of nodes numbered `0..n`, in one array: node `x`'s are `to[start[x]..start[x+1]]`.
+/// Edges of nodes numbered `0..n`, in chunks that never move (as [`Scratch`]'s arrays):
+/// node `x`'s lie in one chunk, from where [`Csr::start`] says to where the next node's
+/// begin, or to the chunk's end.
 #[derive(Default)]
 struct Csr {
-    start: Vec<u32>,
-    to: Vec<u32>,
-    /// Per edge: the graph transition it takes ([`STAYS`] when the run ends or stays).
-    via: Vec<u32>,
+    /// Per node, and one past the last: chunk (high 32 bits) and offset.
+    start: Chunked<u64>,
+    to: Vec<Vec<u32>>,
+    /// Per edge, in chunks of `to`'s shape: the graph transition it takes ([`STAYS`] when
+    /// the run ends or stays). Empty unless kept ([`Product::vias`]).
+    via: Vec<Vec<u32>>,
 }
 
-impl Csr {
-    /// No node, the memory kept.
-    fn clear(&mut self) {
-        self.start.clear();
-        self.to.clear();
-        self.via.clear();
-    }
+/// The largest chunk of a [`Csr`] (4 MiB), unless one node has more edges.
+const CSR_CHUNK: usize = 1 << 20;
 
+impl Csr {
     fn len(&self) -> usize {
         self.start.len().saturating_sub(1)
     }
 
+    /// Begins the next node's edges, with room for `n` of them (their transitions too
+    /// with `via`); a node after the last ends the array.
+    fn begin(&mut self, n: usize, via: bool) -> Result<(), OutOfMemory> {
+        let room = self.to.last().is_some_and(|c| c.capacity() - c.len() >= n);
+        if !room {
+            let size = (self.to.last())
+                .map_or(1024, |c| (c.capacity() * 2).min(CSR_CHUNK))
+                .max(n);
+            let chunk = || -> Result<Vec<u32>, OutOfMemory> {
+                let mut c = Vec::new();
+                c.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
+                Ok(c)
+            };
+            self.to.try_reserve(1).map_err(|_| OutOfMemory)?;
+            self.to.push(chunk()?);
+            if via {
+                self.via.try_reserve(1).map_err(|_| OutOfMemory)?;
+                self.via.push(chunk()?);
+            }
+        }
+        let k = self.to.len() - 1;
+        self.start
+            .push(((k as u64) << 32) | self.to[k].len() as u64)
+    }
+
+    /// Adds an edge to `y` by transition `k` to the node begun last, which has room.
+    fn push(&mut self, y: u32, k: u32) {
+        self.to.last_mut().expect("a node was begun").push(y);
+        if let Some(v) = self.via.last_mut() {
+            v.push(k);
+        }
+    }
+
+    /// Node `x`'s chunk and range in it.
+    fn range(&self, x: u32) -> (usize, std::ops::Range<usize>) {
+        let (a, next) = self.start.pair(x as usize);
+        let (k, from) = ((a >> 32) as usize, a as u32 as usize);
+        let to = match next {
+            Some(z) if (z >> 32) as usize == k => z as u32 as usize,
+            _ => self.to[k].len(),
+        };
+        (k, from..to)
+    }
+
     fn of(&self, x: u32) -> &[u32] {
-        let x = x as usize;
-        &self.to[self.start[x] as usize..self.start[x + 1] as usize]
+        let (k, r) = self.range(x);
+        &self.to[k][r]
     }
 
     fn via_of(&self, x: u32) -> &[u32] {
-        let x = x as usize;
-        &self.via[self.start[x] as usize..self.start[x + 1] as usize]
+        let (k, r) = self.range(x);
+        &self.via[k][r]
     }
 }
 
@@ -1409,6 +1450,38 @@ mod tests {
 
     /// Each state's letter is found again through its index, whether it repeats the
     /// last one stored, an earlier one, or is new.
+    #[test]
+    fn product_edges_keep_each_nodes_list_across_chunks() {
+        for via in [false, true] {
+            let mut e = Csr::default();
+            // Lists of 0 to 6 edges, and one longer than the first chunks.
+            let len = |x: u32| match x {
+                700 => 5000,
+                x => (x % 7) as usize,
+            };
+            let edge = |x: u32, j: usize| x.wrapping_mul(31) ^ j as u32;
+            let n = 3 * CSR_CHUNK as u32 / 4;
+            for x in 0..n {
+                e.begin(len(x), via).unwrap();
+                for j in 0..len(x) {
+                    e.push(edge(x, j), j as u32 + x);
+                }
+            }
+            e.begin(0, via).unwrap();
+            assert_eq!(e.len(), n as usize);
+            assert!(e.to.len() > 3, "{} chunks", e.to.len());
+            for x in 0..n {
+                let want: Vec<u32> = (0..len(x)).map(|j| edge(x, j)).collect();
+                assert_eq!(e.of(x), &want[..], "node {x}");
+                if via {
+                    let want: Vec<u32> = (0..len(x)).map(|j| j as u32 + x).collect();
+                    assert_eq!(e.via_of(x), &want[..], "node {x}");
+                }
+            }
+            assert_eq!(e.via.is_empty(), !via);
+        }
+    }
+
     #[test]
     fn letters_keep_each_states_letter() {
         let mut letters = Letters::default();
