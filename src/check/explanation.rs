@@ -823,12 +823,6 @@ thread_local! {
     static SEEN_RECENTLY: Recently<(usize, usize), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
-thread_local! {
-    /// Whether an open explanation's context changed, by explanation (address) and belief
-    /// base ([`Runs::beliefs_key`]).
-    static CHANGED_RECENTLY: Recently<(usize, usize), bool> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
 /// Tables are split in this many shards, each behind its own lock.
 const SHARDS: usize = 32;
 
@@ -1501,21 +1495,11 @@ impl<'a, W: Runs> Explained<'a, W> {
             Some(key) => {
                 // Judging reads the beliefs only through whether each open explanation's
                 // context changed (see `judge`).
-                // Runs that share intentions share beliefs too (`Runs::beliefs_key`): the
-                // answer per explanation (by address: views, and what they hold, live as
-                // long as the search) and belief base is kept at hand, which spares
-                // reading the successor's beliefs, a cache miss most of the time.
-                let (beliefs, at) = (self.runs.robot_beliefs(&next), self.runs.beliefs_key(&next));
-                let changed = (after.open.iter())
-                    .map(|o| {
-                        recently(
-                            &CHANGED_RECENTLY,
-                            READ_RECENTLY,
-                            (self.serial, (Arc::as_ptr(&o.0) as usize, at)),
-                            || self.context_changed(o, beliefs),
-                            |&changed| changed,
-                        )
-                    })
+                let beliefs = self.runs.robot_beliefs(&next);
+                let changed = after
+                    .open
+                    .iter()
+                    .map(|o| self.context_changed(o, beliefs))
                     .collect();
                 let key = JudgedKey(
                     Arc::as_ptr(&seen.view.0) as usize,
