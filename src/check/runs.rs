@@ -561,24 +561,27 @@ pub(crate) struct Product<'r, G: RunGraph> {
 /// its last state for ever from there).
 type Node = (u32, u32, bool);
 
-/// Product nodes in the order found: per node its graph state and `2 q + ended` (8 bytes
-/// where a [`Node`] takes 12: products reach hundreds of millions of nodes).
+/// Product nodes in the order found: per node its graph state, `2 q + ended`, and the
+/// node found before it of the same graph state (`u32::MAX` if none), which the search
+/// reads with the key when it looks a node up ([`Scratch::head`]).
 #[derive(Default)]
-struct Nodes(Chunked<(u32, u32)>);
+struct Nodes(Chunked<[u32; 3]>);
 
 impl Nodes {
     fn get(&self, x: u32) -> Node {
-        let (i, key) = self.0.get(x as usize);
+        let [i, key, _] = self.0.get(x as usize);
         (i, key >> 1, key & 1 == 1)
     }
 
-    /// Node `x`'s Büchi state and whether the run ended, as `2 q + ended`.
-    fn key(&self, x: u32) -> u32 {
-        self.0.get(x as usize).1
+    /// Node `x`'s Büchi state and whether the run ended, as `2 q + ended`, and the node
+    /// found before it of the same graph state.
+    fn key_and_chain(&self, x: u32) -> (u32, u32) {
+        let [_, key, chain] = self.0.get(x as usize);
+        (key, chain)
     }
 
-    fn push(&mut self, (i, q, ended): Node) -> Result<(), OutOfMemory> {
-        self.0.push((i, q * 2 + u32::from(ended)))
+    fn push(&mut self, (i, q, ended): Node, chain: u32) -> Result<(), OutOfMemory> {
+        self.0.push([i, q * 2 + u32::from(ended), chain])
     }
 
     fn len(&self) -> usize {
@@ -604,13 +607,11 @@ pub(crate) struct Scratch {
     /// four bytes a node, of hundreds of millions at 6 cups.
     parent: Chunked<u32>,
     edges: Csr,
-    /// Per graph state: the last node found of it, or `u32::MAX`. A dense index per
-    /// (graph state, Büchi state, ended) took 8 bytes per Büchi state for every graph
-    /// state, written whole at every search (gigabytes at 6 cups), for a few nodes per
-    /// graph state.
+    /// Per graph state: the last node found of it, or `u32::MAX`, from which the nodes
+    /// chain back ([`Nodes`]). A dense index per (graph state, Büchi state, ended) took 8
+    /// bytes per Büchi state for every graph state, written whole at every search
+    /// (gigabytes at 6 cups), for a few nodes per graph state.
     head: Vec<u32>,
-    /// Per node: the node found before it of the same graph state (or `u32::MAX`).
-    chain: Chunked<u32>,
 }
 
 /// What the product searches of one graph share: the product states they reached, and
@@ -684,7 +685,6 @@ impl<'r, G: RunGraph> Product<'r, G> {
             parent,
             edges,
             head,
-            chain,
         } = scratch;
         let (nodes, parent) = (&mut *nodes, &mut *parent);
         // The transitions of the product's edges are found again where a lasso reads them,
@@ -704,20 +704,19 @@ impl<'r, G: RunGraph> Product<'r, G> {
         nodes.0.clear();
         parent.clear();
         *edges = Csr::default();
-        chain.clear();
         let mut add = |n: Node, from: u32, nodes: &mut Nodes, parent: &mut Chunked<u32>| {
             let (i, q, ended) = n;
             let key = q * 2 + u32::from(ended);
             let mut at = head[i as usize];
             while at != u32::MAX {
-                if nodes.key(at) == key {
+                let (k, before) = nodes.key_and_chain(at);
+                if k == key {
                     return Ok((at, false));
                 }
-                at = chain.get(at as usize);
+                at = before;
             }
             let x = u32::try_from(nodes.len()).map_err(|_| OutOfMemory)?;
-            chain.push(head[i as usize])?;
-            nodes.push(n)?;
+            nodes.push(n, head[i as usize])?;
             parent.push(from)?;
             head[i as usize] = x;
             Ok((x, true))
