@@ -21,6 +21,7 @@ use super::chunked::Chunked;
 use super::model::Model;
 use super::store::{OutOfMemory, Store};
 use crate::semantics::State;
+use smallvec::SmallVec;
 use std::hash::Hash;
 use std::marker::PhantomData;
 use std::time::Instant;
@@ -233,15 +234,18 @@ pub struct Graph<S = State> {
     state: PhantomData<fn() -> S>,
 }
 
-/// A state's successors as the search has them: each with its transition's label and its
-/// fingerprint.
-pub type Successors<M> = [(<M as Model>::Label, <M as Model>::State, u64)];
+/// A state's successors as the search has them: each with its transition's label.
+pub type Successors<M> = [(<M as Model>::Label, <M as Model>::State)];
 
 /// What expanding one frontier state produced (in a worker thread).
 struct Expanded<T, L, S> {
     summary: T,
     /// `None` when the state was not expanded (depth bound).
-    successors: Option<Vec<(L, S, u64)>>,
+    successors: Option<Vec<(L, S)>>,
+    /// The successors' fingerprints, in their order: beside them rather than in each,
+    /// so that the model's vector is handed on as it is (collecting it again was an
+    /// allocation and a copy of every successor, per state of every search).
+    fps: SmallVec<[u64; 4]>,
     /// The ample set among them ([`Model::ample`]), if the model reduces here.
     ample: Option<std::ops::Range<usize>>,
 }
@@ -537,19 +541,17 @@ fn expand_one<M: Model, T>(
     summarize: &impl Fn(&M::State, Option<&Successors<M>>) -> T,
 ) -> Expanded<T, M::Label, M::State> {
     let mut ample = None;
+    let mut fps = SmallVec::new();
     let successors: Option<Vec<_>> = expand.then(|| {
-        let succ = model.next_states(s);
+        let mut succ = model.next_states(s);
         ample = model.ample(s, &succ);
-        succ.into_iter()
-            .map(|(mut l, t)| {
-                let fp = model.fingerprint_labelled(&mut l, &t);
-                (l, t, fp)
-            })
-            .collect()
+        fps.extend((succ.iter_mut()).map(|(l, t)| model.fingerprint_labelled(l, t)));
+        succ
     });
     Expanded {
         summary: summarize(s, successors.as_deref()),
         successors,
+        fps,
         ample,
     }
 }
@@ -798,7 +800,7 @@ fn search<M: Model, T>(
             // A job merged after a stop counts as not expanded, as if it had not been.
             let expanded = !stopped;
             if expanded {
-                for (_, _, fp) in results.iter().flat_map(|r| r.successors.iter().flatten()) {
+                for fp in results.iter().flat_map(|r| &r.fps) {
                     g.store.prefetch(*fp);
                 }
             }
@@ -822,15 +824,15 @@ fn search<M: Model, T>(
                 // so no cycle of the reduced graph is reduced everywhere and no transition
                 // is put off forever.
                 let ample = r.ample.filter(|a| {
-                    succ[a.clone()]
+                    r.fps[a.clone()]
                         .iter()
-                        .all(|(_, _, fp)| g.store.find(*fp).is_none_or(|i| i >= next_level))
+                        .all(|fp| g.store.find(*fp).is_none_or(|i| i >= next_level))
                 });
                 if ample.is_some() {
                     g.reduced += 1;
                 }
                 let mut cut = false;
-                for (k, (label, t, fp)) in succ.into_iter().enumerate() {
+                for (k, ((label, t), &fp)) in succ.into_iter().zip(&r.fps).enumerate() {
                     if ample.as_ref().is_some_and(|a| !a.contains(&k)) {
                         continue;
                     }

@@ -292,9 +292,7 @@ where
             let unequal = if late { None } else { equivariance(s, succ) };
             // Numbered in the exploring threads: the merging one bounds the search.
             let kept = number.map(|number| {
-                let labels = succ
-                    .iter()
-                    .flat_map(|v| v.iter().map(|(l, _, _)| number(l)));
+                let labels = succ.iter().flat_map(|v| v.iter().map(|(l, _)| number(l)));
                 (s.clone(), labels.collect())
             });
             (
