@@ -123,6 +123,19 @@ pub trait Runs: Sync {
     /// agent it goes to), what it did, and the state after.
     fn successors(&self, s: &Self::State) -> Vec<(u8, Self::Notes, Self::State)>;
 
+    /// [`Runs::successors`], each handed to `f` in order: runs that can give them without
+    /// a vector spare a user's search one per state.
+    fn each_successor(&self, s: &Self::State, mut f: impl FnMut(u8, Self::Notes, Self::State)) {
+        for (agent, notes, next) in self.successors(s) {
+            f(agent, notes, next);
+        }
+    }
+
+    /// Whether [`Runs::sensed`] may give beliefs (the robot perceives at its cycle's start).
+    fn senses(&self) -> bool {
+        false
+    }
+
     /// The robot's beliefs after the sense that begins its next cycle in `s`, when that
     /// sense perceives or reads something. Among several agents the robot perceives the
     /// environment only there (its own actions' effects too); one agent alone perceives
@@ -283,6 +296,10 @@ impl Runs for Among<'_> {
             .into_iter()
             .map(|(step, t)| (step.agent, step.notes, t))
             .collect()
+    }
+
+    fn senses(&self) -> bool {
+        true
     }
 
     fn sensed(&self, s: &SystemState) -> Option<AtomSet> {
@@ -745,18 +762,26 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     }
 
     fn successors(&self, s: &Node<'g, 'c>) -> Vec<(u8, StoredNotes<'g, 'c>, Node<'g, 'c>)> {
+        let mut out = Vec::new();
+        self.each_successor(s, |agent, notes, next| out.push((agent, notes, next)));
+        out
+    }
+
+    fn each_successor(
+        &self,
+        s: &Node<'g, 'c>,
+        mut f: impl FnMut(u8, StoredNotes<'g, 'c>, Node<'g, 'c>),
+    ) {
         let targets = (self.graph.successors(s.index))
             .expect("a complete graph keeps every state's transitions");
         let (st, i) = (self.stored, s.index as usize);
         let from = st.starts.get(i) as usize;
         debug_assert_eq!(st.starts.get(i + 1) as usize - from, targets.len());
-        (targets.iter().enumerate())
-            .map(|(k, &t)| {
-                let id = st.notes.get(from + k);
-                let notes = Some(st.notes(id));
-                (0, StoredNotes { id, notes }, self.node(t))
-            })
-            .collect()
+        for (k, &t) in targets.iter().enumerate() {
+            let id = st.notes.get(from + k);
+            let notes = Some(st.notes(id));
+            f(0, StoredNotes { id, notes }, self.node(t));
+        }
     }
 
     fn prefetch(&self, s: &Node<'g, 'c>, stage: usize) {
@@ -2009,6 +2034,13 @@ impl<W: Runs> Model for Explained<'_, W> {
     }
 
     fn next_states(&self, s: &Self::State) -> Vec<(Step<W::Notes>, Self::State)> {
+        if !self.runs.senses() {
+            let mut out = Vec::new();
+            (self.runs).each_successor(&s.state, |agent, notes, next| {
+                out.push(self.transition(s, agent, notes, next, None));
+            });
+            return out;
+        }
         let robot = self.runs.robot() as u8;
         let succ = self.runs.successors(&s.state);
         // A cycle of the robot, not a request to it.
