@@ -131,11 +131,6 @@ pub trait Runs: Sync {
         }
     }
 
-    /// Whether [`Runs::sensed`] may give beliefs (the robot perceives at its cycle's start).
-    fn senses(&self) -> bool {
-        false
-    }
-
     /// The robot's beliefs after the sense that begins its next cycle in `s`, when that
     /// sense perceives or reads something. Among several agents the robot perceives the
     /// environment only there (its own actions' effects too); one agent alone perceives
@@ -145,7 +140,7 @@ pub trait Runs: Sync {
     }
 
     /// Whether the robot's next cycle in `s` begins by perceiving or reading something
-    /// (what [`Runs::sensed`] gives then): its beliefs are about to change.
+    /// (what [`Runs::sensed`] gives then, and only then): its beliefs are about to change.
     fn to_sense(&self, _s: &Self::State) -> bool {
         false
     }
@@ -296,10 +291,6 @@ impl Runs for Among<'_> {
             .into_iter()
             .map(|(step, t)| (step.agent, step.notes, t))
             .collect()
-    }
-
-    fn senses(&self) -> bool {
-        true
     }
 
     fn sensed(&self, s: &SystemState) -> Option<AtomSet> {
@@ -2034,7 +2025,9 @@ impl<W: Runs> Model for Explained<'_, W> {
     }
 
     fn next_states(&self, s: &Self::State) -> Vec<(Step<W::Notes>, Self::State)> {
-        if !self.runs.senses() {
+        // A robot that does not sense first (one agent alone never does) senses nothing
+        // (`Runs::to_sense`): the transitions are made as the successors come.
+        if !self.runs.to_sense(&s.state) {
             let mut out = Vec::new();
             (self.runs).each_successor(&s.state, |agent, notes, next| {
                 out.push(self.transition(s, agent, notes, next, None));
