@@ -179,6 +179,113 @@ impl<T: Copy> Chunked<T> {
     }
 }
 
+/// Lists of numbers (a graph's adjacency lists) in chunks that never move, for the same
+/// reason as [`Chunked`]: list `i` lies within one chunk, from where it starts to where
+/// list `i + 1` starts if that is in the same chunk, else to the chunk's end. A list is
+/// filled first ([`Lists::room`], [`Lists::push`]), then its start recorded
+/// ([`Lists::start`]) at a position [`Lists::end`] gave before.
+#[derive(Debug, Default)]
+pub struct Lists {
+    /// Per list, where it starts: chunk (high 32 bits) and offset.
+    starts: Chunked<u64>,
+    items: Vec<Vec<u32>>,
+}
+
+/// The largest chunk of [`Lists`] (4 MiB), unless one list is longer.
+pub const LIST_CHUNK: usize = 1 << 20;
+
+impl Lists {
+    /// How many lists were started.
+    pub fn len(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// Where the next item goes.
+    pub fn end(&self) -> u64 {
+        match self.items.last() {
+            Some(c) => ((self.items.len() as u64 - 1) << 32) | c.len() as u64,
+            None => 0,
+        }
+    }
+
+    /// Makes room for `n` more items in the last chunk, starting a chunk if needed.
+    pub fn room(&mut self, n: usize) -> Result<(), OutOfMemory> {
+        if self
+            .items
+            .last()
+            .is_some_and(|c| c.capacity() - c.len() >= n)
+        {
+            return Ok(());
+        }
+        let size = (self.items.last())
+            .map_or(1024, |c| (c.capacity() * 2).min(LIST_CHUNK))
+            .max(n);
+        let mut chunk = Vec::new();
+        chunk.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
+        self.items.try_reserve(1).map_err(|_| OutOfMemory)?;
+        self.items.push(chunk);
+        Ok(())
+    }
+
+    /// Appends `x` to the last chunk, which has room ([`Lists::room`]).
+    #[inline]
+    pub fn push(&mut self, x: u32) {
+        let c = self.items.last_mut().expect("room was made");
+        debug_assert!(c.len() < c.capacity());
+        c.push(x);
+    }
+
+    /// Starts the next list at `at`, a position [`Lists::end`] gave (its items pushed
+    /// since, in that chunk).
+    pub fn start(&mut self, at: u64) -> Result<(), OutOfMemory> {
+        self.starts.push(at)
+    }
+
+    /// Removes the items from `at` (a position [`Lists::end`] gave) on, in its chunk.
+    pub fn truncate(&mut self, at: u64) {
+        if let Some(c) = self.items.get_mut((at >> 32) as usize) {
+            c.truncate(at as u32 as usize);
+        }
+    }
+
+    /// List `i`.
+    pub fn list(&self, i: usize) -> &[u32] {
+        let (a, next) = self.starts.pair(i);
+        let chunk = &self.items[(a >> 32) as usize];
+        let z = next.unwrap_or_else(|| self.end());
+        let z = if z >> 32 == a >> 32 {
+            z as u32 as usize
+        } else {
+            chunk.len()
+        };
+        &chunk[a as u32 as usize..z]
+    }
+
+    /// Prefetches where list `i` starts, or (`near`) the list itself.
+    pub fn prefetch(&self, i: usize, near: bool) {
+        if !near {
+            return self.starts.prefetch(i);
+        }
+        if i < self.starts.len() {
+            let a = self.starts.get(i);
+            if let Some(chunk) = self.items.get((a >> 32) as usize) {
+                prefetch(chunk.as_ptr().wrapping_add(a as u32 as usize));
+            }
+        }
+    }
+
+    /// How many chunks hold the items.
+    #[cfg(test)]
+    pub fn chunks(&self) -> usize {
+        self.items.len()
+    }
+
+    /// Bytes allocated.
+    pub fn bytes(&self) -> usize {
+        self.starts.bytes() + self.items.iter().map(Vec::capacity).sum::<usize>() * 4
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

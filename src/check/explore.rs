@@ -17,7 +17,7 @@
 //! asked) edges are kept, never whole states beyond the frontier: [`Graph::state`] and
 //! [`Walk`] rebuild them by replaying transitions.
 
-use super::chunked::Chunked;
+use super::chunked::Lists;
 use super::model::Model;
 use super::store::{OutOfMemory, Store};
 use crate::semantics::State;
@@ -112,14 +112,12 @@ impl Default for Options {
 }
 
 /// The successors of the expanded states, as adjacency lists in chunks that never move
-/// (growing one array by copying had the kernel clear its fresh pages: a tenth of the
-/// merging thread). A state's list lies within one chunk.
+/// ([`Lists`]: growing one array by copying had the kernel clear its fresh pages, a tenth
+/// of the merging thread).
 #[derive(Default)]
 struct Edges {
-    /// Per state, where its list starts: chunk (high 32 bits) and offset. It ends where the
-    /// next state's starts if that is in the same chunk, else at its chunk's end.
-    start: Chunked<u64>,
-    to: Vec<Vec<u32>>,
+    /// Per state, its successors.
+    lists: Lists,
     /// Bit `i`: state `i` was expanded completely.
     expanded: Vec<u64>,
     /// Bit `i`: some edge enters state `i` from a state numbered no lower (recorded as the
@@ -128,83 +126,22 @@ struct Edges {
     back: Vec<u64>,
 }
 
-/// The largest chunk of [`Edges`] (4 MiB), unless one state has more successors.
-const EDGE_CHUNK: usize = 1 << 20;
-
 impl Edges {
-    /// Where the next edge goes.
-    fn end(&self) -> u64 {
-        match self.to.last() {
-            Some(c) => ((self.to.len() as u64 - 1) << 32) | c.len() as u64,
-            None => 0,
-        }
-    }
-
-    /// Makes room for `n` more edges in the last chunk, starting a chunk if needed.
-    fn room(&mut self, n: usize) -> Result<(), OutOfMemory> {
-        if self.to.last().is_some_and(|c| c.capacity() - c.len() >= n) {
-            return Ok(());
-        }
-        let size = self
-            .to
-            .last()
-            .map_or(1024, |c| (c.capacity() * 2).min(EDGE_CHUNK))
-            .max(n);
-        let mut chunk = Vec::new();
-        chunk.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
-        self.to.try_reserve(1).map_err(|_| OutOfMemory)?;
-        self.to.push(chunk);
-        Ok(())
-    }
-
-    /// Appends an edge from `source` to `target` to the last chunk, which has room
-    /// ([`Edges::room`]).
+    /// Appends an edge from `source` to `target` ([`Lists::push`]).
     fn push(&mut self, source: u32, target: u32) {
-        let c = self.to.last_mut().expect("room was made");
-        debug_assert!(c.len() < c.capacity());
-        c.push(target);
+        self.lists.push(target);
         if target <= source {
             set_bit(&mut self.back, target, true);
         }
     }
 
-    /// Removes the edges from `at` (a position [`Edges::end`] gave) on, in the last chunk.
-    fn truncate(&mut self, at: u64) {
-        if let Some(c) = self.to.get_mut((at >> 32) as usize) {
-            c.truncate(at as u32 as usize);
-        }
-    }
-
-    /// Prefetches where state `i`'s list begins, or (`near`) the list itself.
-    fn prefetch(&self, i: u32, near: bool) {
-        if !near {
-            return self.start.prefetch(i as usize);
-        }
-        if (i as usize) < self.start.len() {
-            let a = self.start.get(i as usize);
-            if let Some(chunk) = self.to.get((a >> 32) as usize) {
-                super::chunked::prefetch(chunk.as_ptr().wrapping_add(a as u32 as usize));
-            }
-        }
-    }
-
     /// State `i`'s list.
     fn list(&self, i: u32) -> &[u32] {
-        let (a, next) = self.start.pair(i as usize);
-        let chunk = &self.to[(a >> 32) as usize];
-        let z = next.unwrap_or_else(|| self.end());
-        let z = if z >> 32 == a >> 32 {
-            z as u32 as usize
-        } else {
-            chunk.len()
-        };
-        &chunk[a as u32 as usize..z]
+        self.lists.list(i as usize)
     }
 
     fn bytes(&self) -> usize {
-        self.start.bytes()
-            + self.to.iter().map(Vec::capacity).sum::<usize>() * 4
-            + (self.expanded.capacity() + self.back.capacity()) * 8
+        self.lists.bytes() + (self.expanded.capacity() + self.back.capacity()) * 8
     }
 }
 
@@ -807,19 +744,19 @@ fn search<M: Model, T>(
             for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
                 let Some(succ) = r.successors.filter(|_| expanded) else {
-                    g.mark(*src, g.edges.as_ref().map_or(0, Edges::end), false);
+                    g.mark(*src, g.edges.as_ref().map_or(0, |e| e.lists.end()), false);
                     continue;
                 };
                 if let Some(e) = &mut g.edges {
-                    if e.room(succ.len()).is_err() {
-                        let end = e.end();
+                    if e.lists.room(succ.len()).is_err() {
+                        let end = e.lists.end();
                         g.bound = Some(Bound::Memory);
                         stopped = true;
                         g.mark(*src, end, false);
                         continue;
                     }
                 }
-                let edge_start = g.edges.as_ref().map_or(0, Edges::end);
+                let edge_start = g.edges.as_ref().map_or(0, |e| e.lists.end());
                 // The cycle proviso: a reduced state's followed successors are all deeper,
                 // so no cycle of the reduced graph is reduced everywhere and no transition
                 // is put off forever.
@@ -914,11 +851,11 @@ impl<S> Graph<S> {
     /// recorded in number order.
     fn mark(&mut self, i: u32, edge_start: u64, complete: bool) {
         let Some(e) = &mut self.edges else { return };
-        debug_assert_eq!(e.start.len(), i as usize);
+        debug_assert_eq!(e.lists.len(), i as usize);
         if !complete {
-            e.truncate(edge_start);
+            e.lists.truncate(edge_start);
         }
-        if e.start.push(edge_start).is_err() {
+        if e.lists.start(edge_start).is_err() {
             // Out of memory: the state counts as not expanded (its bit stays clear), and
             // so does every later one, whose lists are not kept either.
             self.edges = None;
@@ -964,7 +901,7 @@ impl<S> Graph<S> {
     /// successors themselves ([`Model::prefetch`]).
     pub fn prefetch_successors(&self, i: u32, near: bool) {
         if let Some(e) = &self.edges {
-            e.prefetch(i, near);
+            e.lists.prefetch(i as usize, near);
         }
     }
 
@@ -972,7 +909,7 @@ impl<S> Graph<S> {
     /// that it was expanded: for prefetching only (any list, maybe empty, when it was not).
     pub fn successors_unchecked(&self, i: u32) -> &[u32] {
         match &self.edges {
-            Some(e) if (i as usize) < e.start.len() => e.list(i),
+            Some(e) if (i as usize) < e.lists.len() => e.list(i),
             _ => &[],
         }
     }
@@ -1249,7 +1186,11 @@ mod tests {
         assert!(g.complete());
         let fp: std::collections::HashMap<u64, u32> =
             (0..g.len() as u32).map(|i| (g.fingerprint(i), i)).collect();
-        assert!(g.transitions > 2 * EDGE_CHUNK, "{} edges", g.transitions);
+        assert!(
+            g.transitions > 2 * super::super::chunked::LIST_CHUNK,
+            "{} edges",
+            g.transitions
+        );
         // The state of each number, through the fingerprints (replaying runs this long to
         // each state would take minutes).
         let state: std::collections::HashMap<u64, u32> =

@@ -15,7 +15,7 @@
 
 use super::buchi::Buchi;
 use super::checker::Checker;
-use super::chunked::Chunked;
+use super::chunked::{Chunked, Lists};
 use super::model::AgentState;
 use super::search::{bit, set_bit};
 use super::store::OutOfMemory;
@@ -808,8 +808,8 @@ impl<'r, G: RunGraph> Product<'r, G> {
     /// The transitions of node `x`'s edges in `edges`, in their order: as the search kept
     /// them, or found again (the search pushed an edge for every successor).
     fn vias<'e>(&self, nodes: &Nodes, edges: &'e Csr, x: u32) -> std::borrow::Cow<'e, [u32]> {
-        if !edges.via.is_empty() {
-            return std::borrow::Cow::Borrowed(edges.via_of(x));
+        if let Some(via) = &edges.via {
+            return std::borrow::Cow::Borrowed(via.list(x as usize));
         }
         let mut out = Vec::new();
         self.successors(nodes.get(x), &mut out);
@@ -960,79 +960,45 @@ impl<'r, G: RunGraph> Product<'r, G> {
     }
 }
 
-/// Edges of nodes numbered `0..n`, in chunks that never move (as [`Scratch`]'s arrays):
-/// node `x`'s lie in one chunk, from where [`Csr::start`] says to where the next node's
-/// begin, or to the chunk's end.
+/// Edges of nodes numbered `0..n`, in chunks that never move (as [`Scratch`]'s arrays),
+/// and one list after the last.
 #[derive(Default)]
 struct Csr {
-    /// Per node, and one past the last: chunk (high 32 bits) and offset.
-    start: Chunked<u64>,
-    to: Vec<Vec<u32>>,
-    /// Per edge, in chunks of `to`'s shape: the graph transition it takes ([`STAYS`] when
-    /// the run ends or stays). Empty unless kept ([`Product::vias`]).
-    via: Vec<Vec<u32>>,
+    to: Lists,
+    /// Per edge, in lists of `to`'s shape: the graph transition it takes ([`STAYS`] when
+    /// the run ends or stays). `None` unless kept ([`Product::vias`]).
+    via: Option<Lists>,
 }
-
-/// The largest chunk of a [`Csr`] (4 MiB), unless one node has more edges.
-const CSR_CHUNK: usize = 1 << 20;
 
 impl Csr {
     fn len(&self) -> usize {
-        self.start.len().saturating_sub(1)
+        self.to.len().saturating_sub(1)
     }
 
     /// Begins the next node's edges, with room for `n` of them (their transitions too
     /// with `via`); a node after the last ends the array.
     fn begin(&mut self, n: usize, via: bool) -> Result<(), OutOfMemory> {
-        let room = self.to.last().is_some_and(|c| c.capacity() - c.len() >= n);
-        if !room {
-            let size = (self.to.last())
-                .map_or(1024, |c| (c.capacity() * 2).min(CSR_CHUNK))
-                .max(n);
-            let chunk = || -> Result<Vec<u32>, OutOfMemory> {
-                let mut c = Vec::new();
-                c.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
-                Ok(c)
-            };
-            self.to.try_reserve(1).map_err(|_| OutOfMemory)?;
-            self.to.push(chunk()?);
-            if via {
-                self.via.try_reserve(1).map_err(|_| OutOfMemory)?;
-                self.via.push(chunk()?);
-            }
+        let lists = std::iter::once(&mut self.to).chain(match via {
+            true => Some(self.via.get_or_insert_with(Lists::default)),
+            false => None,
+        });
+        for l in lists {
+            l.room(n)?;
+            l.start(l.end())?;
         }
-        let k = self.to.len() - 1;
-        self.start
-            .push(((k as u64) << 32) | self.to[k].len() as u64)
+        Ok(())
     }
 
     /// Adds an edge to `y` by transition `k` to the node begun last, which has room.
     fn push(&mut self, y: u32, k: u32) {
-        self.to.last_mut().expect("a node was begun").push(y);
-        if let Some(v) = self.via.last_mut() {
+        self.to.push(y);
+        if let Some(v) = &mut self.via {
             v.push(k);
         }
     }
 
-    /// Node `x`'s chunk and range in it.
-    fn range(&self, x: u32) -> (usize, std::ops::Range<usize>) {
-        let (a, next) = self.start.pair(x as usize);
-        let (k, from) = ((a >> 32) as usize, a as u32 as usize);
-        let to = match next {
-            Some(z) if (z >> 32) as usize == k => z as u32 as usize,
-            _ => self.to[k].len(),
-        };
-        (k, from..to)
-    }
-
     fn of(&self, x: u32) -> &[u32] {
-        let (k, r) = self.range(x);
-        &self.to[k][r]
-    }
-
-    fn via_of(&self, x: u32) -> &[u32] {
-        let (k, r) = self.range(x);
-        &self.via[k][r]
+        self.to.list(x as usize)
     }
 }
 
@@ -1459,7 +1425,7 @@ mod tests {
                 x => (x % 7) as usize,
             };
             let edge = |x: u32, j: usize| x.wrapping_mul(31) ^ j as u32;
-            let n = 3 * CSR_CHUNK as u32 / 4;
+            let n = 3 * super::super::chunked::LIST_CHUNK as u32 / 4;
             for x in 0..n {
                 e.begin(len(x), via).unwrap();
                 for j in 0..len(x) {
@@ -1468,16 +1434,20 @@ mod tests {
             }
             e.begin(0, via).unwrap();
             assert_eq!(e.len(), n as usize);
-            assert!(e.to.len() > 3, "{} chunks", e.to.len());
+            assert!(e.to.chunks() > 3, "{} chunks", e.to.chunks());
             for x in 0..n {
                 let want: Vec<u32> = (0..len(x)).map(|j| edge(x, j)).collect();
                 assert_eq!(e.of(x), &want[..], "node {x}");
                 if via {
                     let want: Vec<u32> = (0..len(x)).map(|j| j as u32 + x).collect();
-                    assert_eq!(e.via_of(x), &want[..], "node {x}");
+                    assert_eq!(
+                        e.via.as_ref().map(|v| v.list(x as usize)),
+                        Some(&want[..]),
+                        "node {x}"
+                    );
                 }
             }
-            assert_eq!(e.via.is_empty(), !via);
+            assert_eq!(e.via.is_some(), via);
         }
     }
 
