@@ -450,6 +450,10 @@ pub(crate) trait RunGraph {
     fn state_letter(&self, i: u32) -> u64;
     /// The propositions the `k`-th transition from `i` makes true (`did`).
     fn step_letter(&self, i: u32, k: u32) -> u64;
+    /// Whether some transition from `i` may have a step letter (`false`: none has).
+    fn steps_at(&self, _i: u32) -> bool {
+        true
+    }
     /// How many agents a loop must be weakly fair to (0: every loop is a run).
     fn fair_agents(&self) -> u8 {
         0
@@ -527,6 +531,9 @@ impl RunGraph for Explored<'_, '_> {
             return 0;
         }
         self.step_letters.get(&(i, k)).copied().unwrap_or(0)
+    }
+    fn steps_at(&self, i: u32) -> bool {
+        bit(&self.stepping, i)
     }
     fn fair_agents(&self) -> u8 {
         self.facts.fairness.as_ref().map_or(0, |f| f.agents)
@@ -1143,6 +1150,15 @@ fn product_search(
         step_letters,
         stepping,
     };
+    // `[] b` with `b` about one position (`[] (did(wipe(L)) -> holding(none))`) is
+    // decided by one pass over the graph, far cheaper than a product that has a node per
+    // graph state. A violation's shortest run is still the product's to find.
+    if let Some(body) = always_body(&local_f).filter(|b| b.at_letter(0).is_some()) {
+        if holds_everywhere(&g, body) {
+            products.reached += g.len() as usize;
+            return Ok(Some(None));
+        }
+    }
     let p = match bounded {
         true => Product::new_within(&g, &local_f, TABLEAU_BUDGET / 8),
         false => Product::new(&g, &local_f),
@@ -1236,6 +1252,48 @@ pub(crate) fn decide(
         return (Status::Fail, message, Some(v));
     }
     passed(facts, p, held, runs)
+}
+
+/// Whether `body`, a formula without temporal operators, holds at every position of every
+/// run of `g`, which `[] body` says: in each initial state, after each transition (the
+/// target's letter and the transition's), and in each state where a run may end (its
+/// letter alone: the run stays there, doing nothing). Every state of `g` must be reachable,
+/// as a search's are. Most transitions have no step letter and enter a state with its
+/// letter alone: when every state's letter satisfies `body`, only the transitions that
+/// have one are read.
+fn holds_everywhere<G: RunGraph>(g: &G, body: &Ltl) -> bool {
+    // Letters repeat: each is judged once, when the formula reads few propositions.
+    let mut judged: Vec<u8> = vec![0; 1 << body.props().min(16)];
+    let mut at = |letter: u64| {
+        let ok = |l: u64| body.at_letter(l).unwrap_or(false);
+        match judged.get_mut(letter as usize) {
+            Some(j) if *j != 0 => *j == 2,
+            Some(j) => {
+                let v = ok(letter);
+                *j = 1 + u8::from(v);
+                v
+            }
+            None => ok(letter),
+        }
+    };
+    let states = (0..g.len()).all(|i| at(g.state_letter(i)));
+    for i in 0..g.len() {
+        if states && !g.steps_at(i) {
+            continue;
+        }
+        if let Some(succ) = g.successors(i) {
+            for (k, &j) in succ.iter().enumerate() {
+                if !at(g.state_letter(j) | g.step_letter(i, k as u32)) {
+                    return false;
+                }
+            }
+        }
+        let stays = i < g.initial() || g.may_end(i);
+        if !states && stays && !at(g.state_letter(i)) {
+            return false;
+        }
+    }
+    true
 }
 
 /// `f` of `[] f` (`false R f`).
@@ -1632,6 +1690,63 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A formula without temporal operators.
+    fn proposition(r: &mut Rng, depth: u32) -> Ltl {
+        if depth == 0 || r.next(4) == 0 {
+            return Ltl::Prop(r.next(3) as u32);
+        }
+        let a = proposition(r, depth - 1);
+        match r.next(5) {
+            0 => Ltl::not(a),
+            1 => Ltl::and(a, proposition(r, depth - 1)),
+            2 => Ltl::or(a, proposition(r, depth - 1)),
+            3 => Ltl::implies(a, proposition(r, depth - 1)),
+            _ => Ltl::iff(a, proposition(r, depth - 1)),
+        }
+    }
+
+    /// Whether every state of the toy is reachable from an initial one, as every state of
+    /// a search's graph is.
+    fn all_reachable(g: &Toy) -> bool {
+        let mut seen: Vec<bool> = (0..g.len()).map(|i| i < g.initial).collect();
+        let mut todo: Vec<u32> = (0..g.initial).collect();
+        while let Some(i) = todo.pop() {
+            for &j in &g.succ[i as usize] {
+                if !std::mem::replace(&mut seen[j as usize], true) {
+                    todo.push(j);
+                }
+            }
+        }
+        seen.iter().all(|&s| s)
+    }
+
+    #[test]
+    fn one_pass_decides_an_invariant_as_the_product_does() {
+        let mut r = Rng(0x2545_f491_4f6c_dd1d);
+        let (mut held, mut failed) = (0, 0);
+        let mut scratch = Scratch::default();
+        for case in 0..4000 {
+            let g = toy(&mut r);
+            if !all_reachable(&g) {
+                continue;
+            }
+            let body = proposition(&mut r, 3);
+            let product = Product::new(&g, &Ltl::always(body.clone()))
+                .and_then(|p| p.search(&mut scratch).expect("memory"))
+                .is_none();
+            assert_eq!(
+                holds_everywhere(&g, &body),
+                product,
+                "case {case}: {body:?}"
+            );
+            match product {
+                true => held += 1,
+                false => failed += 1,
+            }
+        }
+        assert!(held > 300 && failed > 300, "{held} held, {failed} failed");
     }
 
     /// Every lasso of the toy with at most `bound` transitions before it closes: the

@@ -193,6 +193,20 @@ impl Ltl {
         out
     }
 
+    /// Its truth at a position whose propositions are `letter`'s, when it has no temporal
+    /// operator (`None` when it has one: its truth depends on the positions after).
+    pub fn at_letter(&self, letter: u64) -> Option<bool> {
+        Some(match self {
+            Ltl::True => true,
+            Ltl::False => false,
+            Ltl::Prop(p) => letter_has(letter, *p),
+            Ltl::Not(f) => !f.at_letter(letter)?,
+            Ltl::And(a, b) => a.at_letter(letter)? & b.at_letter(letter)?,
+            Ltl::Or(a, b) => a.at_letter(letter)? | b.at_letter(letter)?,
+            Ltl::Next(_) | Ltl::Until(..) | Ltl::Release(..) => return None,
+        })
+    }
+
     /// Whether the formula holds on the word `prefix · cycle^ω` (at its first position).
     ///
     /// The word has the positions `0..prefix.len() + cycle.len()`, each followed by the next
@@ -430,6 +444,36 @@ mod tests {
             &finally_forever,
             &[(&[0, 0], &[P], true), (&[], &[0, P], false)],
         );
+    }
+
+    #[test]
+    fn a_formula_without_temporal_operators_is_read_on_one_letter() {
+        let props = [
+            Ltl::True,
+            Ltl::False,
+            p(),
+            Ltl::not(q()),
+            Ltl::and(p(), q()),
+            Ltl::or(Ltl::not(p()), q()),
+            Ltl::implies(p(), q()),
+            Ltl::iff(p(), Ltl::not(q())),
+        ];
+        for f in &props {
+            for letter in [0, P, Q, P | Q] {
+                // On a word whose every position is `letter`, as on any other.
+                let lasso = f.holds_on_lasso(&[letter], &[letter ^ P]);
+                assert_eq!(f.at_letter(letter), Some(lasso), "{f:?} on {letter}");
+            }
+        }
+        let temporal = [
+            Ltl::next(p()),
+            Ltl::always(p()),
+            Ltl::and(p(), Ltl::eventually(q())),
+            Ltl::not(Ltl::until(p(), q())),
+        ];
+        for f in &temporal {
+            assert_eq!(f.at_letter(P), None, "{f:?}");
+        }
     }
 
     #[test]
