@@ -732,6 +732,7 @@ fn one_agent_gets_the_same_explanation_findings_compiled_and_through_the_interle
             limits,
             &opts,
             &mut |_, _, _, _| {},
+            &|| {},
         )
         .unwrap();
         // On the compiled cycle: the same findings, counterexamples and all.
@@ -745,6 +746,7 @@ fn one_agent_gets_the_same_explanation_findings_compiled_and_through_the_interle
             limits,
             &opts,
             &mut |_, _, _, _| {},
+            &|| {},
         )
         .unwrap();
         assert!(fast_complete, "{dir}");

@@ -2336,7 +2336,9 @@ fn render<W: Runs>(
 /// Also returns whether every user's search was complete.
 /// With `compiled` (the agent's compiled cycle, whose tables the agent's search filled),
 /// the users' searches run on it; with `stored` (the agent's graph, from an exact search),
-/// they read that graph instead.
+/// they read that graph instead. `freed` is called when a core the users' searches took
+/// is free again (at once for the cores they leave), for work that waits for one.
+#[allow(clippy::too_many_arguments)]
 pub fn verify(
     project: &Project,
     sem: &Semantics,
@@ -2345,6 +2347,7 @@ pub fn verify(
     limits: Limits,
     opts: &Options,
     progress: &mut dyn FnMut(&str, usize, u32, f64),
+    freed: &(dyn Fn() + Sync),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     if let Some(stored) = stored.filter(|_| symmetry.is_none()) {
         // A user meets every agent state, with one view or more: 1.5-1.7 on the kitchen's
@@ -2353,7 +2356,7 @@ pub fn verify(
             room_for: stored.graph.len().saturating_mul(2),
             ..*opts
         };
-        return verify_runs(project, stored, limits, opts, progress);
+        return verify_runs(project, stored, limits, opts, progress, freed);
     }
     match compiled {
         Some(compiled) => verify_runs(
@@ -2362,8 +2365,16 @@ pub fn verify(
             limits,
             opts,
             progress,
+            freed,
         ),
-        None => verify_runs(project, Alone { sem, symmetry }, limits, opts, progress),
+        None => verify_runs(
+            project,
+            Alone { sem, symmetry },
+            limits,
+            opts,
+            progress,
+            freed,
+        ),
     }
 }
 
@@ -2384,6 +2395,7 @@ pub fn verify_among(
         limits,
         opts,
         progress,
+        &|| {},
     )
 }
 
@@ -2399,18 +2411,23 @@ pub fn robot_of(projects: &[Project]) -> usize {
 }
 
 /// The explanation properties on `runs`, for the users of `project`'s manifest (the
-/// robot's project).
+/// robot's project). `freed`: as [`verify`]'s.
 fn verify_runs<W: Runs + Clone>(
     project: &Project,
     runs: W,
     limits: Limits,
     opts: &Options,
     progress: &mut dyn FnMut(&str, usize, u32, f64),
+    freed: &(dyn Fn() + Sync),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     let Some(section) = &project.manifest.explanation else {
         return Ok((Vec::new(), true, Vec::new()));
     };
     let users = crate::explain::agent::users(project, None)?;
+    if users.len() < opts.threads {
+        // A core is left over.
+        freed();
+    }
     let sem = &runs.agents()[runs.robot()];
     let ex = Explainer::new(project, sem);
     let checks: &[&str] = if section.emitted_by.is_some() {
@@ -2440,11 +2457,19 @@ fn verify_runs<W: Runs + Clone>(
     };
     let results: Vec<UserResult<W::State>> = std::thread::scope(|scope| {
         let others: Vec<_> = (models.iter().skip(1))
-            .map(|m| scope.spawn(move || check_user(m, limits, opts, |_, _, _| {})))
+            .map(|m| {
+                scope.spawn(move || {
+                    let r = check_user(m, limits, opts, |_, _, _| {});
+                    freed();
+                    r
+                })
+            })
             .collect();
-        let first = models
-            .first()
-            .map(|m| check_user(m, limits, opts, |n, d, t| progress(&label, n, d, t)));
+        let first = models.first().map(|m| {
+            let r = check_user(m, limits, opts, |n, d, t| progress(&label, n, d, t));
+            freed();
+            r
+        });
         // A panic in another user's search is re-raised here, as a search thread's is.
         (first.into_iter())
             .chain(

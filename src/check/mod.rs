@@ -359,7 +359,14 @@ pub fn verify_with(
     // The liveness checks (a pass or more over every edge of the agent's graph) also run
     // beside the searches that follow, instead of before them, and beside settling the
     // lint findings.
+    // When the users' searches take every core, the products wait for the first to end:
+    // a third thread on two cores slowed the longest search by a third, where the
+    // products fit after the shorter one (4-cup kitchen; docs/benchmarks.md).
+    let freed = Latch::default();
     let (live, run_and_user_findings) = std::thread::scope(|scope| {
+        // The products go on once the users' searches are over, however they end (a
+        // panic's unwinding included: the scope waits for the products).
+        let open = freed.opens();
         let live = scope.spawn(|| {
             let mut out = Vec::new();
             c.liveness(&mut out, &props);
@@ -377,6 +384,7 @@ pub fn verify_with(
         c.failures(&mut findings, action_failures, goal_failures);
         let products = on_agent_graph.then(|| {
             scope.spawn(|| {
+                freed.wait();
                 let t = std::time::Instant::now();
                 let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
                     Some(plan) => plan.whole.clone(),
@@ -434,7 +442,9 @@ pub fn verify_with(
             (&run_props, run_atoms.as_ref()),
             (&remaining, &search),
             &mut progress,
+            &|| freed.open(),
         );
+        drop(open);
         // A panic in the products is re-raised here, as a search thread's is.
         fn join<T>(h: std::thread::ScopedJoinHandle<'_, T>) -> T {
             h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
@@ -521,6 +531,7 @@ fn users_and_explanations(
     ),
     (remaining, search): (&dyn Fn() -> Limits, &Options),
     progress: &mut dyn FnMut(&str, usize, u32, f64),
+    freed: &(dyn Fn() + Sync),
 ) -> Result<UsersFound, Vec<Diagnostic>> {
     let mut findings = Vec::new();
     let mut user_phases = Vec::new();
@@ -578,9 +589,43 @@ fn users_and_explanations(
         remaining(),
         &explore_opts,
         progress,
+        freed,
     )?;
     findings.extend(explained);
     Ok((findings, user_phases, phases))
+}
+
+/// A gate that opens once, for threads that wait for it.
+#[derive(Default)]
+struct Latch {
+    open: std::sync::Mutex<bool>,
+    opened: std::sync::Condvar,
+}
+
+impl Latch {
+    fn open(&self) {
+        *self.open.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        self.opened.notify_all();
+    }
+
+    /// Waits until it is open.
+    fn wait(&self) {
+        let mut open = self.open.lock().unwrap_or_else(|e| e.into_inner());
+        while !*open {
+            open = (self.opened.wait(open)).unwrap_or_else(|e| e.into_inner());
+        }
+    }
+
+    /// A guard that opens it when dropped, a panic's unwinding included.
+    fn opens(&self) -> impl Drop + '_ {
+        struct Opens<'a>(&'a Latch);
+        impl Drop for Opens<'_> {
+            fn drop(&mut self) {
+                self.0.open();
+            }
+        }
+        Opens(self)
+    }
 }
 
 /// What deciding some run properties on a search of their own gave.
