@@ -223,6 +223,12 @@ impl Store {
         Ok(())
     }
 
+    /// Frees the hash table once no state will be looked up (the search is over): the
+    /// fingerprints and parents stay, and a lookup after this finds nothing.
+    pub fn drop_index(&mut self) {
+        self.slots = Vec::new();
+    }
+
     /// Bytes held (capacity, not just length).
     pub fn bytes(&self) -> usize {
         self.fps.bytes() + self.parent.bytes() + self.slots.capacity() * 5
@@ -250,6 +256,18 @@ mod tests {
         assert_eq!(s.fingerprint(9), fp(9));
         // At most (8 + 4) * 5/4 + 5 / (3/8) bytes per state, plus the first allocations.
         assert!(s.bytes() <= 10_000 * 29 + 1024 * 17, "{} bytes", s.bytes());
+        // Without its table, the store keeps every fingerprint and parent, in fewer bytes.
+        let before = s.bytes();
+        s.drop_index();
+        assert!(
+            s.bytes() + 10_000 * 5 <= before,
+            "{} of {before} bytes",
+            s.bytes()
+        );
+        assert_eq!(
+            (s.len(), s.fingerprint(9), s.parent(77)),
+            (10_000, fp(9), Some(76))
+        );
     }
 
     #[test]
