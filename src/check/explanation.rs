@@ -2156,6 +2156,32 @@ pub struct UserResult<S = State> {
     pub given: usize,
 }
 
+/// What [`verify_runs`] keeps of a user's search once it ends: its graph only when a
+/// counterexample is to be read from it. The work that waits for a core freed by the
+/// search runs on its thread next (`spare`), and the 6-cup kitchen's products took
+/// fresh memory beside the 1.3 GB of fingerprints and parents it had left.
+struct Ended<S> {
+    complete: bool,
+    states: usize,
+    seconds: f64,
+    violations: BTreeMap<(&'static str, u32, u32), (Shown, Violation)>,
+    given: usize,
+    graph: Option<Graph<ExplainedState<S>>>,
+}
+
+impl<S> Ended<S> {
+    fn of(r: UserResult<S>) -> Ended<S> {
+        Ended {
+            complete: r.graph.complete(),
+            states: r.graph.len(),
+            seconds: r.graph.seconds,
+            given: r.given,
+            graph: (!r.violations.is_empty()).then_some(r.graph),
+            violations: r.violations,
+        }
+    }
+}
+
 /// Explores the runs as `user` sees them and collects the violations.
 pub fn check_user<W: Runs>(
     model: &Explained<W>,
@@ -2336,8 +2362,9 @@ fn render<W: Runs>(
 /// Also returns whether every user's search was complete.
 /// With `compiled` (the agent's compiled cycle, whose tables the agent's search filled),
 /// the users' searches run on it; with `stored` (the agent's graph, from an exact search),
-/// they read that graph instead. `freed` is called when a core the users' searches took
-/// is free again (at once for the cores they leave), for work that waits for one.
+/// they read that graph instead. `spare` is work for a core the users' searches leave
+/// (done at once, on a thread of its own) or free (done on the thread of the search that
+/// ended); it is called once per such core.
 #[allow(clippy::too_many_arguments)]
 pub fn verify(
     project: &Project,
@@ -2347,7 +2374,7 @@ pub fn verify(
     limits: Limits,
     opts: &Options,
     progress: &mut dyn FnMut(&str, usize, u32, f64),
-    freed: &(dyn Fn() + Sync),
+    spare: &(dyn Fn() + Sync),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     if let Some(stored) = stored.filter(|_| symmetry.is_none()) {
         // A user meets every agent state, with one view or more: 1.5-1.7 on the kitchen's
@@ -2356,7 +2383,7 @@ pub fn verify(
             room_for: stored.graph.len().saturating_mul(2),
             ..*opts
         };
-        return verify_runs(project, stored, limits, opts, progress, freed);
+        return verify_runs(project, stored, limits, opts, progress, spare);
     }
     match compiled {
         Some(compiled) => verify_runs(
@@ -2365,7 +2392,7 @@ pub fn verify(
             limits,
             opts,
             progress,
-            freed,
+            spare,
         ),
         None => verify_runs(
             project,
@@ -2373,7 +2400,7 @@ pub fn verify(
             limits,
             opts,
             progress,
-            freed,
+            spare,
         ),
     }
 }
@@ -2411,23 +2438,19 @@ pub fn robot_of(projects: &[Project]) -> usize {
 }
 
 /// The explanation properties on `runs`, for the users of `project`'s manifest (the
-/// robot's project). `freed`: as [`verify`]'s.
+/// robot's project). `spare`: as [`verify`]'s.
 fn verify_runs<W: Runs + Clone>(
     project: &Project,
     runs: W,
     limits: Limits,
     opts: &Options,
     progress: &mut dyn FnMut(&str, usize, u32, f64),
-    freed: &(dyn Fn() + Sync),
+    spare: &(dyn Fn() + Sync),
 ) -> Result<(Vec<Finding>, bool, Vec<Phase>), Vec<Diagnostic>> {
     let Some(section) = &project.manifest.explanation else {
         return Ok((Vec::new(), true, Vec::new()));
     };
     let users = crate::explain::agent::users(project, None)?;
-    if users.len() < opts.threads {
-        // A core is left over.
-        freed();
-    }
     let sem = &runs.agents()[runs.robot()];
     let ex = Explainer::new(project, sem);
     let checks: &[&str] = if section.emitted_by.is_some() {
@@ -2451,25 +2474,32 @@ fn verify_runs<W: Runs + Clone>(
     // The cores are shared out among the users' searches: on two cores with two users,
     // each search expanding its own states on its merging thread took 9-12% less time than
     // two searches with two workers each (4-cup kitchen, and the 6-cup store-cup library).
+    let threads = opts.threads;
     let opts = &Options {
-        threads: (opts.threads / users.len().max(1)).max(1),
+        threads: (threads / users.len().max(1)).max(1),
         ..*opts
     };
-    let results: Vec<UserResult<W::State>> = std::thread::scope(|scope| {
+    let results: Vec<Ended<W::State>> = std::thread::scope(|scope| {
+        let left: Vec<_> = (users.len()..threads).map(|_| scope.spawn(spare)).collect();
         let others: Vec<_> = (models.iter().skip(1))
             .map(|m| {
                 scope.spawn(move || {
-                    let r = check_user(m, limits, opts, |_, _, _| {});
-                    freed();
+                    let r = Ended::of(check_user(m, limits, opts, |_, _, _| {}));
+                    spare();
                     r
                 })
             })
             .collect();
         let first = models.first().map(|m| {
             let r = check_user(m, limits, opts, |n, d, t| progress(&label, n, d, t));
-            freed();
+            let r = Ended::of(r);
+            spare();
             r
         });
+        // A panic in the spare work is re-raised here, as a search thread's is.
+        for h in left {
+            h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        }
         // A panic in another user's search is re-raised here, as a search thread's is.
         (first.into_iter())
             .chain(
@@ -2485,11 +2515,11 @@ fn verify_runs<W: Runs + Clone>(
             Some(names) => format!("{}, watching {}", user.name, names[runs.robot()]),
             None => user.name.clone(),
         };
-        complete &= r.graph.complete();
-        let states = r.graph.len();
+        complete &= r.complete;
+        let states = r.states;
         phases.push(Phase {
             name: phase.clone(),
-            seconds: r.graph.seconds,
+            seconds: r.seconds,
             states: Some(states),
             beside: names.iter().filter(|n| *n != phase).cloned().collect(),
         });
@@ -2508,7 +2538,8 @@ fn verify_runs<W: Runs + Clone>(
                     status: Status::Fail,
                     message: format!("for {who}: {}", v.message),
                     location: Some(loc),
-                    counterexample: Some(counterexample(project, model, &r.graph, *shown, v)),
+                    counterexample: (r.graph.as_ref())
+                        .map(|g| counterexample(project, model, g, *shown, v)),
                     span: Some(v.span),
                     related: Vec::new(),
                     suppressed: None,
@@ -2517,7 +2548,7 @@ fn verify_runs<W: Runs + Clone>(
             if failed {
                 continue;
             }
-            let (status, message) = if r.graph.complete() {
+            let (status, message) = if r.complete {
                 (
                     Status::Pass,
                     format!(

@@ -352,21 +352,32 @@ pub fn verify_with(
     let mut run_phases = Vec::new();
     let mut caveat = not_equivariant;
     let mut found = Vec::new();
-    // The products of the run properties with the agent's graph take one core, and the
-    // users' searches after them leave one mostly idle (their merging thread bounds them):
-    // the products run beside those searches, on a thread of their own. Findings are
-    // merged by property number, so the order they come in does not matter.
-    // The liveness checks (a pass or more over every edge of the agent's graph) also run
+    // The products of the run properties with the agent's graph take the first core the
+    // users' searches leave or free, on the thread that freed it: beside them, a third
+    // thread on two cores slowed the longest search by a third (4-cup kitchen), and on a
+    // thread of their own they took fresh memory where the search before them on that
+    // thread had freed as much (6-cup kitchen; docs/benchmarks.md). Findings are merged
+    // by property number, so the order they come in does not matter.
+    // The liveness checks (a pass or more over every edge of the agent's graph) run
     // beside the searches that follow, instead of before them, and beside settling the
     // lint findings.
-    // When the users' searches take every core, the products wait for the first to end:
-    // a third thread on two cores slowed the longest search by a third, where the
-    // products fit after the shorter one (4-cup kitchen; docs/benchmarks.md).
-    let freed = Latch::default();
+    let products_found = std::sync::Mutex::new(None);
+    let products_taken = std::sync::atomic::AtomicBool::new(false);
+    let products = || {
+        if !on_agent_graph || products_taken.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            return;
+        }
+        let t = std::time::Instant::now();
+        let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
+            Some(plan) => plan.whole.clone(),
+            None => run_props.iter().cloned().enumerate().collect(),
+        };
+        let mut found = Vec::new();
+        let reached = c.runs_numbered(&mut found, &whole);
+        let done = (found, reached, t.elapsed().as_secs_f64());
+        *products_found.lock().unwrap_or_else(|e| e.into_inner()) = Some(done);
+    };
     let (live, run_and_user_findings) = std::thread::scope(|scope| {
-        // The products go on once the users' searches are over, however they end (a
-        // panic's unwinding included: the scope waits for the products).
-        let open = freed.opens();
         let live = scope.spawn(|| {
             let mut out = Vec::new();
             c.liveness(&mut out, &props);
@@ -382,19 +393,6 @@ pub fn verify_with(
         settle_non_inductive(&mut findings, project, graph.complete());
         note_handled_gaps(&mut findings, project, &goal_failures);
         c.failures(&mut findings, action_failures, goal_failures);
-        let products = on_agent_graph.then(|| {
-            scope.spawn(|| {
-                freed.wait();
-                let t = std::time::Instant::now();
-                let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
-                    Some(plan) => plan.whole.clone(),
-                    None => run_props.iter().cloned().enumerate().collect(),
-                };
-                let mut found = Vec::new();
-                let reached = c.runs_numbered(&mut found, &whole);
-                (found, reached, t.elapsed().as_secs_f64())
-            })
-        });
         let mut reached = 0;
         let mut seconds = 0.0;
         // Under symmetry, once one of those searches is exact and complete, the users'
@@ -442,14 +440,15 @@ pub fn verify_with(
             (&run_props, run_atoms.as_ref()),
             (&remaining, &search),
             &mut progress,
-            &|| freed.open(),
+            &products,
         );
-        drop(open);
-        // A panic in the products is re-raised here, as a search thread's is.
+        // Without users' searches (or when they failed), here.
+        products();
+        // A panic in the liveness checks is re-raised here, as a search thread's is.
         fn join<T>(h: std::thread::ScopedJoinHandle<'_, T>) -> T {
             h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
         }
-        let whole = products.map(join);
+        let whole = (products_found.lock().unwrap_or_else(|e| e.into_inner())).take();
         let whole = whole.map(|(f, r, t)| (f, r + reached, t + seconds));
         done_with(exact);
         (join(live), users.map(|u| (whole, u)))
@@ -531,7 +530,7 @@ fn users_and_explanations(
     ),
     (remaining, search): (&dyn Fn() -> Limits, &Options),
     progress: &mut dyn FnMut(&str, usize, u32, f64),
-    freed: &(dyn Fn() + Sync),
+    spare: &(dyn Fn() + Sync),
 ) -> Result<UsersFound, Vec<Diagnostic>> {
     let mut findings = Vec::new();
     let mut user_phases = Vec::new();
@@ -589,43 +588,10 @@ fn users_and_explanations(
         remaining(),
         &explore_opts,
         progress,
-        freed,
+        spare,
     )?;
     findings.extend(explained);
     Ok((findings, user_phases, phases))
-}
-
-/// A gate that opens once, for threads that wait for it.
-#[derive(Default)]
-struct Latch {
-    open: std::sync::Mutex<bool>,
-    opened: std::sync::Condvar,
-}
-
-impl Latch {
-    fn open(&self) {
-        *self.open.lock().unwrap_or_else(|e| e.into_inner()) = true;
-        self.opened.notify_all();
-    }
-
-    /// Waits until it is open.
-    fn wait(&self) {
-        let mut open = self.open.lock().unwrap_or_else(|e| e.into_inner());
-        while !*open {
-            open = (self.opened.wait(open)).unwrap_or_else(|e| e.into_inner());
-        }
-    }
-
-    /// A guard that opens it when dropped, a panic's unwinding included.
-    fn opens(&self) -> impl Drop + '_ {
-        struct Opens<'a>(&'a Latch);
-        impl Drop for Opens<'_> {
-            fn drop(&mut self) {
-                self.0.open();
-            }
-        }
-        Opens(self)
-    }
 }
 
 /// What deciding some run properties on a search of their own gave.
