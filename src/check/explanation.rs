@@ -2157,9 +2157,10 @@ pub struct UserResult<S = State> {
 }
 
 /// What [`verify_runs`] keeps of a user's search once it ends: its graph only when a
-/// counterexample is to be read from it. The work that waits for a core freed by the
-/// search runs on its thread next (`spare`), and the 6-cup kitchen's products took
-/// fresh memory beside the 1.3 GB of fingerprints and parents it had left.
+/// counterexample is to be read from it. The work waiting for a core (`spare`) runs next
+/// on the search's thread, in the memory the search leaves: while the graph was kept,
+/// the 6-cup kitchen's products took fresh memory beside its 1.3 GB of fingerprints and
+/// parents.
 struct Ended<S> {
     complete: bool,
     states: usize,
