@@ -3,7 +3,8 @@
 //! States are numbered in the order they are found (breadth first, so by depth). The store
 //! keeps, per state, its 64-bit fingerprint (8 bytes) and its parent's number (4 bytes),
 //! plus one 5-byte slot of an open-addressing hash table that maps fingerprints to numbers
-//! (kept between 3/8 and 3/4 full, so 6.7 to 13.3 bytes per state). A slot holds the
+//! (kept between 3/8 and 3/4 full, so 6.7 to 13.3 bytes per state; up to 7/8 when sized
+//! in advance, [`Store::with_room`]). A slot holds the
 //! state's number and the top byte of its fingerprint, so that probing past other states
 //! seldom reads their fingerprints (a cache miss each). The two arrays grow by chunks
 //! that never move (`Chunked`: copying them into fresh memory cost more than the search
@@ -59,11 +60,23 @@ pub struct Vacant {
 pub struct OutOfMemory;
 
 /// Fingerprints and parent links of the visited states.
-#[derive(Default)]
 pub struct Store {
     fps: Chunked<u64>,
     parent: Chunked<u32>,
     slots: Vec<Slot>,
+    /// How full the table may be, in eighths of its slots, before it doubles.
+    full: usize,
+}
+
+impl Default for Store {
+    fn default() -> Store {
+        Store {
+            fps: Chunked::default(),
+            parent: Chunked::default(),
+            slots: Vec::new(),
+            full: 6,
+        }
+    }
 }
 
 impl Store {
@@ -73,12 +86,17 @@ impl Store {
     }
 
     /// An empty store whose table holds `states` states without growing (an empty one
-    /// when memory for it cannot be had: it then grows as it fills).
+    /// when memory for it cannot be had: it then grows as it fills). Such a table may be
+    /// up to 7/8 full instead of 3/4: its size is a guess made for a search that fills
+    /// most of it (a user's search on the agent's graph), and at 6 cups 3/4 took the
+    /// users' tables to 2^28 slots (1.34 GB each) for 104 and 108 M states, where 7/8
+    /// fits them in half (peak 11.4 -> 10.3 GB, the users' searches as fast or faster,
+    /// docs/benchmarks.md).
     pub fn with_room(states: usize) -> Store {
         let mut s = Store::default();
         if states > 0 {
-            // Below three quarters full, as `insert` keeps it.
-            let cap = (states.saturating_mul(4) / 3 + 1)
+            s.full = 7;
+            let cap = (states.saturating_mul(8) / s.full + 1)
                 .next_power_of_two()
                 .max(1024);
             if s.slots.try_reserve_exact(cap).is_ok() {
@@ -86,6 +104,11 @@ impl Store {
             }
         }
         s
+    }
+
+    /// Whether one more state fits in the table as it is.
+    fn fits_one_more(&self) -> bool {
+        (self.fps.len() + 1) * 8 <= self.slots.len() * self.full
     }
 
     /// Number of states stored.
@@ -116,7 +139,8 @@ impl Store {
 
     /// The number of the state with fingerprint `fp`, or where [`Store::insert_vacant`]
     /// puts it: the merge looks a successor up, then stores it if it is new, and the
-    /// probe (most often through several slots: the table is up to 3/4 full) is made once.
+    /// probe (most often through several slots: the table is up to 3/4 or 7/8 full) is
+    /// made once.
     pub fn lookup(&self, fp: u64) -> Result<u32, Vacant> {
         let len = self.fps.len();
         if self.slots.is_empty() {
@@ -149,9 +173,9 @@ impl Store {
         fp: u64,
         parent: Option<u32>,
     ) -> Result<u32, OutOfMemory> {
-        let slot = vacant.slot.filter(|_| {
-            vacant.len == self.fps.len() && (self.fps.len() + 1) * 4 <= self.slots.len() * 3
-        });
+        let slot = vacant
+            .slot
+            .filter(|_| vacant.len == self.fps.len() && self.fits_one_more());
         let Some(at) = slot else {
             return self.insert(fp, parent).map(|(i, _)| i);
         };
@@ -189,7 +213,7 @@ impl Store {
         if self.fps.len() >= NONE as usize - 1 {
             return Err(OutOfMemory);
         }
-        if (self.fps.len() + 1) * 4 > self.slots.len() * 3 {
+        if !self.fits_one_more() {
             self.grow()?;
         }
         let i = self.push(fp, parent)?;
@@ -308,7 +332,7 @@ mod tests {
     #[test]
     fn a_store_with_room_holds_that_many_states_without_growing() {
         let fp = |k: u64| k.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ 0x5555;
-        for room in [1, 1_000, 10_000, 12_289] {
+        for room in [1, 1_000, 10_000, 12_289, 14_000] {
             let mut s = Store::with_room(room);
             let slots = s.slots.len();
             assert!(slots >= 1024, "{room}: {slots} slots");
@@ -322,5 +346,17 @@ mod tests {
             assert!((0..=room as u64).all(|k| s.find(fp(k)) == Some(k as u32)));
         }
         assert!(Store::with_room(0).slots.is_empty());
+        // Up to 7/8 full: 14,000 states in 2^14 slots, where 3/4 would have doubled it.
+        assert_eq!(Store::with_room(14_000).slots.len(), 1 << 14);
+        // A store grown as it fills doubles past 3/4.
+        let mut s = Store::new();
+        for k in 0..12_289u64 {
+            s.insert(fp(k), None).expect("memory");
+        }
+        assert_eq!(
+            s.slots.len(),
+            1 << 15,
+            "12,289 states are more than 3/4 of 2^14"
+        );
     }
 }
