@@ -352,30 +352,34 @@ pub fn verify_with(
     let mut run_phases = Vec::new();
     let mut caveat = not_equivariant;
     let mut found = Vec::new();
-    // The products of the run properties with the agent's graph take the first core the
-    // users' searches leave or free, on the thread that freed it: beside them, a third
-    // thread on two cores slowed the longest search by a third (4-cup kitchen), and on a
-    // thread of their own they took fresh memory where the search before them on that
-    // thread had freed as much (6-cup kitchen; docs/benchmarks.md). Findings are merged
-    // by property number, so the order they come in does not matter.
+    // The products of the run properties with the agent's graph take the cores the users'
+    // searches leave or free, a property at a time, on the thread that freed the core:
+    // beside those searches, a third thread on two cores slowed the longest by a third
+    // (4-cup kitchen), and on a thread of their own they took fresh memory where the
+    // search before them on that thread had freed as much (6-cup kitchen;
+    // docs/benchmarks.md). Findings are merged by property number, so the order they
+    // come in does not matter.
     // The liveness checks (a pass or more over every edge of the agent's graph) run
     // beside the searches that follow, instead of before them, and beside settling the
     // lint findings.
-    let products_found = std::sync::Mutex::new(None);
-    let products_taken = std::sync::atomic::AtomicBool::new(false);
+    let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
+        _ if !on_agent_graph => Vec::new(),
+        Some(plan) => plan.whole.clone(),
+        None => run_props.iter().cloned().enumerate().collect(),
+    };
+    let next_product = std::sync::atomic::AtomicUsize::new(0);
+    let products_found = std::sync::Mutex::new(ProductsFound::default());
     let products = || {
-        if !on_agent_graph || products_taken.swap(true, std::sync::atomic::Ordering::SeqCst) {
+        if next_product.load(std::sync::atomic::Ordering::Relaxed) >= whole.len() {
             return;
         }
         let t = std::time::Instant::now();
-        let whole: Vec<(usize, crate::model::property::RunProperty)> = match &plan {
-            Some(plan) => plan.whole.clone(),
-            None => run_props.iter().cloned().enumerate().collect(),
-        };
-        let mut found = Vec::new();
-        let reached = c.runs_numbered(&mut found, &whole);
-        let done = (found, reached, t.elapsed().as_secs_f64());
-        *products_found.lock().unwrap_or_else(|e| e.into_inner()) = Some(done);
+        let (found, reached) = c.runs_taken(&next_product, &whole);
+        let mut p = products_found.lock().unwrap_or_else(|e| e.into_inner());
+        p.found.extend(found);
+        p.reached += reached;
+        p.began = Some(p.began.map_or(t, |b| b.min(t)));
+        p.ended = Some(std::time::Instant::now());
     };
     let (live, run_and_user_findings) = std::thread::scope(|scope| {
         let live = scope.spawn(|| {
@@ -448,8 +452,13 @@ pub fn verify_with(
         fn join<T>(h: std::thread::ScopedJoinHandle<'_, T>) -> T {
             h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
         }
-        let whole = (products_found.lock().unwrap_or_else(|e| e.into_inner())).take();
-        let whole = whole.map(|(f, r, t)| (f, r + reached, t + seconds));
+        let p = std::mem::take(&mut *products_found.lock().unwrap_or_else(|e| e.into_inner()));
+        let whole = on_agent_graph.then(|| {
+            let took = (p.began.zip(p.ended)).map_or(0.0, |(b, e)| (e - b).as_secs_f64());
+            let mut found = p.found;
+            found.sort_by_key(|(k, _)| *k);
+            (found, p.reached + reached, took + seconds)
+        });
         done_with(exact);
         (join(live), users.map(|u| (whole, u)))
     });
@@ -592,6 +601,17 @@ fn users_and_explanations(
     )?;
     findings.extend(explained);
     Ok((findings, user_phases, phases))
+}
+
+/// What the products of the run properties with the agent's graph found, over the
+/// threads that took them: the findings by property number, the product states reached,
+/// and when the first began and the last ended.
+#[derive(Default)]
+struct ProductsFound {
+    found: Vec<(usize, Finding)>,
+    reached: usize,
+    began: Option<std::time::Instant>,
+    ended: Option<std::time::Instant>,
 }
 
 /// What deciding some run properties on a search of their own gave.

@@ -1432,12 +1432,28 @@ impl Checker<'_> {
         out: &mut Vec<(usize, Finding)>,
         props: &[(usize, RunProperty)],
     ) -> usize {
+        let (found, reached) = self.runs_taken(&std::sync::atomic::AtomicUsize::new(0), props);
+        out.extend(found);
+        reached
+    }
+
+    /// [`Checker::runs_numbered`] for the properties of `props` that this thread takes,
+    /// each the next of `next` (shared with the threads that decide the others).
+    pub(super) fn runs_taken(
+        &self,
+        next: &std::sync::atomic::AtomicUsize,
+        props: &[(usize, RunProperty)],
+    ) -> (Vec<(usize, Finding)>, usize) {
         let mut products = Products::default();
-        // Those about explanations are decided on their user's search (`verify_with`).
-        for (k, p) in props.iter().filter(|(_, p)| p.user.is_none()) {
-            out.push((*k, self.run_property(p, &mut products)));
+        let mut out = Vec::new();
+        let take = || next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        while let Some((k, p)) = props.get(take()) {
+            // Those about explanations are decided on their user's search (`verify_with`).
+            if p.user.is_none() {
+                out.push((*k, self.run_property(p, &mut products)));
+            }
         }
-        products.reached
+        (out, products.reached)
     }
 
     /// The run of a violation, each step the transition the product took.
