@@ -529,3 +529,48 @@ fn the_state_graph_marks_where_a_modal_always_fails() {
     let (_, note) = marked(&format!("{intends}{did}"), "graph-modal-did");
     assert!(note.contains("`no_wiping` fails are not marked"), "{note}");
 }
+
+/// On the agent's exact graph the products take the cores the users' searches free, a
+/// property at a time, each on the thread of a search that ended: with both users, on one
+/// thread or two, every property of the kitchen is decided once, with the same verdict
+/// and message.
+#[test]
+fn beside_the_users_every_property_is_decided_once_on_any_number_of_threads() {
+    let decided = |threads: &str| {
+        let (code, r, _) = common::report_json(
+            &[
+                "verify",
+                "specs/kitchen",
+                "--no-symmetry",
+                "--threads",
+                threads,
+            ],
+            &format!("ltl-users-threads-{threads}"),
+        );
+        assert_eq!(code, 0, "{r:#}");
+        let phases = phase_names(&r);
+        for p in ["ltl product", "explanation:newcomer", "explanation:owner"] {
+            assert!(phases.contains(&p), "{threads} threads: {phases:?}");
+        }
+        let mut props: Vec<(String, String, String)> = (r["findings"].as_array().unwrap())
+            .iter()
+            .filter(|f| f["id"].as_str().unwrap().starts_with("property:"))
+            .map(|f| {
+                let s = |k: &str| f[k].as_str().unwrap_or_default().to_string();
+                (s("id"), s("status"), s("message"))
+            })
+            .collect();
+        props.sort();
+        props
+    };
+    let one = decided("1");
+    let names: Vec<&str> = one.iter().map(|(id, _, _)| id.as_str()).collect();
+    let manifest = std::fs::read_to_string("specs/kitchen/bdi-check.toml").unwrap();
+    let declared = manifest.matches("[[property]]").count();
+    assert_eq!(names.len(), declared, "one finding per property: {names:?}");
+    let mut distinct = names.clone();
+    distinct.dedup();
+    assert_eq!(distinct, names, "each property once");
+    assert_eq!(decided("2"), one);
+    assert_eq!(decided("3"), one);
+}
