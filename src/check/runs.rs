@@ -1742,42 +1742,41 @@ mod tests {
     }
 
     fn formula(r: &mut Rng, depth: u32) -> Ltl {
-        if depth == 0 || r.next(4) == 0 {
-            return Ltl::Prop(r.next(3) as u32);
-        }
-        let a = formula(r, depth - 1);
-        match r.next(11) {
-            0 => Ltl::not(a),
-            1 => Ltl::next(a),
-            2 => Ltl::always(a),
-            3 => Ltl::eventually(a),
-            k => {
-                let b = formula(r, depth - 1);
-                match k {
-                    4 => Ltl::and(a, b),
-                    5 => Ltl::or(a, b),
-                    6 => Ltl::until(a, b),
-                    7 => Ltl::release(a, b),
-                    8 => Ltl::weak_until(a, b),
-                    9 => Ltl::leads_to(a, b),
-                    _ => Ltl::implies(a, b),
-                }
-            }
-        }
+        random_formula(r, depth, true)
     }
 
     /// A formula without temporal operators.
     fn proposition(r: &mut Rng, depth: u32) -> Ltl {
+        random_formula(r, depth, false)
+    }
+
+    /// A random formula over propositions 0 to 2, with temporal operators or without.
+    fn random_formula(r: &mut Rng, depth: u32, temporal: bool) -> Ltl {
         if depth == 0 || r.next(4) == 0 {
             return Ltl::Prop(r.next(3) as u32);
         }
-        let a = proposition(r, depth - 1);
-        match r.next(5) {
-            0 => Ltl::not(a),
-            1 => Ltl::and(a, proposition(r, depth - 1)),
-            2 => Ltl::or(a, proposition(r, depth - 1)),
-            3 => Ltl::implies(a, proposition(r, depth - 1)),
-            _ => Ltl::iff(a, proposition(r, depth - 1)),
+        let a = random_formula(r, depth - 1, temporal);
+        type Unary = fn(Ltl) -> Ltl;
+        type Binary = fn(Ltl, Ltl) -> Ltl;
+        let (unary, binary): (&[Unary], &[Binary]) = match temporal {
+            true => (
+                &[Ltl::not, Ltl::next, Ltl::always, Ltl::eventually],
+                &[
+                    Ltl::and,
+                    Ltl::or,
+                    Ltl::until,
+                    Ltl::release,
+                    Ltl::weak_until,
+                    Ltl::leads_to,
+                    Ltl::implies,
+                ],
+            ),
+            false => (&[Ltl::not], &[Ltl::and, Ltl::or, Ltl::implies, Ltl::iff]),
+        };
+        let k = r.next((unary.len() + binary.len()) as u64) as usize;
+        match unary.get(k) {
+            Some(f) => f(a),
+            None => binary[k - unary.len()](a, random_formula(r, depth - 1, temporal)),
         }
     }
 
