@@ -254,6 +254,12 @@ impl AgentState for Packed<'_> {
 pub trait CycleNotes {
     /// The notes in order.
     fn notes(&self) -> impl Iterator<Item = &Note>;
+
+    /// While the search lasts, equal for the same notes only ([`Notes::short_key`]), when
+    /// they have such an identity: what is read of the notes alone can be kept by it.
+    fn identity(&self) -> Option<[usize; 4]> {
+        None
+    }
 }
 
 impl CycleNotes for Vec<Note> {
@@ -265,5 +271,9 @@ impl CycleNotes for Vec<Note> {
 impl CycleNotes for Notes<'_> {
     fn notes(&self) -> impl Iterator<Item = &Note> {
         self.iter()
+    }
+
+    fn identity(&self) -> Option<[usize; 4]> {
+        self.short_key()
     }
 }
