@@ -857,6 +857,11 @@ struct Tables {
     /// Per action note (by address): Algorithm 2's explanation and the atoms of its
     /// context's literals, when its content does not read the beliefs (`syntactic`).
     contents: Table<usize, Option<(Explanation, LiteralAtoms)>>,
+    /// Per action note (by address) and explanation given (by the address of its
+    /// interned [`Judgeable`]): the obligation it opens. Made anew, each was hashed, and
+    /// compared whole with the one of the same view already interned (4-cup kitchen: a
+    /// tenth of the users' instructions).
+    obligations: Table<(usize, usize), Hashed<Obligation>>,
     /// Each distinct value of `explained` once, so that equal ones have one address: what
     /// a transition makes of a view depends on the beliefs only through them.
     judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>, Quick>>; SHARDS],
@@ -1763,12 +1768,11 @@ impl<'a, W: Runs> Explained<'a, W> {
             );
         }
         let (e, truth) = explanation?;
-        let truth = truth.clone();
         let false_now: Vec<String> = e
             .content
             .context
             .iter()
-            .zip(&truth)
+            .zip(truth)
             .filter(|(_, t)| !**t)
             .map(|(l, _)| l.to_string())
             .collect();
@@ -1789,25 +1793,38 @@ impl<'a, W: Runs> Explained<'a, W> {
             after: prev,
             content: e.content.clone(),
         };
-        st.open.push(Hashed::new(Obligation {
-            origin,
-            depth,
-            plan,
-            block: e.block,
-            from: pos,
-            end: *e.positions.last().unwrap_or(&pos),
-            last: e.last,
-            gamma: e.content.context.clone(),
-            atoms: LiteralAtoms(
-                (e.content.context.iter())
-                    .map(|l| self.instances(&l.atom))
-                    .collect(),
-            ),
-            truth,
-            action: term.clone(),
-            span,
-            steps: e.content.actions.clone(),
-        }));
+        let open = || {
+            Hashed::new(Obligation {
+                origin,
+                depth,
+                plan,
+                block: e.block,
+                from: pos,
+                end: *e.positions.last().unwrap_or(&pos),
+                last: e.last,
+                gamma: e.content.context.clone(),
+                atoms: LiteralAtoms(
+                    (e.content.context.iter())
+                        .map(|l| self.instances(&l.atom))
+                        .collect(),
+                ),
+                truth: truth.clone(),
+                action: term.clone(),
+                span,
+                steps: e.content.actions.clone(),
+            })
+        };
+        // The note and the interned explanation make the obligation: one value for them,
+        // shared by every view that has it.
+        st.open.push(match (key, &explained) {
+            (Some((note, _)), Some(j)) => {
+                let at = Arc::as_ptr(j) as *const () as usize;
+                memo_read(&self.tables.obligations, (note, at), open, |o| {
+                    (**o).clone()
+                })
+            }
+            _ => open(),
+        });
         Some(given)
     }
 

@@ -190,7 +190,7 @@ impl fmt::Display for Pair {
 /// Cheap to clone (the patterns are shared; the learned pairs are a small sorted vector of
 /// shared terms) and `Eq + Hash + Ord`, so a model checker can keep it in its states: two
 /// relations are equal when they have the same patterns and have learned the same pairs.
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Debug, Eq, PartialOrd, Ord)]
 pub struct ExpectedSuccessors {
     initial: Arc<[Pair]>,
     /// Sorted, without duplicates; none of them matches a pattern of `initial` or another.
@@ -198,6 +198,18 @@ pub struct ExpectedSuccessors {
     learned: Arc<[Pair]>,
     /// The hash of `learned` (the sum of its pairs'), made as it grows.
     learned_hash: u64,
+}
+
+impl PartialEq for ExpectedSuccessors {
+    fn eq(&self, o: &ExpectedSuccessors) -> bool {
+        // The pairs are shared (a user's patterns, and sets grown alike: [`grown`]), so
+        // most equal relations have the same pairs by address: comparing them pair by pair
+        // was most of interning a user's view.
+        let same = |a: &Arc<[Pair]>, b: &Arc<[Pair]>| Arc::ptr_eq(a, b) || a[..] == b[..];
+        self.learned_hash == o.learned_hash
+            && same(&self.learned, &o.learned)
+            && same(&self.initial, &o.initial)
+    }
 }
 
 impl Hash for ExpectedSuccessors {
@@ -261,12 +273,9 @@ impl ExpectedSuccessors {
                 };
                 // The hash of a set: the sum of its pairs' hashes, so that adding a pair
                 // costs one hash, not one per pair learned so far.
-                let mut h = std::collections::hash_map::DefaultHasher::new();
-                pair.hash(&mut h);
-                self.learned_hash = self.learned_hash.wrapping_add(h.finish());
-                let mut learned = self.learned.to_vec();
-                learned.insert(at, pair);
-                self.learned = learned.into();
+                let hash = crate::semantics::state::part_hash(&pair);
+                self.learned_hash = self.learned_hash.wrapping_add(hash);
+                self.learned = grown(&self.learned, at, pair, hash);
                 true
             }
         }
@@ -279,6 +288,46 @@ impl ExpectedSuccessors {
     pub fn observe(&mut self, prev: Option<&Observation>, next: &Observation) -> bool {
         next.is_action() && self.learn(prev, next)
     }
+}
+
+/// How many grown sets each thread keeps at hand ([`grown`]; a power of two).
+const GROWN: usize = 1 << 12;
+
+/// A set of learned pairs, a pair it grew by, and the set it grew into.
+type Growth = (Arc<[Pair]>, Pair, Arc<[Pair]>);
+
+thread_local! {
+    /// The sets learned pairs grew into lately, by the set before (by address: the entry
+    /// keeps it alive, so no other set has it) and the pair. A user's search grows the same
+    /// set by the same pair from many states, and each growth copied the set; one shared
+    /// set for equal ones also makes comparing two views' `N` (interning them) a pointer
+    /// comparison instead of one of every pair (4-cup kitchen: `learn` and interning were
+    /// a fifth of the users' instructions).
+    static GROWN_SETS: std::cell::RefCell<Vec<Option<Growth>>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// `learned` with `pair` (of hash `hash`) inserted at `at`, shared with the last growth of
+/// the same set by the same pair on this thread.
+fn grown(learned: &Arc<[Pair]>, at: usize, pair: Pair, hash: u64) -> Arc<[Pair]> {
+    let address = Arc::as_ptr(learned) as *const Pair as usize as u64;
+    let slot = crate::semantics::compiled::mix(address ^ hash) as usize & (GROWN - 1);
+    GROWN_SETS.with_borrow_mut(|sets| {
+        if sets.is_empty() {
+            sets.resize(GROWN, None);
+        }
+        if let Some((before, by, after)) = &sets[slot] {
+            if Arc::ptr_eq(before, learned) && *by == pair {
+                return after.clone();
+            }
+        }
+        let after: Arc<[Pair]> = (learned[..at].iter().cloned())
+            .chain(std::iter::once(pair.clone()))
+            .chain(learned[at..].iter().cloned())
+            .collect();
+        sets[slot] = Some((learned.clone(), pair, after.clone()));
+        after
+    })
 }
 
 /// Compares a stored pair with `(prev, next)` without building a pair (no clones).
