@@ -489,6 +489,11 @@ pub(crate) trait RunGraph {
     fn steps_at(&self, _i: u32) -> bool {
         true
     }
+    /// Whether some transition may have a step letter (`false`: a position's letter is its
+    /// state's).
+    fn any_steps(&self) -> bool {
+        true
+    }
     /// How many agents a loop must be weakly fair to (0: every loop is a run).
     fn fair_agents(&self) -> u8 {
         0
@@ -569,6 +574,9 @@ impl RunGraph for Explored<'_, '_> {
     }
     fn steps_at(&self, i: u32) -> bool {
         bit(&self.stepping, i)
+    }
+    fn any_steps(&self) -> bool {
+        !self.step_letters.is_empty()
     }
     fn fair_agents(&self) -> u8 {
         self.facts.fairness.as_ref().map_or(0, |f| f.agents)
@@ -1439,7 +1447,24 @@ fn responds<G: RunGraph>(
     // state, its own position), all found in one pass over the letters. A run that ends
     // there stays without `q`: a violation.
     let mut entered: Vec<Vec<u32>> = vec![Vec::new(); responses.len()];
+    // Without step letters a position's letter is the state it enters: each state is read
+    // once instead of once per transition into it (every state but an initial one is
+    // entered by one, in a search's graph; one that is not can only add a state to
+    // look from).
+    let states_only = !g.any_steps();
     for i in 0..g.len() {
+        if states_only {
+            let letter = g.state_letter(i);
+            for (judge, entered) in judges.iter_mut().zip(&mut entered) {
+                if judge.bad(letter) {
+                    if g.may_end(i) {
+                        return false;
+                    }
+                    entered.push(i);
+                }
+            }
+            continue;
+        }
         if i < g.initial() || g.may_end(i) {
             let letter = g.state_letter(i);
             for (judge, entered) in judges.iter_mut().zip(&mut entered) {
@@ -1976,6 +2001,9 @@ mod tests {
         fn step_letter(&self, i: u32, k: u32) -> u64 {
             self.steps[i as usize][k as usize]
         }
+        fn any_steps(&self) -> bool {
+            self.steps.iter().flatten().any(|&l| l != 0)
+        }
         fn fair_agents(&self) -> u8 {
             if self.movers.is_some() {
                 2
@@ -2132,6 +2160,10 @@ mod tests {
             let mut g = toy_of(&mut r, if case % 2 == 0 { 4 } else { 10 });
             // The pass is taken only where no fairness of agents is owed.
             g.movers = None;
+            // A third of the graphs without step letters.
+            if r.next(3) == 0 {
+                g.steps.iter_mut().flatten().for_each(|l| *l = 0);
+            }
             // One to three conjuncts, as the instances of a property are: responses, in
             // both forms, and now and then a formula about one position.
             let conjuncts = 1 + r.next(3);
