@@ -1453,7 +1453,9 @@ fn responds<G: RunGraph>(
     // look from).
     let states_only = !g.any_steps();
     for i in 0..g.len() {
-        if states_only {
+        // The state's own letter: an initial state's position, a run that ends there, and
+        // without step letters every transition into it.
+        if states_only || i < g.initial() || g.may_end(i) {
             let letter = g.state_letter(i);
             for (judge, entered) in judges.iter_mut().zip(&mut entered) {
                 if judge.bad(letter) {
@@ -1463,18 +1465,9 @@ fn responds<G: RunGraph>(
                     entered.push(i);
                 }
             }
-            continue;
         }
-        if i < g.initial() || g.may_end(i) {
-            let letter = g.state_letter(i);
-            for (judge, entered) in judges.iter_mut().zip(&mut entered) {
-                if judge.bad(letter) {
-                    if g.may_end(i) {
-                        return false;
-                    }
-                    entered.push(i);
-                }
-            }
+        if states_only {
+            continue;
         }
         for (k, &j) in g.successors(i).unwrap_or(&[]).iter().enumerate() {
             let letter = g.state_letter(j) | g.step_letter(i, k as u32);
