@@ -1415,7 +1415,7 @@ fn holds_by_pieces<G: RunGraph>(
             Piece::Responds(a, q) => responses.push((*a, *q)),
         }
     }
-    responds(g, (&responses, props), scratch, visited)
+    responses.is_empty() || responds(g, (&responses, props), scratch, visited)
 }
 
 /// Whether each response `(a, q)`, `a | <> q`, holds at every position of every run of
