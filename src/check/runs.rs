@@ -2145,6 +2145,32 @@ mod tests {
     }
 
     #[test]
+    fn leads_to_and_its_instances_together_are_responses() {
+        let (p, q) = (Ltl::Prop(0), Ltl::Prop(1));
+        let responds = |f: &Ltl| {
+            let body = always_body(f).expect("a [] formula");
+            pieces(body)
+                .is_some_and(|ps| ps.iter().all(|piece| matches!(piece, Piece::Responds(..))))
+        };
+        // `a ~> q`, `[] (a -> <> q)` as the manifest writes it, and the conjunction of two
+        // instances as `decide` builds it.
+        assert!(responds(&Ltl::leads_to(p.clone(), q.clone())));
+        let written = Ltl::always(Ltl::implies(p.clone(), Ltl::eventually(q.clone())));
+        assert!(responds(&written));
+        let body = |a: u32, b: u32| {
+            always_body(&Ltl::leads_to(Ltl::Prop(a), Ltl::Prop(b)))
+                .expect("a [] formula")
+                .clone()
+        };
+        assert!(responds(&Ltl::always(Ltl::and(body(0, 1), body(2, 3)))));
+        // Not a response: `<>` under `X`, or `U` with another left side.
+        let next = Ltl::always(Ltl::or(p.clone(), Ltl::next(Ltl::eventually(q.clone()))));
+        assert!(pieces(always_body(&next).expect("a [] formula")).is_none());
+        let until = Ltl::always(Ltl::or(p, Ltl::until(Ltl::Prop(2), q)));
+        assert!(pieces(always_body(&until).expect("a [] formula")).is_none());
+    }
+
+    #[test]
     fn one_pass_per_response_decides_as_the_product_does() {
         let mut r = Rng(0x9e37_79b9_7f4a_7c15);
         let (mut held, mut failed, mut unreachable) = (0, 0, 0);
