@@ -1195,21 +1195,15 @@ fn product_search(
     };
     // `[] b` with `b` about one position (`[] (did(wipe(L)) -> holding(none))`) is
     // decided by one pass over the graph, far cheaper than a product that has a node per
-    // graph state. A violation's shortest run is still the product's to find.
-    if let Some(body) = always_body(&local_f).filter(|b| b.at_letter(0).is_some()) {
-        if holds_everywhere(&g, body) {
-            products.reached += g.len() as usize;
-            return Ok(Some(None));
-        }
-    }
-    // `[] (a -> <> q)` (`a ~> q`), and the conjunction of its instances, `a` and `q` about
-    // one position, on runs that need no fairness of agents: one pass per response, over
-    // the states that may avoid `q` from where `a` holds without `q`. The product had a node
-    // per graph state and automaton state (5.9 M at 4 cups, a quarter of the instructions
-    // after the agent's search).
+    // graph state; so is `[] (a -> <> q)` (`a ~> q`), and the conjunction of its
+    // instances, on runs that need no fairness of agents: one pass per response, over the
+    // states that may avoid `q` from where `a` holds without `q` (the product had 5.9 M
+    // nodes at 4 cups, a quarter of the instructions after the agent's search). A
+    // violation's shortest run is still the product's to find.
+    let without_fairness = g.fair_agents() == 0;
     if let Some(pieces) = always_body(&local_f)
-        .filter(|_| g.fair_agents() == 0)
         .and_then(pieces)
+        .filter(|ps| without_fairness || ps.iter().all(|p| matches!(p, Piece::At(_))))
     {
         let mut visited = 0;
         let held = holds_by_pieces(
@@ -1327,19 +1321,8 @@ pub(crate) fn decide(
 /// have one are read.
 fn holds_everywhere<G: RunGraph>(g: &G, body: &Ltl) -> bool {
     // Letters repeat: each is judged once, when the formula reads few propositions.
-    let mut judged: Vec<u8> = vec![0; 1 << body.props().min(16)];
-    let mut at = |letter: u64| {
-        let ok = |l: u64| body.at_letter(l).unwrap_or(false);
-        match judged.get_mut(letter as usize) {
-            Some(j) if *j != 0 => *j == 2,
-            Some(j) => {
-                let v = ok(letter);
-                *j = 1 + u8::from(v);
-                v
-            }
-            None => ok(letter),
-        }
-    };
+    let mut judge = Judge::new((body, &Ltl::False), body.props() as usize);
+    let mut at = |letter: u64| judge.at(letter).0;
     let states = (0..g.len()).all(|i| at(g.state_letter(i)));
     for i in 0..g.len() {
         if states && !g.steps_at(i) {
@@ -1379,12 +1362,13 @@ fn pieces(body: &Ltl) -> Option<Vec<Piece<'_>>> {
         }
     }
     match body {
+        // A conjunction about one position is one piece: one pass.
+        f if one(f) => Some(vec![Piece::At(f)]),
         Ltl::And(x, y) => {
             let mut out = pieces(x)?;
             out.extend(pieces(y)?);
             Some(out)
         }
-        f if one(f) => Some(vec![Piece::At(f)]),
         Ltl::Or(x, y) => match (eventually(x), eventually(y)) {
             (_, Some(q)) if one(x) => Some(vec![Piece::Responds(x, q)]),
             (Some(q), _) if one(y) => Some(vec![Piece::Responds(y, q)]),
@@ -1437,11 +1421,7 @@ fn responds<G: RunGraph>(
     visited: &mut usize,
 ) -> bool {
     let mut judges: Vec<Judge> = (responses.iter())
-        .map(|&(a, q)| Judge {
-            a,
-            q,
-            judged: vec![0; 1 << props.min(16)],
-        })
+        .map(|&response| Judge::new(response, props))
         .collect();
     // Per response, the states entered by a position where neither holds (for an initial
     // state, its own position), all found in one pass over the letters. A run that ends
@@ -1517,8 +1497,8 @@ fn responds<G: RunGraph>(
     true
 }
 
-/// What [`responds`] reads of a letter: whether `a` and `q` hold there, kept per letter
-/// when the formulas read few propositions.
+/// What [`responds`] (and [`holds_everywhere`], `q` false) reads of a letter: whether `a`
+/// and `q` hold there, kept per letter when the formulas read few propositions.
 struct Judge<'f> {
     a: &'f Ltl,
     q: &'f Ltl,
@@ -1526,7 +1506,16 @@ struct Judge<'f> {
     judged: Vec<u8>,
 }
 
-impl Judge<'_> {
+impl<'f> Judge<'f> {
+    /// The judge of `a` and `q` on letters of `props` propositions.
+    fn new((a, q): (&'f Ltl, &'f Ltl), props: usize) -> Judge<'f> {
+        Judge {
+            a,
+            q,
+            judged: vec![0; 1 << props.min(16)],
+        }
+    }
+
     fn at(&mut self, letter: u64) -> (bool, bool) {
         let (a, q) = (self.a, self.q);
         let eval = |l: u64| {
@@ -2163,6 +2152,9 @@ mod tests {
                 .clone()
         };
         assert!(responds(&Ltl::always(Ltl::and(body(0, 1), body(2, 3)))));
+        // A conjunction about one position is one piece, read in one pass.
+        let both = Ltl::and(Ltl::Prop(0), Ltl::Prop(1));
+        assert!(matches!(pieces(&both).as_deref(), Some([Piece::At(_)])));
         // Not a response: `<>` under `X`, or `U` with another left side.
         let next = Ltl::always(Ltl::or(p.clone(), Ltl::next(Ltl::eventually(q.clone()))));
         assert!(pieces(always_body(&next).expect("a [] formula")).is_none());
