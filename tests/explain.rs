@@ -334,6 +334,35 @@ fn requests_never_need_an_explanation_nor_teach() {
 }
 
 #[test]
+fn relations_grown_alike_share_their_pairs_and_stay_apart_from_others() {
+    // Two copies of one relation learn the same pair: equal, and the same pairs by address
+    // (a search compares views by them); learning another pair, or the same pair in
+    // another relation, gives its own pairs, in order.
+    let mut a = ExpectedSuccessors::default();
+    a.learn(None, &obs("navigateTo(table)"));
+    let (mut b, mut c, mut d) = (a.clone(), a.clone(), a.clone());
+    let (prev, next) = (obs("navigateTo(table)"), obs("pickUp(cup1)"));
+    assert!(b.learn(Some(&prev), &next));
+    assert!(c.learn(Some(&prev), &next));
+    assert_eq!(b, c);
+    assert!(std::ptr::eq(b.learned(), c.learned()));
+    assert!(d.learn(Some(&prev), &obs("pickUp(cup2)")));
+    assert_ne!(b, d);
+    assert_eq!(
+        strings(d.learned()),
+        [
+            "(start, navigateTo(table))",
+            "(navigateTo(table), pickUp(cup2))"
+        ]
+    );
+    let mut e = ExpectedSuccessors::default();
+    assert!(e.learn(Some(&prev), &next));
+    assert_eq!(strings(e.learned()), ["(navigateTo(table), pickUp(cup1))"]);
+    assert_ne!(b, e);
+    assert_eq!(b.learned().len(), 2);
+}
+
+#[test]
 fn the_first_action_of_a_run_follows_the_start() {
     let mut n = ExpectedSuccessors::new([pair("wait", "navigateTo(L)")]);
     // No written pattern matches the start of the run.
