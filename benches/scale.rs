@@ -160,6 +160,7 @@ fn threads() {
             shard: None,
             sample: None,
             room_for: 0,
+            numbered: true,
         };
         let limits = Limits {
             max_states: u64::MAX,

@@ -2162,60 +2162,93 @@ impl<'a, W: Runs> Explained<'a, W> {
 pub type Shown = (u32, u32, u64);
 
 /// The first violation of each check at each place, with the transition that shows it.
-pub struct UserResult<S = State> {
+pub struct UserResult {
     /// The user.
     pub user: String,
     /// `(check, file, offset)` → where it shows and what it is.
     pub violations: BTreeMap<(&'static str, u32, u32), (Shown, Violation)>,
-    /// The explored product graph.
-    pub graph: Graph<ExplainedState<S>>,
+    /// Whether every reachable state of the user's search was expanded.
+    pub complete: bool,
+    /// States of the user's search.
+    pub states: usize,
+    /// Seconds the user's search took (the run again to the violations included).
+    pub seconds: f64,
     /// Explanations given on the transitions explored.
     pub given: usize,
 }
 
-/// What [`verify_runs`] keeps of a user's search once it ends: its graph only when a
-/// counterexample is to be read from it. The work waiting for a core (`spare`) runs next
-/// on the search's thread, in the memory the search leaves: while the graph was kept,
-/// the 6-cup kitchen's products took fresh memory beside its 1.3 GB of fingerprints and
-/// parents.
-struct Ended<S> {
-    complete: bool,
-    states: usize,
-    seconds: f64,
-    violations: BTreeMap<(&'static str, u32, u32), (Shown, Violation)>,
-    given: usize,
-    graph: Option<Graph<ExplainedState<S>>>,
-}
+/// What [`check_user`] gives: the search's results, and, when it found violations, the
+/// product graph up to the last state a violation shows from, numbered, to read the runs
+/// to them from ([`counterexample`]).
+pub type UserSearch<S> = (UserResult, Option<Graph<ExplainedState<S>>>);
 
-impl<S> Ended<S> {
-    fn of(r: UserResult<S>) -> Ended<S> {
-        Ended {
-            complete: r.graph.complete(),
-            states: r.graph.len(),
-            seconds: r.graph.seconds,
-            given: r.given,
-            graph: (!r.violations.is_empty()).then_some(r.graph),
-            violations: r.violations,
-        }
-    }
-}
-
-/// Explores the runs as `user` sees them and collects the violations.
+/// Explores the runs as `user` sees them and collects the violations. The search keeps
+/// fingerprints alone ([`Options::numbered`]): most searches find nothing, and a run is
+/// read from a user's graph only to a violation. When there are some, the search runs
+/// again with numbers and parents, in the same order (the same states get the same
+/// numbers), as far as the last state a violation shows from: at 6 cups, a user's
+/// numbers and parents are 1.3 GB the memory of the first search does not hold.
 pub fn check_user<W: Runs>(
     model: &Explained<W>,
     limits: Limits,
     opts: &Options,
     progress: impl FnMut(usize, u32, f64),
-) -> UserResult<W::State> {
-    let mut violations = BTreeMap::new();
-    let mut given = 0;
+) -> UserSearch<W::State> {
     // The violations are found on the transitions as they are taken, and a counterexample
     // follows parent links: the user's graph keeps no edges (4 bytes a transition and 8 a
     // state, for searches of 100 M states at 6 cups).
     let opts = &Options {
         keep_edges: false,
+        numbered: false,
         ..*opts
     };
+    let (graph, violations, given) = user_search(model, limits, opts, progress);
+    let mut r = UserResult {
+        user: model.user.name.clone(),
+        complete: graph.complete(),
+        states: graph.len(),
+        seconds: graph.seconds,
+        violations,
+        given,
+    };
+    drop(graph);
+    let Some(last) = r.violations.values().map(|((src, _, _), _)| *src).max() else {
+        return (r, None);
+    };
+    let again = Limits {
+        max_states: limits.max_states.min(u64::from(last) + 1),
+        ..limits
+    };
+    let numbered = &Options {
+        numbered: true,
+        ..*opts
+    };
+    let (graph, shown, _) = user_search(model, again, numbered, |_, _, _| {});
+    r.seconds += graph.seconds;
+    // The same order gives the same transitions; a bound (`--timeout`) may have cut the
+    // second search short of some, whose runs are then not read.
+    let same = r.violations.iter().all(|(key, (at, _))| {
+        (shown.get(key)).is_some_and(|(again, _)| again == at && at.0 < graph.len() as u32)
+    });
+    debug_assert!(same || graph.bound == Some(super::explore::Bound::Time));
+    (r, same.then_some(graph))
+}
+
+/// One search of [`check_user`]: its graph, the first violation of each check at each
+/// place, and the explanations given.
+#[allow(clippy::type_complexity)]
+fn user_search<W: Runs>(
+    model: &Explained<W>,
+    limits: Limits,
+    opts: &Options,
+    progress: impl FnMut(usize, u32, f64),
+) -> (
+    Graph<ExplainedState<W::State>>,
+    BTreeMap<(&'static str, u32, u32), (Shown, Violation)>,
+    usize,
+) {
+    let mut violations = BTreeMap::new();
+    let mut given = 0;
     let graph = explore_with(
         model,
         limits,
@@ -2234,12 +2267,7 @@ pub fn check_user<W: Runs>(
     );
     // The searching threads other than this one are gone, and their caches with them.
     SEEN_RECENTLY.with_borrow_mut(Vec::clear);
-    UserResult {
-        user: model.user.name.clone(),
-        violations,
-        graph,
-        given,
-    }
+    (graph, violations, given)
 }
 
 /// The run to the violation `v`, shown by the `k`-th transition of state `src` of the
@@ -2497,12 +2525,14 @@ fn verify_runs<W: Runs + Clone>(
         threads: (threads / users.len().max(1)).max(1),
         ..*opts
     };
-    let results: Vec<Ended<W::State>> = std::thread::scope(|scope| {
+    // The work waiting for a core (`spare`) runs next on each search's thread, in the
+    // memory the search leaves (its graph is kept only to read runs to violations from).
+    let results: Vec<UserSearch<W::State>> = std::thread::scope(|scope| {
         let left: Vec<_> = (users.len()..threads).map(|_| scope.spawn(spare)).collect();
         let others: Vec<_> = (models.iter().skip(1))
             .map(|m| {
                 scope.spawn(move || {
-                    let r = Ended::of(check_user(m, limits, opts, |_, _, _| {}));
+                    let r = check_user(m, limits, opts, |_, _, _| {});
                     spare();
                     r
                 })
@@ -2510,7 +2540,6 @@ fn verify_runs<W: Runs + Clone>(
             .collect();
         let first = models.first().map(|m| {
             let r = check_user(m, limits, opts, |n, d, t| progress(&label, n, d, t));
-            let r = Ended::of(r);
             spare();
             r
         });
@@ -2527,7 +2556,8 @@ fn verify_runs<W: Runs + Clone>(
             )
             .collect()
     });
-    for (((user, model), r), phase) in users.iter().zip(&models).zip(&results).zip(&names) {
+    for (((user, model), (r, graph)), phase) in users.iter().zip(&models).zip(&results).zip(&names)
+    {
         // Among several agents, the message says whom the user watches.
         let who = match runs.names().filter(|n| n.len() > 1) {
             Some(names) => format!("{}, watching {}", user.name, names[runs.robot()]),
@@ -2556,7 +2586,7 @@ fn verify_runs<W: Runs + Clone>(
                     status: Status::Fail,
                     message: format!("for {who}: {}", v.message),
                     location: Some(loc),
-                    counterexample: (r.graph.as_ref())
+                    counterexample: (graph.as_ref())
                         .map(|g| counterexample(project, model, g, *shown, v)),
                     span: Some(v.span),
                     related: Vec::new(),
@@ -2697,8 +2727,8 @@ mod tests {
                 }
                 let searched = check_user(&symmetric, limits, &opts, |_, _, _| {});
                 let who = format!("{dir}, {}", user.name);
-                assert!(searched.graph.complete(), "{who}");
-                assert_eq!(searched.graph.len(), classes.len(), "{who}");
+                assert!(searched.0.complete, "{who}");
+                assert_eq!(searched.0.states, classes.len(), "{who}");
                 // Symmetry merges states here, so a search that kept them apart would show.
                 assert!(classes.len() < seen.len(), "{who}");
             }
@@ -2708,6 +2738,55 @@ mod tests {
     /// The table of recent successors gives the compiled cycle's successors whether it is
     /// in use (most lookups hit) or bypassed (few do), twice over each state of a walk of
     /// the kitchen, and it counts one lookup in `SAMPLE`.
+    #[test]
+    fn a_search_of_fingerprints_alone_reads_its_runs_from_a_second_one() {
+        // `check_user` searches without numbers, then again with them as far as its
+        // violations: the same violations, states and counterexamples as one numbered
+        // search of the whole graph, the second search no longer than it must be.
+        use super::*;
+        let limits = Limits {
+            max_states: 10_000_000,
+            max_depth: 100_000,
+            timeout: None,
+        };
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/paper");
+        let project = crate::model::project::load_project(&root).expect("the paper loads");
+        let sem = Semantics::new(&project).expect("the semantics");
+        let compiled = Compiled::new(&sem).expect("a local library");
+        let ex = crate::explain::agent::Explainer::new(&project, &sem);
+        let users = crate::explain::agent::users(&project, None).expect("the users");
+        let mut failing = 0;
+        for user in &users {
+            let model = Explained::watching(AloneCompiled::new(&compiled, None), &ex, user);
+            let opts = Options {
+                keep_edges: false,
+                ..Options::default()
+            };
+            let (whole, violations, given) = user_search(&model, limits, &opts, |_, _, _| {});
+            let (r, graph) = check_user(&model, limits, &Options::default(), |_, _, _| {});
+            assert_eq!((r.states, r.complete, r.given), (whole.len(), true, given));
+            assert_eq!(
+                r.violations.keys().collect::<Vec<_>>(),
+                violations.keys().collect::<Vec<_>>()
+            );
+            let Some(graph) = graph else {
+                assert!(violations.is_empty(), "{}", user.name);
+                continue;
+            };
+            failing += 1;
+            let last = violations.values().map(|((src, _, _), _)| *src).max();
+            assert!(graph.len() < whole.len() && Some(graph.len() as u32 - 1) >= last);
+            for (key, (shown, v)) in &r.violations {
+                assert_eq!(Some(shown), violations.get(key).map(|(s, _)| s));
+                let a = counterexample(&project, &model, &graph, *shown, v);
+                let b = counterexample(&project, &model, &whole, *shown, v);
+                assert!(!a.steps.is_empty() && a.steps == b.steps, "{}", user.name);
+                assert_eq!((a.initial, a.requests), (b.initial, b.requests));
+            }
+        }
+        assert!(failing > 0, "the paper's library fails for some user");
+    }
+
     #[test]
     fn recent_successors_are_the_cycles_used_or_bypassed() {
         use super::*;

@@ -96,6 +96,11 @@ pub struct Options {
     /// moving every state, on its way there. A guess: with too few the table grows as it
     /// would have; too many cost about 7 bytes each.
     pub room_for: usize,
+    /// Keep each state's fingerprint and parent by number, so that a run to it can be
+    /// rebuilt ([`Graph::path_to`], [`Walk`]). Without them (and without edges) the store
+    /// keeps the fingerprints alone ([`Store::fingerprints_only`]): a search whose runs
+    /// are not read (a user's search that finds nothing to report) in half the memory.
+    pub numbered: bool,
 }
 
 impl Default for Options {
@@ -107,6 +112,7 @@ impl Default for Options {
             shard: None,
             sample: None,
             room_for: 0,
+            numbered: true,
         }
     }
 }
@@ -585,7 +591,10 @@ fn search<M: Model, T>(
 ) -> Graph<M::State> {
     let start = Instant::now();
     let mut g = Graph {
-        store: Store::with_room(opts.room_for),
+        store: match opts.numbered || opts.keep_edges {
+            true => Store::with_room(opts.room_for),
+            false => Store::fingerprints_only(opts.room_for),
+        },
         levels: vec![0],
         edges: opts.keep_edges.then(Edges::default),
         initial: 0,
@@ -635,7 +644,7 @@ fn search<M: Model, T>(
         if !mine {
             continue;
         }
-        if g.store.find(fp).is_some() {
+        if g.store.contains(fp) {
             g.initial_covered += 1;
             continue;
         }
@@ -763,10 +772,12 @@ fn search<M: Model, T>(
                 // The cycle proviso: a reduced state's followed successors are all deeper,
                 // so no cycle of the reduced graph is reduced everywhere and no transition
                 // is put off forever.
+                // (Without numbers, a stored successor might be of either depth: none may be.)
                 let ample = r.ample.filter(|a| {
-                    r.fps[a.clone()]
-                        .iter()
-                        .all(|fp| g.store.find(*fp).is_none_or(|i| i >= next_level))
+                    r.fps[a.clone()].iter().all(|fp| match g.store.numbered() {
+                        true => g.store.find(*fp).is_none_or(|i| i >= next_level),
+                        false => !g.store.contains(*fp),
+                    })
                 });
                 if ample.is_some() {
                     g.reduced += 1;

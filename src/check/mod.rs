@@ -291,6 +291,7 @@ pub fn verify_with(
         shard: opts.shard,
         sample: opts.sample,
         room_for: 0,
+        numbered: true,
     };
     let mut failures = Failures::default();
     let compiled = if opts.compiled {

@@ -13,9 +13,17 @@
 //! replaying transitions from an initial state and following the fingerprints (as stateright does). Growth uses
 //! `try_reserve`, so running out of memory ends the search as `incomplete` instead of
 //! aborting the process.
+//!
+//! A search that will not rebuild a run (a user's explanation search that finds nothing
+//! to report) needs neither fingerprints by number nor parents: [`Store::fingerprints_only`]
+//! keeps one 8-byte slot per state in the table (the fingerprint itself) and counts the
+//! states: 9.1 to 18.3 bytes a state (7/16 to 7/8 full) instead of 19 to 29.
 
 /// Marks an empty hash-table slot, and "no parent".
 const NONE: u32 = u32::MAX;
+
+/// What [`Store::lookup`] gives for a stored state in a store of fingerprints only.
+pub const UNNUMBERED: u32 = NONE;
 
 /// A hash-table slot: a state's number (little-endian) and its fingerprint's top byte.
 type Slot = [u8; 5];
@@ -66,6 +74,55 @@ pub struct Store {
     slots: Vec<Slot>,
     /// How full the table may be, in eighths of its slots, before it doubles.
     full: usize,
+    /// The fingerprints alone, when the store keeps no numbers ([`Store::fingerprints_only`]):
+    /// `fps`, `parent` and `slots` then stay empty.
+    only: Option<Fingerprints>,
+}
+
+/// A set of fingerprints: an open-addressing table of the fingerprints themselves (0 marks
+/// an empty slot, so fingerprint 0 is kept apart), and how many there are.
+#[derive(Default)]
+struct Fingerprints {
+    table: Vec<u64>,
+    len: usize,
+    zero: bool,
+}
+
+impl Fingerprints {
+    /// Where `fp` (not 0) is, or the empty slot where its probe ends.
+    fn probe(&self, fp: u64) -> Result<usize, usize> {
+        let mask = self.table.len() - 1;
+        let mut at = fp as usize & mask;
+        loop {
+            match self.table[at] {
+                0 => return Err(at),
+                x if x == fp => return Ok(at),
+                _ => at = (at + 1) & mask,
+            }
+        }
+    }
+
+    fn contains(&self, fp: u64) -> bool {
+        match fp {
+            0 => self.zero,
+            _ => !self.table.is_empty() && self.probe(fp).is_ok(),
+        }
+    }
+
+    fn grow(&mut self) -> Result<(), OutOfMemory> {
+        let cap = (self.table.len() * 2).max(1024);
+        let mut table = Vec::new();
+        table.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
+        table.resize(cap, 0);
+        let old = std::mem::replace(&mut self.table, table);
+        for fp in old.into_iter().filter(|&x| x != 0) {
+            let Err(at) = self.probe(fp) else {
+                unreachable!("a fingerprint is kept once")
+            };
+            self.table[at] = fp;
+        }
+        Ok(())
+    }
 }
 
 impl Default for Store {
@@ -75,6 +132,7 @@ impl Default for Store {
             parent: Chunked::default(),
             slots: Vec::new(),
             full: 6,
+            only: None,
         }
     }
 }
@@ -106,33 +164,80 @@ impl Store {
         s
     }
 
+    /// A store that keeps the fingerprints alone, with room for `states` as
+    /// [`Store::with_room`] makes it: states are still numbered in the order they are
+    /// stored, but a number is neither kept nor found again ([`Store::lookup`] gives
+    /// [`UNNUMBERED`] for a stored state), and no fingerprint or parent is kept by number
+    /// ([`Store::numbered`]).
+    pub fn fingerprints_only(states: usize) -> Store {
+        let mut only = Fingerprints::default();
+        let cap = (states.saturating_mul(8) / 7 + 1)
+            .next_power_of_two()
+            .max(1024);
+        if states > 0 && only.table.try_reserve_exact(cap).is_ok() {
+            only.table.resize(cap, 0);
+        }
+        Store {
+            full: 7,
+            only: Some(only),
+            ..Store::default()
+        }
+    }
+
+    /// Whether the store keeps each state's fingerprint and parent by number (all but
+    /// [`Store::fingerprints_only`] do).
+    pub fn numbered(&self) -> bool {
+        self.only.is_none()
+    }
+
     /// Whether one more state fits in the table as it is.
     fn fits_one_more(&self) -> bool {
-        (self.fps.len() + 1) * 8 <= self.slots.len() * self.full
+        match &self.only {
+            None => (self.fps.len() + 1) * 8 <= self.slots.len() * self.full,
+            Some(f) => (f.len + 1) * 8 <= f.table.len() * self.full,
+        }
     }
 
     /// Number of states stored.
     pub fn len(&self) -> usize {
-        self.fps.len()
+        self.only.as_ref().map_or(self.fps.len(), |f| f.len)
     }
 
     /// Whether nothing is stored.
     pub fn is_empty(&self) -> bool {
-        self.fps.is_empty()
+        self.len() == 0
     }
 
-    /// The fingerprint of state `i`.
+    /// The fingerprint of state `i` (of a store that keeps numbers: [`Store::numbered`]).
     pub fn fingerprint(&self, i: u32) -> u64 {
+        assert!(
+            self.numbered(),
+            "a store of fingerprints only keeps no numbers"
+        );
         self.fps.get(i as usize)
     }
 
-    /// The state `i` was first reached from (`None` for an initial state).
+    /// The state `i` was first reached from (`None` for an initial state), in a store
+    /// that keeps numbers ([`Store::numbered`]).
     pub fn parent(&self, i: u32) -> Option<u32> {
+        assert!(
+            self.numbered(),
+            "a store of fingerprints only keeps no parents"
+        );
         let p = self.parent.get(i as usize);
         (p != NONE).then_some(p)
     }
 
-    /// The number of the state with fingerprint `fp`, if stored.
+    /// Whether a state with fingerprint `fp` is stored.
+    pub fn contains(&self, fp: u64) -> bool {
+        match &self.only {
+            None => self.lookup(fp).is_ok(),
+            Some(f) => f.contains(fp),
+        }
+    }
+
+    /// The number of the state with fingerprint `fp`, if stored ([`UNNUMBERED`] in a
+    /// store of fingerprints only).
     pub fn find(&self, fp: u64) -> Option<u32> {
         self.lookup(fp).ok()
     }
@@ -142,6 +247,18 @@ impl Store {
     /// probe (most often through several slots: the table is up to 3/4 or 7/8 full) is
     /// made once.
     pub fn lookup(&self, fp: u64) -> Result<u32, Vacant> {
+        if let Some(f) = &self.only {
+            let len = f.len;
+            return match fp {
+                _ if f.contains(fp) => Ok(UNNUMBERED),
+                0 => Err(Vacant { slot: None, len }),
+                _ if f.table.is_empty() => Err(Vacant { slot: None, len }),
+                _ => Err(Vacant {
+                    slot: f.probe(fp).err(),
+                    len,
+                }),
+            };
+        }
         let len = self.fps.len();
         if self.slots.is_empty() {
             return Err(Vacant { slot: None, len });
@@ -175,7 +292,17 @@ impl Store {
     ) -> Result<u32, OutOfMemory> {
         let slot = vacant
             .slot
-            .filter(|_| vacant.len == self.fps.len() && self.fits_one_more());
+            .filter(|_| vacant.len == self.len() && self.fits_one_more());
+        if let Some(f) = &mut self.only {
+            let Some(at) = slot.filter(|_| fp != 0) else {
+                return self.insert(fp, parent).map(|(i, _)| i);
+            };
+            debug_assert!(f.table[at] == 0 && !f.contains(fp));
+            let i = u32::try_from(f.len).map_err(|_| OutOfMemory)?;
+            f.table[at] = fp;
+            f.len += 1;
+            return Ok(i);
+        }
         let Some(at) = slot else {
             return self.insert(fp, parent).map(|(i, _)| i);
         };
@@ -190,18 +317,17 @@ impl Store {
     /// looks them up, so that their cache misses (most lookups miss, the table being far
     /// larger than the cache) overlap instead of following one another.
     pub fn prefetch(&self, fp: u64) {
-        if self.slots.is_empty() {
-            return;
+        match &self.only {
+            None if !self.slots.is_empty() => {
+                let at = fp as usize & (self.slots.len() - 1);
+                super::chunked::prefetch(&self.slots[at]);
+            }
+            Some(f) if !f.table.is_empty() => {
+                let at = fp as usize & (f.table.len() - 1);
+                super::chunked::prefetch(&f.table[at]);
+            }
+            _ => {}
         }
-        let at = fp as usize & (self.slots.len() - 1);
-        #[cfg(target_arch = "x86_64")]
-        {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            // SAFETY: `at` is within `slots`, and a prefetch only reads into the cache.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(self.slots.as_ptr().add(at).cast::<i8>()) };
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = at;
     }
 
     /// Stores `fp` (reached from `parent`) unless it is there: its number, and whether it
@@ -209,6 +335,9 @@ impl Store {
     pub fn insert(&mut self, fp: u64, parent: Option<u32>) -> Result<(u32, bool), OutOfMemory> {
         if let Some(i) = self.find(fp) {
             return Ok((i, false));
+        }
+        if self.only.is_some() {
+            return self.insert_fingerprint(fp).map(|i| (i, true));
         }
         if self.fps.len() >= NONE as usize - 1 {
             return Err(OutOfMemory);
@@ -219,6 +348,29 @@ impl Store {
         let i = self.push(fp, parent)?;
         place(&mut self.slots, i, fp);
         Ok((i, true))
+    }
+
+    /// Adds `fp`, not stored yet, to a store of fingerprints only: its number.
+    fn insert_fingerprint(&mut self, fp: u64) -> Result<u32, OutOfMemory> {
+        let grow = !self.fits_one_more();
+        let f = self.only.as_mut().expect("a store of fingerprints only");
+        let i = u32::try_from(f.len)
+            .ok()
+            .filter(|&i| i < NONE - 1)
+            .ok_or(OutOfMemory)?;
+        if fp == 0 {
+            f.zero = true;
+        } else {
+            if grow || f.table.is_empty() {
+                f.grow()?;
+            }
+            let Err(at) = f.probe(fp) else {
+                unreachable!("looked up before")
+            };
+            f.table[at] = fp;
+        }
+        f.len += 1;
+        Ok(i)
     }
 
     /// Appends a state's fingerprint and parent (not yet in the table): its number.
@@ -248,14 +400,19 @@ impl Store {
     }
 
     /// Frees the hash table once no state will be looked up (the search is over): the
-    /// fingerprints and parents stay, and a lookup after this finds nothing.
+    /// fingerprints and parents stay (the count alone, in a store of fingerprints only),
+    /// and a lookup after this finds nothing.
     pub fn drop_index(&mut self) {
         self.slots = Vec::new();
+        if let Some(f) = &mut self.only {
+            (f.table, f.zero) = (Vec::new(), false);
+        }
     }
 
     /// Bytes held (capacity, not just length).
     pub fn bytes(&self) -> usize {
-        self.fps.bytes() + self.parent.bytes() + self.slots.capacity() * 5
+        let only = self.only.as_ref().map_or(0, |f| f.table.capacity() * 8);
+        self.fps.bytes() + self.parent.bytes() + self.slots.capacity() * 5 + only
     }
 }
 
@@ -326,6 +483,50 @@ mod tests {
             assert_eq!(a.fingerprint(i), b.fingerprint(i));
             assert_eq!(a.parent(i), b.parent(i));
             assert_eq!(b.find(a.fingerprint(i)), Some(i));
+        }
+    }
+
+    #[test]
+    fn fingerprints_alone_number_and_find_as_a_numbered_store() {
+        // The same sequence of lookups, vacant inserts (some stale) and inserts, fingerprint
+        // 0 among them: the same answers, numbers and count, from a store sized in advance
+        // and from one that grows; a stored state looks up as `UNNUMBERED`.
+        let fp = |k: u64| match k {
+            7 => 0,
+            _ => k.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ 0x0f0f,
+        };
+        for room in [0, 5_000, 30_000] {
+            let (mut a, mut b) = (Store::new(), Store::fingerprints_only(room));
+            assert!(a.numbered() && !b.numbered());
+            for k in 0..40_000u64 {
+                let key = fp(k % 25_000);
+                match (a.lookup(key), b.lookup(key)) {
+                    (Ok(_), Ok(i)) => assert_eq!(i, UNNUMBERED, "state {k}"),
+                    (Err(va), Err(vb)) => {
+                        if k % 5 == 2 {
+                            let other = fp(1 << 50 | k);
+                            assert_eq!(a.insert(other, None), b.insert(other, None));
+                        }
+                        assert_eq!(
+                            a.insert_vacant(va, key, None),
+                            b.insert_vacant(vb, key, None),
+                            "state {k}"
+                        );
+                    }
+                    (x, y) => panic!("state {k}: {x:?} against {y:?}"),
+                }
+                assert_eq!(a.len(), b.len());
+            }
+            assert!((0..25_000).all(|k| b.contains(fp(k)) && b.find(fp(k)).is_some()));
+            assert!(!b.contains(fp(1 << 40)) && b.find(fp(1 << 40)).is_none());
+            assert_eq!(b.insert(fp(3), None), Ok((UNNUMBERED, false)));
+            // 8 bytes a slot, 7/16 to 7/8 full, no fingerprint or parent by number: at
+            // most 18.3 bytes a state (a numbered store: 19 to 29).
+            assert!(
+                b.bytes() * 10 <= b.len() * 183 + 1024 * 80,
+                "{room}: {}",
+                b.bytes()
+            );
         }
     }
 

@@ -297,6 +297,7 @@ pub fn verify_system(
         sample: options.sample,
         shard: None,
         room_for: 0,
+        numbered: true,
     };
     // The run properties read the exact graph: no reduction when there are any.
     let exact = graph_atoms.is_some();
