@@ -12,25 +12,72 @@ use std::process::ExitCode;
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-/// Turns transparent huge pages off for this process, unless `MIMALLOC_ALLOW_THP` says
+/// Turns transparent huge pages off for this process, except where the search asks for
+/// them (the stores' hash tables: `check::store`), unless `MIMALLOC_ALLOW_THP` says
 /// otherwise. mimalloc asks for huge pages on its arenas (`madvise(MADV_HUGEPAGE)`), and the
 /// kernel then clears 2 MiB at the first touch of each and, with Debian's `defrag =
-/// madvise`, compacts memory to find them. A search touches fresh memory all along (the
-/// store, the edges, interned parts), so on this project's 2-core machine huge pages cost
-/// more than they save: without them the exact 5-cup kitchen took 4.0 s instead of 4.8-5.0
-/// s (system time 0.45 s instead of 1.2 s) and 540 MiB instead of 620, and with the
-/// explanation users 15.5-18.2 s instead of 18.1-18.9 s (three alternated pairs each,
-/// 2026-12-04). This is what mimalloc's own `MIMALLOC_ALLOW_THP=0` does, which only takes
-/// effect when set before the process starts.
+/// madvise`, compacts memory to find them: for the small objects a search makes all along
+/// that cost more than it saved (5-cup kitchen, 2026-12-04: 4.8-5.0 s instead of 4.0 s;
+/// on 2026-12-05 the two were within this machine's noise). A table of a gigabyte read at
+/// random is another matter: with 4 KiB pages nearly every lookup missed the TLB, and the
+/// 6-cup kitchen's users' searches took 36-37 s each instead of 42 s. Linux 6.18's
+/// `PR_THP_DISABLE_EXCEPT_ADVISED` keeps the tables' advice; an older kernel refuses the
+/// flag, and the process then goes without huge pages at all. Telling mimalloc not to
+/// advise its arenas (`mi_option_allow_thp`) covers the arenas it makes from here on; the
+/// one it made before `main` is advised back (`MADV_NOHUGEPAGE`).
 fn no_transparent_huge_pages() {
     #[cfg(target_os = "linux")]
     if std::env::var_os("MIMALLOC_ALLOW_THP").is_none() {
         // SAFETY: PR_SET_THP_DISABLE takes integer arguments and touches no memory of ours;
         // on failure (an old kernel) the process keeps the system's setting.
         unsafe {
-            libc::prctl(libc::PR_SET_THP_DISABLE, 1, 0, 0, 0);
+            mi_option_set(MI_OPTION_ALLOW_THP, 0);
+            if libc::prctl(
+                libc::PR_SET_THP_DISABLE,
+                1,
+                PR_THP_DISABLE_EXCEPT_ADVISED,
+                0,
+                0,
+            ) != 0
+            {
+                libc::prctl(libc::PR_SET_THP_DISABLE, 1, 0, 0, 0);
+            }
+        }
+        for (start, end) in advised_mappings() {
+            // SAFETY: advice about mappings of this process: it changes neither what they
+            // hold nor whether they are mapped.
+            unsafe {
+                libc::madvise(
+                    start as *mut libc::c_void,
+                    end - start,
+                    libc::MADV_NOHUGEPAGE,
+                )
+            };
         }
     }
+}
+
+/// The mappings advised for huge pages before `main` ran (mimalloc's first arena, which
+/// it reserves for the runtime's first allocations): the address ranges of
+/// `/proc/self/smaps` whose `VmFlags` include `hg`.
+#[cfg(target_os = "linux")]
+fn advised_mappings() -> Vec<(usize, usize)> {
+    let Ok(smaps) = std::fs::read_to_string("/proc/self/smaps") else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut range = None;
+    for line in smaps.lines() {
+        if let Some(flags) = line.strip_prefix("VmFlags:") {
+            let advised = flags.split_whitespace().any(|f| f == "hg");
+            out.extend(range.take().filter(|_| advised));
+        } else if let Some((a, b)) = line.split_once(' ').and_then(|(r, _)| r.split_once('-')) {
+            if let (Ok(a), Ok(b)) = (usize::from_str_radix(a, 16), usize::from_str_radix(b, 16)) {
+                range = Some((a, b));
+            }
+        }
+    }
+    out
 }
 
 // mimalloc's `mi_option_set`, in the library the `mimalloc` crate links (its own binding
@@ -38,6 +85,14 @@ fn no_transparent_huge_pages() {
 extern "C" {
     fn mi_option_set(option: std::ffi::c_int, value: std::ffi::c_long);
 }
+
+/// `mi_option_allow_thp` in mimalloc's `mi_option_t` (the 44th option, in the headers of mimalloc
+/// v3, which the crate builds).
+const MI_OPTION_ALLOW_THP: std::ffi::c_int = 43;
+
+/// Linux 6.18's flag of `PR_SET_THP_DISABLE`: regions advised with `MADV_HUGEPAGE` keep
+/// huge pages.
+const PR_THP_DISABLE_EXCEPT_ADVISED: libc::c_ulong = 1 << 1;
 
 /// `mi_option_purge_delay` in mimalloc's `mi_option_t` (the 16th option, in the headers of
 /// both versions the crate builds).
@@ -571,22 +626,21 @@ mod tests {
         fn mi_option_get(option: std::ffi::c_int) -> std::ffi::c_long;
     }
 
-    #[test]
-    fn the_option_kept_at_minus_one_is_mimallocs_purge_delay() {
-        const CHILD: &str = "BDI_CHECK_PURGE_DELAY_CHILD";
+    /// Whether mimalloc reads `env`, set to `value` before the process starts, into its
+    /// option number `option` (run in a child process: the test `name` again).
+    fn read_from_environment(name: &str, option: std::ffi::c_int, env: &str, value: &str) {
+        const CHILD: &str = "BDI_CHECK_OPTION_CHILD";
         // SAFETY: reads one of mimalloc's options.
-        let read = || unsafe { mi_option_get(MI_OPTION_PURGE_DELAY) };
+        let read = unsafe { mi_option_get(option) };
         if let Ok(v) = std::env::var(CHILD) {
-            // mimalloc read `MIMALLOC_PURGE_DELAY` into the option at this index.
-            assert_eq!(read().to_string(), v);
+            assert_eq!(read.to_string(), v);
             return;
         }
         let exe = std::env::current_exe().expect("the test binary");
-        let name = "tests::the_option_kept_at_minus_one_is_mimallocs_purge_delay";
         let out = std::process::Command::new(exe)
             .args([name, "--exact", "--test-threads=1"])
-            .env("MIMALLOC_PURGE_DELAY", "1234")
-            .env(CHILD, "1234")
+            .env(env, value)
+            .env(CHILD, value)
             .output()
             .expect("the test binary runs");
         let stdout = String::from_utf8_lossy(&out.stdout);
@@ -594,9 +648,49 @@ mod tests {
             out.status.success() && stdout.contains("1 passed"),
             "{stdout}"
         );
+    }
+
+    #[test]
+    fn the_option_kept_at_minus_one_is_mimallocs_purge_delay() {
+        let name = "tests::the_option_kept_at_minus_one_is_mimallocs_purge_delay";
+        read_from_environment(name, MI_OPTION_PURGE_DELAY, "MIMALLOC_PURGE_DELAY", "1234");
         if std::env::var_os("MIMALLOC_PURGE_DELAY").is_none() {
             keep_freed_memory();
-            assert_eq!(read(), -1);
+            // SAFETY: reads one of mimalloc's options.
+            assert_eq!(unsafe { mi_option_get(MI_OPTION_PURGE_DELAY) }, -1);
         }
+    }
+
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn the_mappings_advised_for_huge_pages_are_found() {
+        const SIZE: usize = 4 << 20;
+        // SAFETY: a fresh private anonymous mapping, advised, looked up, unmapped.
+        unsafe {
+            let p = libc::mmap(
+                std::ptr::null_mut(),
+                SIZE,
+                libc::PROT_READ | libc::PROT_WRITE,
+                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                -1,
+                0,
+            );
+            assert_ne!(p, libc::MAP_FAILED);
+            let (a, b) = (p as usize, p as usize + SIZE);
+            let found = |m: &[(usize, usize)]| m.iter().any(|&(x, y)| x <= a && b <= y);
+            assert!(!found(&advised_mappings()));
+            if libc::madvise(p, SIZE, libc::MADV_HUGEPAGE) == 0 {
+                assert!(found(&advised_mappings()));
+                libc::madvise(p, SIZE, libc::MADV_NOHUGEPAGE);
+                assert!(!found(&advised_mappings()));
+            }
+            libc::munmap(p, SIZE);
+        }
+    }
+
+    #[test]
+    fn the_option_turned_off_is_mimallocs_allow_thp() {
+        let name = "tests::the_option_turned_off_is_mimallocs_allow_thp";
+        read_from_environment(name, MI_OPTION_ALLOW_THP, "MIMALLOC_ALLOW_THP", "7");
     }
 }

@@ -45,6 +45,29 @@ fn number(s: &Slot) -> u32 {
 
 use super::chunked::Chunked;
 
+/// Asks the kernel to back the 2 MiB-aligned parts of `v`'s buffer with huge pages, as
+/// `madvise(MADV_HUGEPAGE)` does (a hint; nothing where it is refused, or elsewhere than
+/// Linux). A table is read at random: with 4 KiB pages, nearly every lookup in a table of
+/// a gigabyte missed the processor's TLB as well as its cache (the users' searches at 6
+/// cups: 36-37 s each instead of 42 s). Called before the buffer is first written, so that
+/// its pages are made huge from the start.
+fn huge_pages<T>(v: &Vec<T>) {
+    #[cfg(target_os = "linux")]
+    {
+        const HUGE: usize = 2 << 20;
+        let start = v.as_ptr() as usize;
+        let end = start + v.capacity() * std::mem::size_of::<T>();
+        let (from, to) = (start.next_multiple_of(HUGE), end / HUGE * HUGE);
+        if from < to {
+            // SAFETY: advice about pages of our own allocation: it changes neither what
+            // they hold nor whether they are mapped.
+            unsafe { libc::madvise(from as *mut libc::c_void, to - from, libc::MADV_HUGEPAGE) };
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = v;
+}
+
 /// Puts state `i` with fingerprint `fp` in the first free slot from its own.
 fn place(slots: &mut [Slot], i: u32, fp: u64) {
     let mask = slots.len() - 1;
@@ -113,6 +136,7 @@ impl Fingerprints {
         let cap = (self.table.len() * 2).max(1024);
         let mut table = Vec::new();
         table.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
+        huge_pages(&table);
         table.resize(cap, 0);
         let old = std::mem::replace(&mut self.table, table);
         for fp in old.into_iter().filter(|&x| x != 0) {
@@ -158,6 +182,7 @@ impl Store {
                 .next_power_of_two()
                 .max(1024);
             if s.slots.try_reserve_exact(cap).is_ok() {
+                huge_pages(&s.slots);
                 s.slots.resize(cap, EMPTY);
             }
         }
@@ -175,6 +200,7 @@ impl Store {
             .next_power_of_two()
             .max(1024);
         if states > 0 && only.table.try_reserve_exact(cap).is_ok() {
+            huge_pages(&only.table);
             only.table.resize(cap, 0);
         }
         Store {
@@ -391,6 +417,7 @@ impl Store {
         let cap = (self.slots.len() * 2).max(1024);
         let mut slots = Vec::new();
         slots.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
+        huge_pages(&slots);
         slots.resize(cap, EMPTY);
         for (i, fp) in self.fps.iter().enumerate() {
             place(&mut slots, i as u32, fp);
