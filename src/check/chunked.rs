@@ -89,11 +89,6 @@ impl<T: Copy> Chunked<T> {
         self.len
     }
 
-    /// Whether there is none.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
     /// Asks the processor to bring element `i` into its cache, if there is one: a search
     /// reads its stored states and edges at random, and waiting for each read in turn was
     /// most of a user's search on a stored graph.
@@ -189,6 +184,9 @@ pub struct Lists {
     /// Per list, where it starts: chunk (high 32 bits) and offset.
     starts: Chunked<u64>,
     items: Vec<Vec<u32>>,
+    /// Per chunk, how many items the chunks before it hold ([`Lists::first_item`]), once
+    /// asked for: the lists are complete by then.
+    before: std::sync::OnceLock<Vec<u64>>,
 }
 
 /// The largest chunk of [`Lists`] (4 MiB), unless one list is longer.
@@ -259,6 +257,29 @@ impl Lists {
             chunk.len()
         };
         &chunk[a as u32 as usize..z]
+    }
+
+    /// The number of list `i`'s first item among all items, in order (list after list):
+    /// for arrays that hold something per item beside the lists, in the same order. Read
+    /// once every list is made (the first call counts the items of each chunk).
+    pub fn first_item(&self, i: usize) -> u64 {
+        let before = self.before.get_or_init(|| {
+            let mut n = 0;
+            (self.items.iter())
+                .map(|c| {
+                    let first = n;
+                    n += c.len() as u64;
+                    first
+                })
+                .collect()
+        });
+        let a = self.starts.get(i);
+        before[(a >> 32) as usize] + u64::from(a as u32)
+    }
+
+    /// How many items the lists hold.
+    pub fn items(&self) -> u64 {
+        self.items.iter().map(|c| c.len() as u64).sum()
     }
 
     /// Prefetches where list `i` starts, or (`near`) the list itself.
@@ -341,6 +362,43 @@ mod tests {
         }
         assert!((0..n).step_by(997).all(|i| a.get(i) == i as u64 + 7));
         assert_eq!((a.len(), a.bytes()), (n, bytes));
+    }
+
+    #[test]
+    fn items_are_numbered_list_after_list_across_chunks() {
+        // Lists of 0 to 12 items and one longer than a chunk, each item its own number:
+        // a list's first item is numbered as `first_item` says, over every chunk.
+        let mut lists = Lists::default();
+        let mut lens = Vec::new();
+        let mut next = 0u32;
+        for i in 0..300_000usize {
+            let n = if i == 1000 {
+                LIST_CHUNK + 5
+            } else {
+                i * 7 % 13
+            };
+            lists.room(n).expect("memory");
+            let at = lists.end();
+            for _ in 0..n {
+                lists.push(next);
+                next += 1;
+            }
+            lists.start(at).expect("memory");
+            lens.push(n);
+        }
+        assert!(lists.chunks() > 3, "{} chunks", lists.chunks());
+        let mut first = 0u64;
+        for (i, &n) in lens.iter().enumerate() {
+            assert_eq!(lists.first_item(i), first, "list {i}");
+            let items = lists.list(i);
+            assert_eq!(items.len(), n, "list {i}");
+            assert_eq!(
+                items.first().map(|&x| u64::from(x)),
+                (n > 0).then_some(first)
+            );
+            first += n as u64;
+        }
+        assert_eq!(lists.items(), first);
     }
 
     #[test]

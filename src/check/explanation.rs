@@ -484,13 +484,13 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
 /// The agent's graph as its exact, complete search stored it on the compiled cycle: every
 /// state, and the notes of each of its transitions in the graph's order. A user's search
 /// then follows the stored transitions ([`AloneStored`]) instead of running the cycle
-/// again: a user meets each agent state once per view it may have there. About 30 bytes
+/// again: a user meets each agent state once per view it may have there. About 26 bytes
 /// a state: the state's parts, and a number per transition for its notes ([`NoteIds`]).
 #[derive(Default)]
 pub struct Stored<'c> {
     states: Chunked<Packed<'c>>,
-    /// Per state, where its transitions' notes begin in `notes` (and one past the last).
-    starts: Chunked<u32>,
+    /// Per transition, state by state in the graph's order, its notes' number: a state's
+    /// begin where its edges do ([`Graph::first_transition`]).
     notes: Chunked<u32>,
     /// The notes by number, once the search is over ([`Stored::finish`]).
     distinct: Vec<Vec<Notes<'c>>>,
@@ -507,15 +507,11 @@ impl<'c> Stored<'c> {
             return;
         }
         let held = || -> Result<(), OutOfMemory> {
-            if self.starts.is_empty() {
-                self.starts.push(0)?;
-            }
             self.states.push(state)?;
             for n in notes {
                 self.notes.push(n)?;
             }
-            self.starts
-                .push(u32::try_from(self.notes.len()).map_err(|_| OutOfMemory)?)
+            Ok(())
         };
         if held().is_err() {
             self.broken = true;
@@ -532,7 +528,10 @@ impl<'c> Stored<'c> {
 
     /// Whether every state of `graph` is held, each with the notes of all its transitions.
     pub fn covers<S>(&self, graph: &Graph<S>) -> bool {
-        !self.broken && graph.complete() && self.states.len() == graph.len()
+        !self.broken
+            && graph.complete()
+            && self.states.len() == graph.len()
+            && graph.kept_transitions() == Some(self.notes.len() as u64)
     }
 
     /// The notes numbered `id`.
@@ -765,9 +764,9 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     ) {
         let targets = (self.graph.successors(s.index))
             .expect("a complete graph keeps every state's transitions");
-        let (st, i) = (self.stored, s.index as usize);
-        let from = st.starts.get(i) as usize;
-        debug_assert_eq!(st.starts.get(i + 1) as usize - from, targets.len());
+        let st = self.stored;
+        let from = (self.graph.first_transition(s.index))
+            .expect("a complete graph keeps every state's transitions") as usize;
         for (k, &t) in targets.iter().enumerate() {
             let id = st.notes.get(from + k);
             let notes = Some(st.notes(id));
@@ -776,17 +775,18 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     }
 
     fn prefetch(&self, s: &Node<'g, 'c>, stage: usize) {
-        let (st, i) = (self.stored, s.index as usize);
+        let st = self.stored;
         match stage {
             // The state itself was read when it was met, long before.
             0 => {
                 self.graph.prefetch_successors(s.index, false);
-                st.starts.prefetch(i);
                 prefetch(s.state);
             }
             1 => {
                 self.graph.prefetch_successors(s.index, true);
-                st.notes.prefetch(st.starts.get(i) as usize);
+                if let Some(from) = self.graph.first_transition(s.index) {
+                    st.notes.prefetch(from as usize);
+                }
                 prefetch(s.state.beliefs());
                 prefetch(s.state.agenda_key() as *const u8);
             }

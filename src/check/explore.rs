@@ -917,6 +917,19 @@ impl<S> Graph<S> {
         bit(&e.expanded, i).then(|| e.list(i))
     }
 
+    /// The number of state `i`'s first transition among all kept transitions, numbered
+    /// state by state in the order [`Graph::successors`] gives them (`None` when edges
+    /// were not kept). Read once the search is over.
+    pub fn first_transition(&self, i: u32) -> Option<u64> {
+        let e = self.edges.as_ref()?;
+        ((i as usize) < e.lists.len()).then(|| e.lists.first_item(i as usize))
+    }
+
+    /// How many transitions the kept edges hold (`None` when edges were not kept).
+    pub fn kept_transitions(&self) -> Option<u64> {
+        self.edges.as_ref().map(|e| e.lists.items())
+    }
+
     /// Prefetches where state `i`'s successors begin in the edges, or (`near`) the
     /// successors themselves ([`Model::prefetch`]).
     pub fn prefetch_successors(&self, i: u32, near: bool) {

@@ -496,13 +496,13 @@ pub fn verify_with(
 }
 
 /// Bytes of memory that the users' exact searches (a manifest's usual two) take per state
-/// of the exact agent graph they follow: about 125 on the kitchen (6 cups: 1.65 user
-/// states per agent state and user at about 25 bytes each with their frontiers, and the
-/// stored graph's 30; the run's peak went from 8.9 to 13.6 GB for 65.6 M agent states),
-/// with some room for libraries whose users meet more views per agent state. A library
-/// whose users meet many more is cut short at the memory bound (`incomplete`, exit 3)
-/// where reduced searches might have fitted.
-const EXACT_USER_BYTES: u64 = 160;
+/// of the exact agent graph they follow: about 80 on the kitchen (6 cups: 1.6 user states
+/// per agent state and user, each about 10 bytes in a table of fingerprints alone, and
+/// the stored graph's 30; the run's peak went from 3.4 GB for the agent's search alone to
+/// 8.5 GB for 65.6 M agent states), with some room for libraries whose users meet more
+/// views per agent state. A library whose users meet many more is cut short at the memory
+/// bound (`incomplete`, exit 3) where reduced searches might have fitted.
+const EXACT_USER_BYTES: u64 = 120;
 
 /// Whether the users' searches may follow an exact graph of `states` states instead of
 /// running reduced by symmetry, within the memory bound (`max`): exact, they take about
