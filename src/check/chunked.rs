@@ -185,7 +185,7 @@ pub struct Lists {
     starts: Chunked<u64>,
     items: Vec<Vec<u32>>,
     /// Per chunk, how many items the chunks before it hold ([`Lists::first_item`]), once
-    /// asked for: the lists are complete by then.
+    /// asked for (forgotten when a chunk is added or cut).
     before: std::sync::OnceLock<Vec<u64>>,
 }
 
@@ -222,6 +222,7 @@ impl Lists {
         chunk.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
         self.items.try_reserve(1).map_err(|_| OutOfMemory)?;
         self.items.push(chunk);
+        self.before.take();
         Ok(())
     }
 
@@ -243,6 +244,7 @@ impl Lists {
     pub fn truncate(&mut self, at: u64) {
         if let Some(c) = self.items.get_mut((at >> 32) as usize) {
             c.truncate(at as u32 as usize);
+            self.before.take();
         }
     }
 
@@ -260,8 +262,8 @@ impl Lists {
     }
 
     /// The number of list `i`'s first item among all items, in order (list after list):
-    /// for arrays that hold something per item beside the lists, in the same order. Read
-    /// once every list is made (the first call counts the items of each chunk).
+    /// for arrays that hold something per item beside the lists, in the same order. The
+    /// first call after a chunk is added or cut counts the items of each chunk.
     pub fn first_item(&self, i: usize) -> u64 {
         let before = self.before.get_or_init(|| {
             let mut n = 0;
@@ -367,11 +369,15 @@ mod tests {
     #[test]
     fn items_are_numbered_list_after_list_across_chunks() {
         // Lists of 0 to 12 items and one longer than a chunk, each item its own number:
-        // a list's first item is numbered as `first_item` says, over every chunk.
+        // a list's first item is numbered as `first_item` says, over every chunk, also
+        // when it was asked before the last chunks were added.
         let mut lists = Lists::default();
         let mut lens = Vec::new();
         let mut next = 0u32;
         for i in 0..300_000usize {
+            if i == 150_000 {
+                assert_eq!(lists.first_item(0), 0);
+            }
             let n = if i == 1000 {
                 LIST_CHUNK + 5
             } else {
