@@ -2215,8 +2215,10 @@ pub fn check_user<W: Runs>(
     let Some(last) = r.violations.values().map(|((src, _, _), _)| *src).max() else {
         return (r, None);
     };
+    // Within what is left of the time the first search had (`--timeout` bounds the run).
     let again = Limits {
         max_states: limits.max_states.min(u64::from(last) + 1),
+        timeout: limits.timeout.map(|t| (t - r.seconds).max(0.0)),
         ..limits
     };
     let numbered = &Options {
