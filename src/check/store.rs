@@ -137,11 +137,7 @@ impl Fingerprints {
     }
 
     fn grow(&mut self) -> Result<(), OutOfMemory> {
-        let cap = (self.table.len() * 2).max(1024);
-        let mut table = Vec::new();
-        table.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
-        huge_pages(&table);
-        table.resize(cap, 0);
+        let table = table((self.table.len() * 2).max(1024), 0)?;
         let old = std::mem::replace(&mut self.table, table);
         for fp in old.into_iter().filter(|&x| x != 0) {
             let Err(at) = self.probe(fp) else {
@@ -151,6 +147,23 @@ impl Fingerprints {
         }
         Ok(())
     }
+}
+
+/// A hash table of `cap` slots, each `empty`, its pages advised huge before it is
+/// written ([`huge_pages`]); [`OutOfMemory`] when it cannot be had.
+fn table<T: Clone>(cap: usize, empty: T) -> Result<Vec<T>, OutOfMemory> {
+    let mut t = Vec::new();
+    t.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
+    huge_pages(&t);
+    t.resize(cap, empty);
+    Ok(t)
+}
+
+/// The slots of a table sized in advance for `states`, at most 7/8 full.
+fn slots_for(states: usize) -> usize {
+    (states.saturating_mul(8) / 7 + 1)
+        .next_power_of_two()
+        .max(1024)
 }
 
 impl Default for Store {
@@ -182,13 +195,7 @@ impl Store {
         let mut s = Store::default();
         if states > 0 {
             s.full = 7;
-            let cap = (states.saturating_mul(8) / s.full + 1)
-                .next_power_of_two()
-                .max(1024);
-            if s.slots.try_reserve_exact(cap).is_ok() {
-                huge_pages(&s.slots);
-                s.slots.resize(cap, EMPTY);
-            }
+            s.slots = table(slots_for(states), EMPTY).unwrap_or_default();
         }
         s
     }
@@ -200,12 +207,8 @@ impl Store {
     /// ([`Store::numbered`]).
     pub fn fingerprints_only(states: usize) -> Store {
         let mut only = Fingerprints::default();
-        let cap = (states.saturating_mul(8) / 7 + 1)
-            .next_power_of_two()
-            .max(1024);
-        if states > 0 && only.table.try_reserve_exact(cap).is_ok() {
-            huge_pages(&only.table);
-            only.table.resize(cap, 0);
+        if states > 0 {
+            only.table = table(slots_for(states), 0).unwrap_or_default();
         }
         Store {
             full: 7,
@@ -278,15 +281,18 @@ impl Store {
     /// made once.
     pub fn lookup(&self, fp: u64) -> Result<u32, Vacant> {
         if let Some(f) = &self.only {
+            // One probe: most lookups of a user's search are of new states.
             let len = f.len;
             return match fp {
-                _ if f.contains(fp) => Ok(UNNUMBERED),
-                0 => Err(Vacant { slot: None, len }),
-                _ if f.table.is_empty() => Err(Vacant { slot: None, len }),
-                _ => Err(Vacant {
-                    slot: f.probe(fp).err(),
-                    len,
-                }),
+                0 if f.zero => Ok(UNNUMBERED),
+                _ if fp == 0 || f.table.is_empty() => Err(Vacant { slot: None, len }),
+                _ => match f.probe(fp) {
+                    Ok(_) => Ok(UNNUMBERED),
+                    Err(at) => Err(Vacant {
+                        slot: Some(at),
+                        len,
+                    }),
+                },
             };
         }
         let len = self.fps.len();
@@ -419,10 +425,7 @@ impl Store {
 
     fn grow(&mut self) -> Result<(), OutOfMemory> {
         let cap = (self.slots.len() * 2).max(1024);
-        let mut slots = Vec::new();
-        slots.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
-        huge_pages(&slots);
-        slots.resize(cap, EMPTY);
+        let mut slots = table(cap, EMPTY)?;
         // The slots are written at random: each is asked for some states ahead, so that
         // their cache misses overlap instead of following one another (the merging thread
         // waits for the growth, and the other threads soon for it).
