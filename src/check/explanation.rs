@@ -50,7 +50,7 @@ use super::chunked::{prefetch, Chunked};
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
 use super::model::{CycleNotes, Model};
 use super::recent::{recently, Recently};
-use super::store::OutOfMemory;
+use super::store::{pair_fingerprint, OutOfMemory};
 use super::symmetry::{Renaming, Symmetry};
 use super::trace::Builder;
 use crate::explain::agent::{Explainer, Explanation, User};
@@ -166,8 +166,9 @@ pub trait Runs: Sync {
     /// ([`Model::prefetch`]).
     fn prefetch(&self, _s: &Self::State, _stage: usize) {}
 
-    /// Without symmetry reduction, the fingerprint of `s` with a user's view whose hash is
-    /// `view`, when the runs number their states: cheaper than hashing both.
+    /// Without symmetry reduction, the fingerprint of `s` with the user's view numbered
+    /// `view` ([`Tables::intern`]), when the runs number their states: cheaper than hashing
+    /// both.
     fn fingerprint_numbered(&self, _s: &Self::State, _view: u64) -> Option<u64> {
         None
     }
@@ -811,9 +812,9 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     }
 
     fn fingerprint_numbered(&self, s: &Node<'g, 'c>, view: u64) -> Option<u64> {
-        // Equal only if `view ^ mix(index + 1)` is: for another state, a chance of 2^-64
-        // with views hashed by `part_hash`, as a fingerprint of both would have.
-        Some(mix(view ^ mix(u64::from(s.index) + 1)))
+        // Exact: the pair's own bits, mixed. The user's store keeps the first view met at
+        // each agent state by its number (`Store::fingerprints_by_place`).
+        Some(pair_fingerprint(u32::try_from(view).ok()?, s.index))
     }
 }
 
@@ -872,6 +873,8 @@ struct Tables {
     /// successor, and renaming a view's terms and hashing them cost more than the rest
     /// of the user's search; a view meets few renamings.
     renamed: [Mutex<RenamedViews>; SHARDS],
+    /// How many views were interned.
+    numbered: std::sync::atomic::AtomicU64,
 }
 
 /// Per view (by address) and renaming: the hash of the view renamed (one shard of
@@ -989,13 +992,19 @@ fn shard<T>(table: &[Mutex<T>; SHARDS], hash: u64) -> MutexGuard<'_, T> {
 }
 
 impl Tables {
-    /// The shared view equal to `view`.
+    /// The shared view equal to `view`, numbered when new.
     fn intern(&self, view: View) -> Shared {
-        let new = Shared::new(view);
+        let mut new = Shared::new(view);
         let mut views = shard(&self.views, quick(&new));
         match views.get(&new) {
             Some(old) => old.clone(),
             None => {
+                let number = self
+                    .numbered
+                    .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if let Some((_, v)) = Arc::get_mut(&mut new.0) {
+                    v.number = ViewNumber(number);
+                }
                 views.insert(new.clone());
                 new
             }
@@ -1041,6 +1050,27 @@ struct View {
     open: Vec<Hashed<Obligation>>,
     /// The agent's own explanation, emitted since the last environment action.
     emitted: Option<Term>,
+    /// Its number among the views interned ([`Tables::intern`]).
+    number: ViewNumber,
+}
+
+/// A view's number, given when it is interned ([`Tables::intern`]) and left out of its
+/// equality and hash (a view made anew has its parent's until interned): the views of a
+/// user's search are few, and its states on the agent's stored graph are pairs (view,
+/// agent state) fingerprinted exactly ([`Runs::fingerprint_numbered`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct ViewNumber(u64);
+
+impl PartialEq for ViewNumber {
+    fn eq(&self, _: &ViewNumber) -> bool {
+        true
+    }
+}
+
+impl Eq for ViewNumber {}
+
+impl Hash for ViewNumber {
+    fn hash<H: std::hash::Hasher>(&self, _: &mut H) {}
 }
 
 /// A [`View`] with its hash: most transitions leave the view as it was, and then the
@@ -1257,6 +1287,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                 marks: Vec::new(),
                 open: Vec::new(),
                 emitted: None,
+                number: ViewNumber::default(),
             }),
         }
     }
@@ -2091,7 +2122,7 @@ impl<W: Runs> Model for Explained<'_, W> {
             })
         });
         renamed
-            .or_else(|| self.runs.fingerprint_numbered(&s.state, s.view.0 .0))
+            .or_else(|| self.runs.fingerprint_numbered(&s.state, v.number.0))
             .unwrap_or_else(|| fingerprint(s))
     }
 }
@@ -2429,6 +2460,7 @@ pub fn verify(
         // (2-6 cups), so room for 1.7 (a table up to 7/8 full holds 1.94 before it grows).
         let opts = &Options {
             room_for: stored.graph.len().saturating_mul(17) / 10,
+            places: stored.graph.len(),
             ..*opts
         };
         return verify_runs(project, stored, limits, opts, progress, spare);

@@ -101,6 +101,10 @@ pub struct Options {
     /// keeps the fingerprints alone ([`Store::fingerprints_only`]): a search whose runs
     /// are not read (a user's search that finds nothing to report) in half the memory.
     pub numbered: bool,
+    /// The fingerprints are of pairs whose place is below this ([`Store::fingerprints_by_place`]:
+    /// a user's states on the agent's stored graph), when not 0. Read by a store of
+    /// fingerprints only.
+    pub places: usize,
 }
 
 impl Default for Options {
@@ -113,6 +117,7 @@ impl Default for Options {
             sample: None,
             room_for: 0,
             numbered: true,
+            places: 0,
         }
     }
 }
@@ -593,7 +598,7 @@ fn search<M: Model, T>(
     let mut g = Graph {
         store: match opts.numbered || opts.keep_edges {
             true => Store::with_room(opts.room_for),
-            false => Store::fingerprints_only(opts.room_for),
+            false => Store::fingerprints_by_place(opts.room_for, opts.places),
         },
         levels: vec![0],
         edges: opts.keep_edges.then(Edges::default),

@@ -292,6 +292,7 @@ pub fn verify_with(
         sample: opts.sample,
         room_for: 0,
         numbered: true,
+        places: 0,
     };
     let mut failures = Failures::default();
     let compiled = if opts.compiled {

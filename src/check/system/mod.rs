@@ -298,6 +298,7 @@ pub fn verify_system(
         shard: None,
         room_for: 0,
         numbered: true,
+        places: 0,
     };
     // The run properties read the exact graph: no reduction when there are any.
     let exact = graph_atoms.is_some();
