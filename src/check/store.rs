@@ -474,11 +474,14 @@ impl Store {
                 super::chunked::prefetch(&self.slots[at]);
             }
             Some(f) => {
-                let (_, place) = pair_of(fp);
-                if let Some(slot) = f.first.get(place as usize * PER_PLACE) {
+                // A pair of a place is most often found, or stored, there (9 in 10 at 5
+                // cups): its slot in the table is asked for only when it has none.
+                let placed = (!f.first.is_empty())
+                    .then(|| f.first.get(pair_of(fp).1 as usize * PER_PLACE))
+                    .flatten();
+                if let Some(slot) = placed {
                     super::chunked::prefetch(slot);
-                }
-                if !f.table.is_empty() {
+                } else if !f.table.is_empty() {
                     let at = fp as usize & (f.table.len() - 1);
                     super::chunked::prefetch(&f.table[at]);
                 }
