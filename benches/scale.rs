@@ -161,6 +161,7 @@ fn threads() {
             sample: None,
             room_for: 0,
             numbered: true,
+            places: 0,
         };
         let limits = Limits {
             max_states: u64::MAX,
