@@ -200,6 +200,9 @@ struct Expanded<T, L, S> {
     ample: Option<std::ops::Range<usize>>,
 }
 
+/// How many successors ahead of the one it looks up the merge asks for a store slot.
+const MERGE_AHEAD: usize = 32;
+
 /// States per job handed to a worker: enough to make a job worth its hand-over, few
 /// enough to spread a level over the workers.
 const JOB: usize = 1024;
@@ -753,11 +756,17 @@ fn search<M: Model, T>(
             }
             // A job merged after a stop counts as not expanded, as if it had not been.
             let expanded = !stopped;
-            if expanded {
-                for fp in results.iter().flat_map(|r| &r.fps) {
-                    g.store.prefetch(*fp);
-                }
+            // Each successor's slot is asked for `MERGE_AHEAD` successors before it is
+            // looked up: asked for all at once, most had left the cache again, or were
+            // still on their way, when their turn came.
+            let ahead: Vec<u64> = match expanded {
+                true => results.iter().flat_map(|r| r.fps.iter().copied()).collect(),
+                false => Vec::new(),
+            };
+            for &fp in ahead.iter().take(MERGE_AHEAD) {
+                g.store.prefetch(fp);
             }
+            let mut ahead = ahead.into_iter().skip(MERGE_AHEAD);
             for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
                 let Some(succ) = r.successors.filter(|_| expanded) else {
@@ -789,6 +798,9 @@ fn search<M: Model, T>(
                 }
                 let mut cut = false;
                 for (k, ((label, t), &fp)) in succ.into_iter().zip(&r.fps).enumerate() {
+                    if let Some(next) = ahead.next() {
+                        g.store.prefetch(next);
+                    }
                     if ample.as_ref().is_some_and(|a| !a.contains(&k)) {
                         continue;
                     }
