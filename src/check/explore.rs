@@ -201,7 +201,7 @@ struct Expanded<T, L, S> {
 }
 
 /// How many successors ahead of the one it looks up the merge asks for a store slot.
-const MERGE_AHEAD: usize = 32;
+const MERGE_AHEAD: usize = 64;
 
 /// States per job handed to a worker: enough to make a job worth its hand-over, few
 /// enough to spread a level over the workers.
