@@ -167,8 +167,8 @@ pub trait Runs: Sync {
     fn prefetch(&self, _s: &Self::State, _stage: usize) {}
 
     /// Without symmetry reduction, the fingerprint of `s` with the user's view numbered
-    /// `view` ([`Tables::intern`]), when the runs number their states: cheaper than hashing
-    /// both.
+    /// `view` (views are numbered as they are first met), when the runs number their
+    /// states: cheaper than hashing both.
     fn fingerprint_numbered(&self, _s: &Self::State, _view: u64) -> Option<u64> {
         None
     }

@@ -300,8 +300,8 @@ impl Store {
     }
 
     /// A store of fingerprints only ([`Store::fingerprints_only`]) of pairs `(tag, place)`
-    /// ([`pair_fingerprint`]), places below `places`: the first [`PER_PLACE`] pairs met at
-    /// each place are kept in an array by place, the others in the table, which makes room
+    /// ([`pair_fingerprint`]), places below `places`: the first two pairs met at each
+    /// place are kept in an array by place, the others in the table, which makes room
     /// for a quarter of `states` beyond `places` (a user's search on the 5-cup kitchen: 1.6
     /// views per agent state, 11-12% of its states beyond the first two of theirs). (Any fingerprint may be stored: one of no such pair goes to the table.)
     pub fn fingerprints_by_place(states: usize, places: usize) -> Store {
