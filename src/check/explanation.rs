@@ -1003,7 +1003,7 @@ impl Tables {
                     .numbered
                     .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 if let Some((_, v)) = Arc::get_mut(&mut new.0) {
-                    v.number = ViewNumber(number);
+                    v.number = Unhashed(number);
                 }
                 views.insert(new.clone());
                 new
@@ -1050,26 +1050,27 @@ struct View {
     open: Vec<Hashed<Obligation>>,
     /// The agent's own explanation, emitted since the last environment action.
     emitted: Option<Term>,
-    /// Its number among the views interned ([`Tables::intern`]).
-    number: ViewNumber,
+    /// Its number among the views interned ([`Tables::intern`]), left out of its equality
+    /// and hash (a view made anew has its parent's until interned): the views of a user's
+    /// search are few, and its states on the agent's stored graph are pairs (view, agent
+    /// state) fingerprinted exactly ([`Runs::fingerprint_numbered`]).
+    number: Unhashed<u64>,
 }
 
-/// A view's number, given when it is interned ([`Tables::intern`]) and left out of its
-/// equality and hash (a view made anew has its parent's until interned): the views of a
-/// user's search are few, and its states on the agent's stored graph are pairs (view,
-/// agent state) fingerprinted exactly ([`Runs::fingerprint_numbered`]).
+/// A value left out of the equality and hash of what holds it: any two are equal, and
+/// none is hashed.
 #[derive(Clone, Copy, Debug, Default)]
-struct ViewNumber(u64);
+struct Unhashed<T>(T);
 
-impl PartialEq for ViewNumber {
-    fn eq(&self, _: &ViewNumber) -> bool {
+impl<T> PartialEq for Unhashed<T> {
+    fn eq(&self, _: &Unhashed<T>) -> bool {
         true
     }
 }
 
-impl Eq for ViewNumber {}
+impl<T> Eq for Unhashed<T> {}
 
-impl Hash for ViewNumber {
+impl<T> Hash for Unhashed<T> {
     fn hash<H: std::hash::Hasher>(&self, _: &mut H) {}
 }
 
@@ -1142,7 +1143,9 @@ struct Obligation {
     gamma: Vec<ContextLiteral>,
     /// The atoms each literal of `gamma` may be: every transition asks whether the
     /// context changed, and a lookup per literal was a sixth of a user's search.
-    atoms: LiteralAtoms,
+    /// A function of the literals, so left out of equality and hashing (a renamed copy
+    /// made only to be fingerprinted may keep the old).
+    atoms: Unhashed<LiteralAtoms>,
     /// Each literal's truth when the explanation was given.
     truth: Vec<bool>,
     /// The explained action and its step.
@@ -1153,22 +1156,9 @@ struct Obligation {
 }
 
 /// Per literal of an obligation's context, the atoms an instance of it may be
-/// ([`Explainer::instances`]). It is a function of the literals, so it is left out of
-/// equality and hashing (a renamed copy made only to be fingerprinted may keep the old).
+/// ([`Explainer::instances`]).
 #[derive(Clone, Debug, Default)]
 struct LiteralAtoms(Vec<Arc<[AtomId]>>);
-
-impl PartialEq for LiteralAtoms {
-    fn eq(&self, _: &LiteralAtoms) -> bool {
-        true
-    }
-}
-
-impl Eq for LiteralAtoms {}
-
-impl Hash for LiteralAtoms {
-    fn hash<H: std::hash::Hasher>(&self, _: &mut H) {}
-}
 
 impl LiteralAtoms {
     /// The truth of each literal of `gamma` (whose atoms these are) on `beliefs`.
@@ -1287,7 +1277,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                 marks: Vec::new(),
                 open: Vec::new(),
                 emitted: None,
-                number: ViewNumber::default(),
+                number: Unhashed::default(),
             }),
         }
     }
@@ -1424,7 +1414,7 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// Whether a literal of the context `o` explained has another truth on `beliefs` than
     /// when the explanation was given.
     fn context_changed(&self, o: &Obligation, beliefs: &AtomSet) -> bool {
-        (o.atoms.truths(&o.gamma, beliefs).zip(&o.truth)).any(|(now, then)| now != *then)
+        (o.atoms.0.truths(&o.gamma, beliefs).zip(&o.truth)).any(|(now, then)| now != *then)
     }
 
     /// The atoms an instance of `atom` may be ([`Explainer::instances`]), kept per atom:
@@ -1834,11 +1824,11 @@ impl<'a, W: Runs> Explained<'a, W> {
                 end: *e.positions.last().unwrap_or(&pos),
                 last: e.last,
                 gamma: e.content.context.clone(),
-                atoms: LiteralAtoms(
+                atoms: Unhashed(LiteralAtoms(
                     (e.content.context.iter())
                         .map(|l| self.instances(&l.atom))
                         .collect(),
-                ),
+                )),
                 truth: truth.clone(),
                 action: term.clone(),
                 span,

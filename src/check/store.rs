@@ -656,6 +656,35 @@ mod tests {
         }
     }
 
+    /// Looks each `(k, key)` of `keys` up in both stores and, when new, stores it where the
+    /// lookup ended, after storing `other(k)` first for every fifth (the vacancy is then
+    /// stale): both must answer alike, `b` (of fingerprints only) `UNNUMBERED` for a
+    /// stored state, and give the same numbers and counts.
+    fn look_up_alike(
+        (a, b): (&mut Store, &mut Store),
+        keys: impl Iterator<Item = (u64, u64)>,
+        other: impl Fn(u64) -> u64,
+    ) {
+        for (k, key) in keys {
+            match (a.lookup(key), b.lookup(key)) {
+                (Ok(_), Ok(i)) => assert_eq!(i, UNNUMBERED, "state {k}"),
+                (Err(va), Err(vb)) => {
+                    if k % 5 == 2 {
+                        let other = other(k);
+                        assert_eq!(a.insert(other, None), b.insert(other, None), "{k}");
+                    }
+                    assert_eq!(
+                        a.insert_vacant(va, key, None),
+                        b.insert_vacant(vb, key, None),
+                        "state {k}"
+                    );
+                }
+                (x, y) => panic!("state {k}: {x:?} against {y:?}"),
+            }
+            assert_eq!(a.len(), b.len());
+        }
+    }
+
     #[test]
     fn fingerprints_alone_number_and_find_as_a_numbered_store() {
         // The same sequence of lookups, vacant inserts (some stale) and inserts, fingerprint
@@ -668,25 +697,8 @@ mod tests {
         for room in [0, 5_000, 30_000] {
             let (mut a, mut b) = (Store::new(), Store::fingerprints_only(room));
             assert!(a.numbered() && !b.numbered());
-            for k in 0..40_000u64 {
-                let key = fp(k % 25_000);
-                match (a.lookup(key), b.lookup(key)) {
-                    (Ok(_), Ok(i)) => assert_eq!(i, UNNUMBERED, "state {k}"),
-                    (Err(va), Err(vb)) => {
-                        if k % 5 == 2 {
-                            let other = fp(1 << 50 | k);
-                            assert_eq!(a.insert(other, None), b.insert(other, None));
-                        }
-                        assert_eq!(
-                            a.insert_vacant(va, key, None),
-                            b.insert_vacant(vb, key, None),
-                            "state {k}"
-                        );
-                    }
-                    (x, y) => panic!("state {k}: {x:?} against {y:?}"),
-                }
-                assert_eq!(a.len(), b.len());
-            }
+            let keys = (0..40_000u64).map(|k| (k, fp(k % 25_000)));
+            look_up_alike((&mut a, &mut b), keys, |k| fp(1 << 50 | k));
             assert!((0..25_000).all(|k| b.contains(fp(k)) && b.find(fp(k)).is_some()));
             assert!(!b.contains(fp(1 << 40)) && b.find(fp(1 << 40)).is_none());
             assert_eq!(b.insert(fp(3), None), Ok((UNNUMBERED, false)));
@@ -729,28 +741,8 @@ mod tests {
                 Store::fingerprints_only(room),
                 Store::fingerprints_by_place(room, places),
             );
-            for k in 0..20_000u64 {
-                let key = match k {
-                    17 => 0,
-                    _ => fp(k % 9_000),
-                };
-                match (a.lookup(key), b.lookup(key)) {
-                    (Ok(i), Ok(j)) => assert_eq!((i, j), (UNNUMBERED, UNNUMBERED), "{k}"),
-                    (Err(va), Err(vb)) => {
-                        if k % 5 == 2 {
-                            let other = fp(1 << 20 | k);
-                            assert_eq!(a.insert(other, None), b.insert(other, None), "{k}");
-                        }
-                        assert_eq!(
-                            a.insert_vacant(va, key, None),
-                            b.insert_vacant(vb, key, None),
-                            "state {k}"
-                        );
-                    }
-                    (x, y) => panic!("state {k}: {x:?} against {y:?}"),
-                }
-                assert_eq!(a.len(), b.len());
-            }
+            let keys = (0..20_000u64).map(|k| (k, if k == 17 { 0 } else { fp(k % 9_000) }));
+            look_up_alike((&mut a, &mut b), keys, |k| fp(1 << 20 | k));
             assert!(b.contains(0) && b.contains(fp(3)) && !b.contains(pair_fingerprint(1, 5)));
             assert!((0..9_000).all(|k| a.contains(fp(k)) == b.contains(fp(k))));
             assert_eq!(b.insert(fp(4), None), Ok((UNNUMBERED, false)));
