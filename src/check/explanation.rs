@@ -60,7 +60,7 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
-use crate::semantics::compiled::Quick;
+use crate::semantics::compiled::{mix, Quick};
 use crate::semantics::{
     Compiled, Intention, Note, Notes, Origin, Packed, Semantics, State, System, SystemState,
 };
@@ -676,14 +676,6 @@ impl CycleNotes for StoredNotes<'_, '_> {
     fn notes(&self) -> impl Iterator<Item = &Note> {
         self.notes.into_iter().flat_map(|n| n.iter())
     }
-}
-
-/// A bijection of 64-bit words that spreads every bit of its input over its output (the
-/// finalizer of Steele, Lea and Flood's SplitMix64).
-fn mix(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// The runs of [`AloneCompiled`] without symmetry, read from the agent's stored graph

@@ -101,8 +101,8 @@ pub struct Options {
     /// keeps the fingerprints alone ([`Store::fingerprints_only`]): a search whose runs
     /// are not read (a user's search that finds nothing to report) in half the memory.
     pub numbered: bool,
-    /// The fingerprints are of pairs whose place is below this ([`Store::fingerprints_by_place`]:
-    /// a user's states on the agent's stored graph), when not 0. Read by a store of
+    /// When not 0, the fingerprints are of pairs whose place is below this (a user's states
+    /// on the agent's stored graph: [`Store::fingerprints_by_place`]). Read by a store of
     /// fingerprints only.
     pub places: usize,
 }
@@ -620,6 +620,8 @@ fn search<M: Model, T>(
     let mut frontier: Vec<Batch<M::State>> = Vec::new();
     // Chunks' buffers, back from the merge.
     let mut pool: Vec<Batch<M::State>> = Vec::new();
+    // A job's successors' fingerprints, in the merge's order, to prefetch ahead of it.
+    let mut ahead: Vec<u64> = Vec::new();
     // Canonical fingerprint -> whether this shard explores it.
     let mut seen: std::collections::HashMap<u64, bool> = std::collections::HashMap::new();
     for (taken, s) in model.init_states().enumerate() {
@@ -759,14 +761,14 @@ fn search<M: Model, T>(
             // Each successor's slot is asked for `MERGE_AHEAD` successors before it is
             // looked up: asked for all at once, most had left the cache again, or were
             // still on their way, when their turn came.
-            let ahead: Vec<u64> = match expanded {
-                true => results.iter().flat_map(|r| r.fps.iter().copied()).collect(),
-                false => Vec::new(),
-            };
+            ahead.clear();
+            if expanded {
+                ahead.extend(results.iter().flat_map(|r| &r.fps));
+            }
             for &fp in ahead.iter().take(MERGE_AHEAD) {
                 g.store.prefetch(fp);
             }
-            let mut ahead = ahead.into_iter().skip(MERGE_AHEAD);
+            let mut next_ahead = ahead.iter().skip(MERGE_AHEAD);
             for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
                 let Some(succ) = r.successors.filter(|_| expanded) else {
@@ -798,7 +800,7 @@ fn search<M: Model, T>(
                 }
                 let mut cut = false;
                 for (k, ((label, t), &fp)) in succ.into_iter().zip(&r.fps).enumerate() {
-                    if let Some(next) = ahead.next() {
+                    if let Some(&next) = next_ahead.next() {
                         g.store.prefetch(next);
                     }
                     if ample.as_ref().is_some_and(|a| !a.contains(&k)) {

@@ -56,6 +56,7 @@ fn number(s: &Slot) -> u32 {
 }
 
 use super::chunked::Chunked;
+use crate::semantics::compiled::mix;
 
 /// Asks the kernel to back the 2 MiB-aligned parts of `v`'s buffer with huge pages, as
 /// `madvise(MADV_HUGEPAGE)` does (a hint; nothing where it is refused, or elsewhere than
@@ -91,31 +92,28 @@ fn place(slots: &mut [Slot], i: u32, fp: u64) {
 }
 
 /// Where a state not found by [`Store::lookup`] goes: the empty slot the probe ended at
-/// (none in an empty table), or the empty place ([`Store::fingerprints_by_place`]), and
-/// how many states were stored then.
+/// (none in an empty table), or the empty slot of its place ([`Store::fingerprints_by_place`]),
+/// and how many states were stored then.
 #[derive(Clone, Copy, Debug)]
 pub struct Vacant {
     slot: Option<usize>,
     len: usize,
-    /// Whether `slot` is a place.
-    place: bool,
+    /// When `slot` is of a place, what goes there: the pair's tag plus one.
+    place: Option<u32>,
 }
 
 /// The pairs kept by place, per place ([`Store::fingerprints_by_place`]): at 6 cups, a
 /// user meets 1.6 views per agent state.
 const PER_PLACE: usize = 2;
 
-/// The fingerprint of the pair `(tag, place)`: a bijection (SplitMix64's finalizer of
-/// `tag << 32 | place`), so two pairs never share one, and every bit of each spreads over
-/// it, as a hash table's probes want.
+/// The fingerprint of the pair `(tag, place)`: a bijection (SplitMix64's finalizer,
+/// `semantics::compiled::mix`, of `tag << 32 | place`), so two pairs never share one, and every bit of each
+/// spreads over it, as a hash table's probes want.
 pub fn pair_fingerprint(tag: u32, place: u32) -> u64 {
-    let mut z = u64::from(tag) << 32 | u64::from(place);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    mix(u64::from(tag) << 32 | u64::from(place))
 }
 
-/// The pair whose fingerprint is `fp` ([`pair_fingerprint`]'s inverse).
+/// The pair whose fingerprint is `fp` ([`pair_fingerprint`]'s inverse: `mix` undone).
 fn pair_of(fp: u64) -> (u32, u32) {
     // `x ^ x >> k` is undone by xoring the shifts by k, 2k, ...; a multiplication by an
     // odd number, by its inverse modulo 2^64.
@@ -184,11 +182,12 @@ impl Fingerprints {
         }
     }
 
-    /// Where `fp` is among its place's slots (`Ok`), or the first empty one (`Err`); `None`
-    /// when it has no place, or the place's slots hold others (it is then in the table, if
-    /// anywhere: a place's slots are filled in order, and never emptied).
+    /// Where `fp` is among its place's slots (`Ok`), or the first empty one and what goes
+    /// there, its tag plus one (`Err`); `None` when it has no place, or the place's slots
+    /// hold others (it is then in the table, if anywhere: a place's slots are filled in
+    /// order, and never emptied).
     #[inline]
-    fn at_place(&self, fp: u64) -> Option<Result<usize, usize>> {
+    fn at_place(&self, fp: u64) -> Option<Result<usize, (usize, u32)>> {
         if self.first.is_empty() {
             return None;
         }
@@ -197,15 +196,10 @@ impl Fingerprints {
         let from = (place as usize).checked_mul(PER_PLACE)?;
         let slots = self.first.get(from..from + PER_PLACE)?;
         slots.iter().enumerate().find_map(|(k, &t)| match t {
-            0 => Some(Err(from + k)),
+            0 => Some(Err((from + k, tag))),
             t if t == tag => Some(Ok(from + k)),
             _ => None,
         })
-    }
-
-    /// `fp`'s tag in a place's slot (plus one: 0 marks an empty slot).
-    fn tag_of(fp: u64) -> u32 {
-        pair_of(fp).0.wrapping_add(1)
     }
 
     fn contains(&self, fp: u64) -> bool {
@@ -302,9 +296,14 @@ impl Store {
     /// A store of fingerprints only ([`Store::fingerprints_only`]) of pairs `(tag, place)`
     /// ([`pair_fingerprint`]), places below `places`: the first two pairs met at each
     /// place are kept in an array by place, the others in the table, which makes room
-    /// for a quarter of `states` beyond `places` (a user's search on the 5-cup kitchen: 1.6
-    /// views per agent state, 11-12% of its states beyond the first two of theirs). (Any fingerprint may be stored: one of no such pair goes to the table.)
+    /// for a quarter of `states` beyond `places` (a user's search on the 5-cup kitchen:
+    /// 1.6 views per agent state, 11-12% of its states beyond the first two of theirs).
+    /// Any fingerprint may be stored: one of no such pair goes to the table. Without
+    /// places, [`Store::fingerprints_only`] with room for `states`.
     pub fn fingerprints_by_place(states: usize, places: usize) -> Store {
+        if places == 0 {
+            return Store::fingerprints_only(states);
+        }
         let mut s = Store::fingerprints_only(states.saturating_sub(places) / 4);
         if let Some(f) = &mut s.only {
             f.first = table(places.min(u32::MAX as usize) * PER_PLACE, 0).unwrap_or_default();
@@ -381,15 +380,15 @@ impl Store {
             let vacant = |slot, place| Err(Vacant { slot, len, place });
             match f.at_place(fp) {
                 Some(Ok(_)) => return Ok(UNNUMBERED),
-                Some(Err(slot)) => return vacant(Some(slot), true),
+                Some(Err((slot, tag))) => return vacant(Some(slot), Some(tag)),
                 None => {}
             }
             return match fp {
                 0 if f.zero => Ok(UNNUMBERED),
-                _ if fp == 0 || f.table.is_empty() => vacant(None, false),
+                _ if fp == 0 || f.table.is_empty() => vacant(None, None),
                 _ => match f.probe(fp) {
                     Ok(_) => Ok(UNNUMBERED),
-                    Err(at) => vacant(Some(at), false),
+                    Err(at) => vacant(Some(at), None),
                 },
             };
         }
@@ -398,7 +397,7 @@ impl Store {
             return Err(Vacant {
                 slot: None,
                 len,
-                place: false,
+                place: None,
             });
         }
         let mask = self.slots.len() - 1;
@@ -411,7 +410,7 @@ impl Store {
                 return Err(Vacant {
                     slot: Some(at),
                     len,
-                    place: false,
+                    place: None,
                 });
             }
             if s[4] == t && self.fps.get(i as usize) == fp {
@@ -429,12 +428,12 @@ impl Store {
         fp: u64,
         parent: Option<u32>,
     ) -> Result<u32, OutOfMemory> {
-        if let (Some(place), true, Some(f)) = (vacant.slot, vacant.place, &mut self.only) {
-            // Nothing was stored since: the place is still empty.
+        if let (Some(slot), Some(tag), Some(f)) = (vacant.slot, vacant.place, &mut self.only) {
+            // Nothing was stored since: the place's slot is still empty.
             if vacant.len == f.len {
-                debug_assert!(f.at_place(fp) == Some(Err(place)));
+                debug_assert!(f.at_place(fp) == Some(Err((slot, tag))));
                 let i = u32::try_from(f.len).map_err(|_| OutOfMemory)?;
-                f.first[place] = Fingerprints::tag_of(fp);
+                f.first[slot] = tag;
                 f.len += 1;
                 return Ok(i);
             }
@@ -518,8 +517,8 @@ impl Store {
             .ok()
             .filter(|&i| i < NONE - 1)
             .ok_or(OutOfMemory)?;
-        if let Some(Err(slot)) = f.at_place(fp) {
-            f.first[slot] = Fingerprints::tag_of(fp);
+        if let Some(Err((slot, tag))) = f.at_place(fp) {
+            f.first[slot] = tag;
         } else if fp == 0 {
             f.zero = true;
         } else {
@@ -736,6 +735,12 @@ mod tests {
             5 => pair_fingerprint(0, 1_000 + (k / 11) as u32),
             _ => pair_fingerprint((k % 4) as u32 * 7, (k / 4) as u32 % 900),
         };
+        // Without places, a store of fingerprints alone with all the room asked for.
+        let (a, b) = (
+            Store::fingerprints_only(30_000),
+            Store::fingerprints_by_place(30_000, 0),
+        );
+        assert_eq!(a.bytes(), b.bytes());
         for (room, places) in [(0, 900), (2_000, 900), (30_000, 1)] {
             let (mut a, mut b) = (
                 Store::fingerprints_only(room),
