@@ -45,6 +45,7 @@ mod recent;
 mod safety;
 mod search;
 mod settle;
+mod slots;
 
 /// Whether a verification frees its searches' structures when it is done with them
 /// (the default), or leaves them to the process's exit ([`leave_memory_to_exit`]).

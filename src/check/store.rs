@@ -56,6 +56,7 @@ fn number(s: &Slot) -> u32 {
 }
 
 use super::chunked::Chunked;
+use super::slots::Slots;
 use crate::semantics::compiled::mix;
 
 /// Asks the kernel to back the 2 MiB-aligned parts of `v`'s buffer with huge pages, as
@@ -64,7 +65,7 @@ use crate::semantics::compiled::mix;
 /// a gigabyte missed the processor's TLB as well as its cache (the users' searches at 6
 /// cups: 36-37 s each instead of 42 s). Called before the buffer is first written, so that
 /// its pages are made huge from the start.
-fn huge_pages<T>(v: &Vec<T>) {
+pub(super) fn huge_pages<T>(v: &Vec<T>) {
     #[cfg(target_os = "linux")]
     {
         const HUGE: usize = 2 << 20;
@@ -145,7 +146,7 @@ pub struct OutOfMemory;
 pub struct Store {
     fps: Chunked<u64>,
     parent: Chunked<u32>,
-    slots: Vec<Slot>,
+    slots: Slots<Slot>,
     /// How full the table may be, in eighths of its slots, before it doubles.
     full: usize,
     /// The fingerprints alone, when the store keeps no numbers ([`Store::fingerprints_only`]):
@@ -247,7 +248,7 @@ impl Default for Store {
         Store {
             fps: Chunked::default(),
             parent: Chunked::default(),
-            slots: Vec::new(),
+            slots: Slots::default(),
             full: 6,
             only: None,
         }
@@ -271,7 +272,7 @@ impl Store {
         let mut s = Store::default();
         if states > 0 {
             s.full = 7;
-            s.slots = table(slots_for(states), EMPTY).unwrap_or_default();
+            s.slots = Slots::new(slots_for(states), EMPTY);
         }
         s
     }
@@ -306,7 +307,13 @@ impl Store {
         }
         let mut s = Store::fingerprints_only(states.saturating_sub(places) / 4);
         if let Some(f) = &mut s.only {
-            f.first = table(places.min(u32::MAX as usize) * PER_PLACE, 0).unwrap_or_default();
+            // Read nearly in order, so small pages: the first write to a huge page cost
+            // 3.5 times as much in this project's virtual machines (`slots`), and huge
+            // pages spare TLB misses only to lookups at random.
+            let n = places.min(u32::MAX as usize) * PER_PLACE;
+            if f.first.try_reserve_exact(n).is_ok() {
+                f.first.resize(n, 0);
+            }
         }
         s
     }
@@ -551,7 +558,10 @@ impl Store {
 
     fn grow(&mut self) -> Result<(), OutOfMemory> {
         let cap = (self.slots.len() * 2).max(1024);
-        let mut slots = table(cap, EMPTY)?;
+        // Rebuilt from the fingerprints: the old slots are not read, and their memory is
+        // the new table's first half (`Slots`).
+        self.slots.reset(cap, EMPTY)?;
+        let slots = &mut self.slots[..];
         // The slots are written at random: each is asked for some states ahead, so that
         // their cache misses overlap instead of following one another (the merging thread
         // waits for the growth, and the other threads soon for it).
@@ -561,9 +571,8 @@ impl Store {
             if let Some(next) = ahead.next() {
                 super::chunked::prefetch(&slots[next as usize & (cap - 1)]);
             }
-            place(&mut slots, i as u32, fp);
+            place(slots, i as u32, fp);
         }
-        self.slots = slots;
         Ok(())
     }
 
@@ -571,7 +580,7 @@ impl Store {
     /// fingerprints and parents stay (the count alone, in a store of fingerprints only),
     /// and a lookup after this finds nothing.
     pub fn drop_index(&mut self) {
-        self.slots = Vec::new();
+        self.slots = Slots::default();
         if let Some(f) = &mut self.only {
             (f.table, f.zero, f.first) = (Vec::new(), false, Vec::new());
         }
@@ -581,7 +590,7 @@ impl Store {
     pub fn bytes(&self) -> usize {
         let only =
             (self.only.as_ref()).map_or(0, |f| f.table.capacity() * 8 + f.first.capacity() * 4);
-        self.fps.bytes() + self.parent.bytes() + self.slots.capacity() * 5 + only
+        self.fps.bytes() + self.parent.bytes() + self.slots.bytes() + only
     }
 }
 
