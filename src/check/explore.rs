@@ -769,6 +769,7 @@ fn search<M: Model, T>(
                 g.store.prefetch(fp);
             }
             let mut next_ahead = ahead.iter().skip(MERGE_AHEAD);
+            let mut late_ahead = ahead.iter().skip(MERGE_AHEAD / 2);
             for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
                 let Some(succ) = r.successors.filter(|_| expanded) else {
@@ -802,6 +803,9 @@ fn search<M: Model, T>(
                 for (k, ((label, t), &fp)) in succ.into_iter().zip(&r.fps).enumerate() {
                     if let Some(&next) = next_ahead.next() {
                         g.store.prefetch(next);
+                    }
+                    if let Some(&late) = late_ahead.next() {
+                        g.store.prefetch_late(late);
                     }
                     if ample.as_ref().is_some_and(|a| !a.contains(&k)) {
                         continue;
