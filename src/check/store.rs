@@ -65,7 +65,7 @@ use crate::semantics::compiled::mix;
 /// a gigabyte missed the processor's TLB as well as its cache (the users' searches at 6
 /// cups: 36-37 s each instead of 42 s). Called before the buffer is first written, so that
 /// its pages are made huge from the start.
-pub(super) fn huge_pages<T>(v: &Vec<T>) {
+fn huge_pages<T>(v: &Vec<T>) {
     #[cfg(target_os = "linux")]
     {
         const HUGE: usize = 2 << 20;
@@ -228,7 +228,7 @@ impl Fingerprints {
 
 /// A hash table of `cap` slots, each `empty`, its pages advised huge before it is
 /// written ([`huge_pages`]); [`OutOfMemory`] when it cannot be had.
-fn table<T: Clone>(cap: usize, empty: T) -> Result<Vec<T>, OutOfMemory> {
+pub(super) fn table<T: Clone>(cap: usize, empty: T) -> Result<Vec<T>, OutOfMemory> {
     let mut t = Vec::new();
     t.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
     huge_pages(&t);
