@@ -203,6 +203,9 @@ struct Expanded<T, L, S> {
 /// How many successors ahead of the one it looks up the merge asks for a store slot.
 const MERGE_AHEAD: usize = 64;
 
+/// About how many states a growing table re-places while a worker expands a job.
+const REPLACED_PER_JOB: usize = 30_000;
+
 /// States per job handed to a worker: enough to make a job worth its hand-over, few
 /// enough to spread a level over the workers.
 const JOB: usize = 1024;
@@ -725,7 +728,15 @@ fn search<M: Model, T>(
         };
         let mut out = 0;
         loop {
-            while out < expander.ahead() {
+            // A growing table stops the merge (at 5 cups its last growth took 0.1 s) while
+            // the workers, their few jobs done, waited: before one, they get jobs to last it.
+            let growing = expander.ahead() > 1 && g.store.room() < JOB * expander.ahead();
+            let extra = if growing {
+                g.store.len() / REPLACED_PER_JOB
+            } else {
+                0
+            };
+            while out < expander.ahead() + extra {
                 let Some((job, expand_job)) = jobs.pop_front() else {
                     break;
                 };

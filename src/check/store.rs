@@ -324,6 +324,16 @@ impl Store {
         self.only.is_none()
     }
 
+    /// How many more states the table holds before it grows: a growth re-places every
+    /// state stored ([`Store::grow`]), and the merge waits for it.
+    pub fn room(&self) -> usize {
+        let (held, slots) = match &self.only {
+            None => (self.fps.len(), self.slots.len()),
+            Some(f) => (f.held, f.table.len()),
+        };
+        (slots * self.full / 8).saturating_sub(held)
+    }
+
     /// Whether one more state fits in the table as it is.
     fn fits_one_more(&self) -> bool {
         match &self.only {
