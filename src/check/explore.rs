@@ -730,11 +730,10 @@ fn search<M: Model, T>(
         loop {
             // A growing table stops the merge (at 5 cups its last growth took 0.1 s) while
             // the workers, their few jobs done, waited: before one, they get jobs to last it.
-            let growing = expander.ahead() > 1 && g.store.room() < JOB * expander.ahead();
-            let extra = if growing {
-                g.store.len() / REPLACED_PER_JOB
-            } else {
-                0
+            let (room, held) = g.store.room();
+            let extra = match expander.ahead() > 1 && room < JOB * expander.ahead() {
+                true => held / REPLACED_PER_JOB,
+                false => 0,
             };
             while out < expander.ahead() + extra {
                 let Some((job, expand_job)) = jobs.pop_front() else {

@@ -324,14 +324,14 @@ impl Store {
         self.only.is_none()
     }
 
-    /// How many more states the table holds before it grows: a growth re-places every
-    /// state stored ([`Store::grow`]), and the merge waits for it.
-    pub fn room(&self) -> usize {
+    /// How many more states the table takes before it grows, and how many it holds: a
+    /// growth re-places those ([`Store::grow`]), and the merge waits for it.
+    pub fn room(&self) -> (usize, usize) {
         let (held, slots) = match &self.only {
             None => (self.fps.len(), self.slots.len()),
             Some(f) => (f.held, f.table.len()),
         };
-        (slots * self.full / 8).saturating_sub(held)
+        ((slots * self.full / 8).saturating_sub(held), held)
     }
 
     /// Whether one more state fits in the table as it is.
@@ -650,6 +650,27 @@ mod tests {
             (s.len(), s.fingerprint(9), s.parent(77)),
             (10_000, fp(9), Some(76))
         );
+    }
+
+    #[test]
+    fn room_counts_down_to_a_growth() {
+        let fp = |k: u64| k.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        for mut s in [Store::new(), Store::fingerprints_only(0)] {
+            assert_eq!(s.room(), (0, 0), "no table yet");
+            s.insert(fp(0), None).expect("memory");
+            let (room, held) = s.room();
+            assert_eq!(held, 1);
+            for k in 1..=room as u64 {
+                assert_eq!(s.room(), (room + 1 - k as usize, k as usize));
+                s.insert(fp(k), None).expect("memory");
+            }
+            assert_eq!(s.room(), (0, room + 1), "full");
+            // The next state grows the table.
+            s.insert(fp(1 << 40), None).expect("memory");
+            let (after, held) = s.room();
+            assert_eq!(held, room + 2);
+            assert_eq!(after + held, 2 * (room + 1), "twice the states fit");
+        }
     }
 
     #[test]
