@@ -325,7 +325,7 @@ impl Store {
     }
 
     /// How many more states the table takes before it grows, and how many it holds: a
-    /// growth re-places those ([`Store::grow`]), and the merge waits for it.
+    /// growth re-places those, and the merge waits for it.
     pub fn room(&self) -> (usize, usize) {
         let (held, slots) = match &self.only {
             None => (self.fps.len(), self.slots.len()),
