@@ -99,7 +99,7 @@ impl<T: Copy> Slots<T> {
                 return Ok(());
             }
         }
-        self.mem = Mem::Heap(super::store::table(len, empty)?);
+        self.mem = Mem::Heap(super::store::table(len, empty, true)?);
         Ok(())
     }
 

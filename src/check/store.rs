@@ -108,8 +108,8 @@ pub struct Vacant {
 const PER_PLACE: usize = 2;
 
 /// The fingerprint of the pair `(tag, place)`: a bijection (SplitMix64's finalizer,
-/// `semantics::compiled::mix`, of `tag << 32 | place`), so two pairs never share one, and every bit of each
-/// spreads over it, as a hash table's probes want.
+/// `semantics::compiled::mix`, of `tag << 32 | place`), so two pairs never share one,
+/// and every bit of each spreads over it, as a hash table's probes want.
 pub fn pair_fingerprint(tag: u32, place: u32) -> u64 {
     mix(u64::from(tag) << 32 | u64::from(place))
 }
@@ -203,6 +203,13 @@ impl Fingerprints {
         })
     }
 
+    /// Asks for the table slot where a probe for `fp` starts.
+    fn prefetch_table(&self, fp: u64) {
+        if !self.table.is_empty() {
+            super::chunked::prefetch(&self.table[fp as usize & (self.table.len() - 1)]);
+        }
+    }
+
     fn contains(&self, fp: u64) -> bool {
         if let Some(r) = self.at_place(fp) {
             return r.is_ok();
@@ -214,7 +221,7 @@ impl Fingerprints {
     }
 
     fn grow(&mut self) -> Result<(), OutOfMemory> {
-        let table = table((self.table.len() * 2).max(1024), 0)?;
+        let table = table((self.table.len() * 2).max(1024), 0, true)?;
         let old = std::mem::replace(&mut self.table, table);
         for fp in old.into_iter().filter(|&x| x != 0) {
             let Err(at) = self.probe(fp) else {
@@ -227,11 +234,13 @@ impl Fingerprints {
 }
 
 /// A hash table of `cap` slots, each `empty`, its pages advised huge before it is
-/// written ([`huge_pages`]); [`OutOfMemory`] when it cannot be had.
-pub(super) fn table<T: Clone>(cap: usize, empty: T) -> Result<Vec<T>, OutOfMemory> {
+/// written if `huge` ([`huge_pages`]); [`OutOfMemory`] when it cannot be had.
+pub(super) fn table<T: Clone>(cap: usize, empty: T, huge: bool) -> Result<Vec<T>, OutOfMemory> {
     let mut t = Vec::new();
     t.try_reserve_exact(cap).map_err(|_| OutOfMemory)?;
-    huge_pages(&t);
+    if huge {
+        huge_pages(&t);
+    }
     t.resize(cap, empty);
     Ok(t)
 }
@@ -285,7 +294,7 @@ impl Store {
     pub fn fingerprints_only(states: usize) -> Store {
         let mut only = Fingerprints::default();
         if states > 0 {
-            only.table = table(slots_for(states), 0).unwrap_or_default();
+            only.table = table(slots_for(states), 0, true).unwrap_or_default();
         }
         Store {
             full: 7,
@@ -311,9 +320,7 @@ impl Store {
             // 3.5 times as much in this project's virtual machines (`slots`), and huge
             // pages spare TLB misses only to lookups at random.
             let n = places.min(u32::MAX as usize) * PER_PLACE;
-            if f.first.try_reserve_exact(n).is_ok() {
-                f.first.resize(n, 0);
-            }
+            f.first = table(n, 0, false).unwrap_or_default();
         }
         s
     }
@@ -336,10 +343,7 @@ impl Store {
 
     /// Whether one more state fits in the table as it is.
     fn fits_one_more(&self) -> bool {
-        match &self.only {
-            None => (self.fps.len() + 1) * 8 <= self.slots.len() * self.full,
-            Some(f) => (f.held + 1) * 8 <= f.table.len() * self.full,
-        }
+        self.room().0 > 0
     }
 
     /// Number of states stored.
@@ -497,9 +501,8 @@ impl Store {
                     .flatten();
                 if let Some(slot) = placed {
                     super::chunked::prefetch(slot);
-                } else if !f.table.is_empty() {
-                    let at = fp as usize & (f.table.len() - 1);
-                    super::chunked::prefetch(&f.table[at]);
+                } else {
+                    f.prefetch_table(fp);
                 }
             }
             _ => {}
@@ -512,9 +515,8 @@ impl Store {
     /// spent a fifteenth of their time waiting for these).
     pub fn prefetch_late(&self, fp: u64) {
         if let Some(f) = &self.only {
-            if !f.first.is_empty() && !f.table.is_empty() && f.at_place(fp).is_none() {
-                let at = fp as usize & (f.table.len() - 1);
-                super::chunked::prefetch(&f.table[at]);
+            if !f.first.is_empty() && f.at_place(fp).is_none() {
+                f.prefetch_table(fp);
             }
         }
     }
