@@ -2055,14 +2055,19 @@ impl<W: Runs> Model for Explained<'_, W> {
     }
 
     fn next_states(&self, s: &Self::State) -> Vec<(Step<W::Notes>, Self::State)> {
+        let mut out = Vec::new();
+        self.next_states_into(s, &mut out);
+        out
+    }
+
+    fn next_states_into(&self, s: &Self::State, out: &mut Vec<(Step<W::Notes>, Self::State)>) {
         // A robot that does not sense first (one agent alone never does) senses nothing
         // (`Runs::to_sense`): the transitions are made as the successors come.
         if !self.runs.to_sense(&s.state) {
-            let mut out = Vec::new();
             (self.runs).each_successor(&s.state, |agent, notes, next| {
                 out.push(self.transition(s, agent, notes, next, None));
             });
-            return out;
+            return;
         }
         let robot = self.runs.robot() as u8;
         let succ = self.runs.successors(&s.state);
@@ -2077,12 +2082,10 @@ impl<W: Runs> Model for Explained<'_, W> {
             .any(|(a, notes, _)| cycle(*a, notes))
             .then(|| self.runs.sensed(&s.state))
             .flatten();
-        succ.into_iter()
-            .map(|(agent, notes, next)| {
-                let sensed = sensed.as_ref().filter(|_| cycle(agent, &notes));
-                self.transition(s, agent, notes, next, sensed)
-            })
-            .collect()
+        out.extend(succ.into_iter().map(|(agent, notes, next)| {
+            let sensed = sensed.as_ref().filter(|_| cycle(agent, &notes));
+            self.transition(s, agent, notes, next, sensed)
+        }));
     }
 
     fn prefetch(&self, s: &Self::State, stage: usize) {

@@ -26,6 +26,12 @@ pub trait Model {
     /// Every successor of `s`, in a fixed order, each with what the transition did.
     fn next_states(&self, s: &Self::State) -> Vec<(Self::Label, Self::State)>;
 
+    /// [`Model::next_states`] appended to `out`: the search collects a job's successors
+    /// in one vector, and a model that makes them one by one saves a vector per state.
+    fn next_states_into(&self, s: &Self::State, out: &mut Vec<(Self::Label, Self::State)>) {
+        out.append(&mut self.next_states(s));
+    }
+
     /// Whether [`Model::init_states`] gives every initial state: a project with more than
     /// its bound allows gives the first ones, and the search is then incomplete.
     fn init_complete(&self) -> bool {
@@ -163,6 +169,10 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
 
     fn next_states(&self, s: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {
         self.compiled.successors(s)
+    }
+
+    fn next_states_into(&self, s: &Packed<'c>, out: &mut Vec<(Notes<'c>, Packed<'c>)>) {
+        self.compiled.successors_into(s, out);
     }
 
     fn beyond(&self, label: &Notes<'c>) -> Option<(crate::syntax::Span, String)> {

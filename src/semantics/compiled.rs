@@ -1308,6 +1308,12 @@ impl<'s, 'p> Compiled<'s, 'p> {
     /// Every successor of `p`, in [`Semantics::successors`]'s order, with its notes.
     pub fn successors<'c>(&'c self, p: &Packed<'c>) -> Vec<(Notes<'c>, Packed<'c>)> {
         let mut out = Vec::new();
+        self.successors_into(p, &mut out);
+        out
+    }
+
+    /// [`Compiled::successors`] appended to `out`.
+    pub fn successors_into<'c>(&'c self, p: &Packed<'c>, out: &mut Vec<(Notes<'c>, Packed<'c>)>) {
         if self.sem.may_request(p.requested, p.is_idle()) {
             for (r, (event, note)) in self.requests.iter().enumerate() {
                 if p.requested >> r & 1 == 1 {
@@ -1321,7 +1327,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             }
         }
         if p.is_idle() {
-            return out;
+            return;
         }
         let agenda = &p.agenda.value;
         let Some(event) = agenda.events().first() else {
@@ -1330,7 +1336,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
             self.proc_act(&mut next, &mut notes);
             self.act(&mut next, &mut notes);
             out.push((notes, self.close(next)));
-            return out;
+            return;
         };
         // The events the deliberation takes: the first, and the next one after each that
         // is discarded (`Semantics::deliberate`).
@@ -1374,7 +1380,6 @@ impl<'s, 'p> Compiled<'s, 'p> {
             self.act(&mut next, &mut notes);
             out.push((notes, self.close(next)));
         }
-        out
     }
 
     /// The `ProcAct` stage on `p`, memoized on the pending intention.
