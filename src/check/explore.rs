@@ -21,7 +21,6 @@ use super::chunked::Lists;
 use super::model::Model;
 use super::store::{OutOfMemory, Store};
 use crate::semantics::State;
-use smallvec::SmallVec;
 use std::hash::Hash;
 use std::marker::PhantomData;
 use std::time::Instant;
@@ -187,17 +186,37 @@ pub struct Graph<S = State> {
 /// A state's successors as the search has them: each with its transition's label.
 pub type Successors<M> = [(<M as Model>::Label, <M as Model>::State)];
 
-/// What expanding one frontier state produced (in a worker thread).
+/// What expanding one frontier state produced (in a worker thread). Small: the merging
+/// thread reads each from the memory the worker wrote it in, and copying a larger one (with
+/// the successors' fingerprints in it) was a twelfth of the 5-cup search.
 struct Expanded<T> {
     summary: T,
-    /// How many successors it has, the next ones in its job's [`Expansion`]; `None` when
-    /// the state was not expanded (depth bound).
-    successors: Option<usize>,
-    /// The successors' fingerprints, in their order: beside them rather than in each,
-    /// so that the successors are handed on as the model made them.
-    fps: SmallVec<[u64; 4]>,
+    /// How many successors it has, the next ones in its job's [`Found`]; `None` when the
+    /// state was not expanded (depth bound).
+    successors: Option<u32>,
     /// The ample set among them ([`Model::ample`]), if the model reduces here.
-    ample: Option<std::ops::Range<usize>>,
+    ample: Option<std::ops::Range<u32>>,
+}
+
+/// A job's successors, state after state, each with its transition's label, and their
+/// fingerprints in the same order. One pair of vectors per job, which the merge hands back
+/// with a later job: a vector per state, made on a worker and freed by the merging thread,
+/// cost the agent's search at 6 cups a tenth of its time in the allocator (frees from
+/// another thread, fresh pages).
+struct Found<L, S> {
+    successors: Vec<(L, S)>,
+    /// Beside the successors rather than in them, so that they are handed on as the model
+    /// made them; the merge prefetches their slots in the store from here.
+    fps: Vec<u64>,
+}
+
+impl<L, S> Default for Found<L, S> {
+    fn default() -> Self {
+        Found {
+            successors: Vec::new(),
+            fps: Vec::new(),
+        }
+    }
 }
 
 /// How many successors ahead of the one it looks up the merge asks for a store slot.
@@ -214,11 +233,8 @@ const JOB: usize = 1024;
 type Batch<S> = Vec<(u32, S)>;
 
 /// A batch and, in its order, what expanding each state produced, and all their
-/// successors, state after state, each with its transition's label. The successors of a
-/// job share one vector, which the merge hands back with a later job: a vector per state,
-/// made on a worker and freed by the merging thread, cost the agent's search at 6 cups a
-/// tenth of its time in the allocator (frees from another thread, fresh pages).
-type Expansion<S, T, L> = (Batch<S>, Vec<Expanded<T>>, Vec<(L, S)>);
+/// successors.
+type Expansion<S, T, L> = (Batch<S>, Vec<Expanded<T>>, Found<L, S>);
 
 /// Appends `x` to the last chunk of `chunks`, or to a new chunk (a buffer from `pool` if
 /// there is one) when that one holds `JOB` states.
@@ -246,8 +262,8 @@ trait Expander<S, T, L> {
     /// How many jobs may be out at once.
     fn ahead(&self) -> usize;
     /// Queues `states` (each with its number): their summaries, and their successors if
-    /// `expand`, put in `successors` (empty).
-    fn submit(&mut self, states: Batch<S>, expand: bool, successors: Vec<(L, S)>);
+    /// `expand`, put in `found` (empty).
+    fn submit(&mut self, states: Batch<S>, expand: bool, found: Found<L, S>);
     /// The oldest submitted job, expanded.
     fn take(&mut self) -> Expansion<S, T, L>;
 }
@@ -259,8 +275,12 @@ struct Inline<'a, M: Model, F> {
     queue: std::collections::VecDeque<Queued<M>>,
 }
 
-/// A job of [`Inline`]: its states, whether to expand them, the vector for their successors.
-type Queued<M> = (Batch<<M as Model>::State>, bool, Vec<Transition<M>>);
+/// A job of [`Inline`]: its states, whether to expand them, where their successors go.
+type Queued<M> = (
+    Batch<<M as Model>::State>,
+    bool,
+    Found<<M as Model>::Label, <M as Model>::State>,
+);
 
 impl<M: Model, T, F: Fn(&M::State, Option<&Successors<M>>) -> T> Expander<M::State, T, M::Label>
     for Inline<'_, M, F>
@@ -269,32 +289,23 @@ impl<M: Model, T, F: Fn(&M::State, Option<&Successors<M>>) -> T> Expander<M::Sta
         1
     }
 
-    fn submit(&mut self, states: Batch<M::State>, expand: bool, successors: Vec<Transition<M>>) {
-        self.queue.push_back((states, expand, successors));
+    fn submit(&mut self, states: Batch<M::State>, expand: bool, found: Found<M::Label, M::State>) {
+        self.queue.push_back((states, expand, found));
     }
 
     fn take(&mut self) -> Expansion<M::State, T, M::Label> {
-        let (states, expand, mut successors) = self.queue.pop_front().expect("a job was submitted");
-        let out = expand_batch(
-            self.model,
-            &states,
-            expand,
-            &self.summarize,
-            &mut successors,
-        );
-        (states, out, successors)
+        let (states, expand, mut found) = self.queue.pop_front().expect("a job was submitted");
+        let out = expand_batch(self.model, &states, expand, &self.summarize, &mut found);
+        (states, out, found)
     }
 }
 
 /// A job's result from a worker: its states and their expansions, or the worker's panic.
 type Done<S, T, L> = std::thread::Result<Expansion<S, T, L>>;
 
-/// A job for a worker: its number, its states, whether to expand them, and the vector
-/// for their successors.
-type Job<S, L> = (u64, Batch<S>, bool, Vec<(L, S)>);
-
-/// A successor with its transition's label.
-type Transition<M> = (<M as Model>::Label, <M as Model>::State);
+/// A job for a worker: its number, its states, whether to expand them, and where their
+/// successors go.
+type Job<S, L> = (u64, Batch<S>, bool, Found<L, S>);
 
 /// Expands jobs on worker threads; results are put back in submission order.
 struct Workers<'q, S, T, L, F> {
@@ -313,16 +324,16 @@ struct Workers<'q, S, T, L, F> {
 
 impl<S, T, L, F> Expander<S, T, L> for Workers<'_, S, T, L, F>
 where
-    F: FnMut(Batch<S>, bool, Vec<(L, S)>) -> Expansion<S, T, L>,
+    F: FnMut(Batch<S>, bool, Found<L, S>) -> Expansion<S, T, L>,
 {
     fn ahead(&self) -> usize {
         AHEAD * self.threads
     }
 
-    fn submit(&mut self, states: Batch<S>, expand: bool, successors: Vec<(L, S)>) {
+    fn submit(&mut self, states: Batch<S>, expand: bool, found: Found<L, S>) {
         if states.len() < SMALL_JOB {
             // Narrow levels (a deep, thin graph) would otherwise wait on a hand-over each.
-            let r = (self.local)(states, expand, successors);
+            let r = (self.local)(states, expand, found);
             self.early.insert(self.submitted, Ok(r));
             self.submitted += 1;
             return;
@@ -332,7 +343,7 @@ where
             .as_ref()
             .expect("workers run until the search ends");
         // A send fails only when every worker has stopped, which `take` reports.
-        let _ = jobs.send((self.submitted, states, expand, successors));
+        let _ = jobs.send((self.submitted, states, expand, found));
         self.submitted += 1;
     }
 
@@ -349,8 +360,8 @@ where
             // a job that no worker has taken yet is expanded here instead. A worker that
             // holds the lock is taking one itself.
             let queued = (self.queue.try_lock().ok()).and_then(|q| q.try_recv().ok());
-            if let Some((seq, states, expand, successors)) = queued {
-                let r = (self.local)(states, expand, successors);
+            if let Some((seq, states, expand, found)) = queued {
+                let r = (self.local)(states, expand, found);
                 self.early.insert(seq, Ok(r));
                 continue;
             }
@@ -439,12 +450,12 @@ where
             let (queue, results, summarize) = (&queue, results.clone(), &summarize);
             scope.spawn(move || loop {
                 let job = queue.lock().unwrap_or_else(|e| e.into_inner()).recv();
-                let Ok((seq, states, expand, mut successors)) = job else {
+                let Ok((seq, states, expand, mut found)) = job else {
                     return;
                 };
                 let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    let out = expand_batch(model, &states, expand, summarize, &mut successors);
-                    (states, out, successors)
+                    let out = expand_batch(model, &states, expand, summarize, &mut found);
+                    (states, out, found)
                 }));
                 let failed = r.is_err();
                 if results.send((seq, r)).is_err() || failed {
@@ -455,9 +466,9 @@ where
         drop(results);
         let mut workers = Workers {
             threads,
-            local: |states: Batch<M::State>, expand, mut successors| {
-                let out = expand_batch(model, &states, expand, &summarize, &mut successors);
-                (states, out, successors)
+            local: |states: Batch<M::State>, expand, mut found| {
+                let out = expand_batch(model, &states, expand, &summarize, &mut found);
+                (states, out, found)
             },
             jobs: Some(jobs),
             queue: &queue,
@@ -487,13 +498,13 @@ const PREFETCH: [usize; 3] = [9, 6, 3];
 
 /// Expands the states of a batch in order ([`expand_one`]), each some after the model
 /// was asked to prefetch what it reads ([`Model::prefetch`]), their successors appended
-/// to `successors`.
+/// to `found`.
 fn expand_batch<M: Model, T>(
     model: &M,
     states: &Batch<M::State>,
     expand: bool,
     summarize: &impl Fn(&M::State, Option<&Successors<M>>) -> T,
-    successors: &mut Vec<Transition<M>>,
+    found: &mut Found<M::Label, M::State>,
 ) -> Vec<Expanded<T>> {
     (0..states.len())
         .map(|i| {
@@ -504,7 +515,7 @@ fn expand_batch<M: Model, T>(
                     }
                 }
             }
-            expand_one(model, &states[i].1, expand, summarize, successors)
+            expand_one(model, &states[i].1, expand, summarize, found)
         })
         .collect()
 }
@@ -514,28 +525,25 @@ fn expand_one<M: Model, T>(
     s: &M::State,
     expand: bool,
     summarize: &impl Fn(&M::State, Option<&Successors<M>>) -> T,
-    successors: &mut Vec<Transition<M>>,
+    found: &mut Found<M::Label, M::State>,
 ) -> Expanded<T> {
     if !expand {
         return Expanded {
             summary: summarize(s, None),
             successors: None,
-            fps: SmallVec::new(),
             ample: None,
         };
     }
-    let from = successors.len();
-    model.next_states_into(s, successors);
-    let succ = &mut successors[from..];
+    let from = found.successors.len();
+    model.next_states_into(s, &mut found.successors);
+    let succ = &mut found.successors[from..];
     let ample = model.ample(s, succ);
-    let fps = (succ.iter_mut())
-        .map(|(l, t)| model.fingerprint_labelled(l, t))
-        .collect();
+    (found.fps).extend((succ.iter_mut()).map(|(l, t)| model.fingerprint_labelled(l, t)));
+    let n = u32::try_from(succ.len()).expect("fewer than 2^32 successors of a state");
     Expanded {
         summary: summarize(s, Some(succ)),
-        successors: Some(succ.len()),
-        fps,
-        ample,
+        successors: Some(n),
+        ample: ample.map(|a| a.start as u32..a.end as u32),
     }
 }
 
@@ -651,9 +659,7 @@ fn search<M: Model, T>(
     // Chunks' buffers, back from the merge.
     let mut pool: Vec<Batch<M::State>> = Vec::new();
     // Jobs' successor vectors, back from the merge.
-    let mut transitions: Vec<Vec<Transition<M>>> = Vec::new();
-    // A job's successors' fingerprints, in the merge's order, to prefetch ahead of it.
-    let mut ahead: Vec<u64> = Vec::new();
+    let mut founds: Vec<Found<M::Label, M::State>> = Vec::new();
     // Canonical fingerprint -> whether this shard explores it.
     let mut seen: std::collections::HashMap<u64, bool> = std::collections::HashMap::new();
     for (taken, s) in model.init_states().enumerate() {
@@ -769,14 +775,14 @@ fn search<M: Model, T>(
                     break;
                 };
                 // After a stop, only summaries: the merge drops successors anyway.
-                let successors = transitions.pop().unwrap_or_default();
-                expander.submit(job, expand && expand_job && !stopped, successors);
+                let found = founds.pop().unwrap_or_default();
+                expander.submit(job, expand && expand_job && !stopped, found);
                 out += 1;
             }
             if out == 0 {
                 break;
             }
-            let (mut states, results, mut successors) = expander.take();
+            let (mut states, results, mut found) = expander.take();
             out -= 1;
             let elapsed = start.elapsed().as_secs_f64();
             progress(g.store.len(), depth, elapsed);
@@ -801,21 +807,27 @@ fn search<M: Model, T>(
             // Each successor's slot is asked for `MERGE_AHEAD` successors before it is
             // looked up: asked for all at once, most had left the cache again, or were
             // still on their way, when their turn came.
-            ahead.clear();
-            if expanded {
-                ahead.extend(results.iter().flat_map(|r| &r.fps));
-            }
+            let Found { successors, fps } = &mut found;
+            let ahead = match expanded {
+                true => &fps[..],
+                false => &[],
+            };
             for &fp in ahead.iter().take(MERGE_AHEAD) {
                 g.store.prefetch(fp);
             }
             let mut next_ahead = ahead.iter().skip(MERGE_AHEAD);
             let mut late_ahead = ahead.iter().skip(MERGE_AHEAD / 2);
             let mut all = successors.drain(..);
+            // Where the next state's fingerprints begin in `fps`.
+            let mut at = 0;
             for ((src, _), r) in states.iter().zip(results) {
                 on_state(*src, r.summary);
                 // This state's successors: each path below takes them all.
-                let succ = all.by_ref().take(r.successors.unwrap_or(0));
-                let Some(n) = r.successors.filter(|_| expanded) else {
+                let n = r.successors.unwrap_or(0) as usize;
+                let succ = all.by_ref().take(n);
+                let my_fps = &fps[at..at + n];
+                at += n;
+                let Some(n) = r.successors.filter(|_| expanded).map(|n| n as usize) else {
                     succ.for_each(drop);
                     g.mark(*src, g.edges.as_ref().map_or(0, |e| e.lists.end()), false);
                     continue;
@@ -836,23 +848,25 @@ fn search<M: Model, T>(
                 // is put off forever.
                 // (Without numbers, a stored successor might be of either depth: none may be.)
                 let ample = r.ample.filter(|a| {
-                    r.fps[a.clone()].iter().all(|fp| match g.store.numbered() {
-                        true => g.store.find(*fp).is_none_or(|i| i >= next_level),
-                        false => !g.store.contains(*fp),
+                    my_fps[a.start as usize..a.end as usize].iter().all(|fp| {
+                        match g.store.numbered() {
+                            true => g.store.find(*fp).is_none_or(|i| i >= next_level),
+                            false => !g.store.contains(*fp),
+                        }
                     })
                 });
                 if ample.is_some() {
                     g.reduced += 1;
                 }
                 let mut cut = false;
-                for (k, ((label, t), &fp)) in succ.zip(&r.fps).enumerate() {
+                for (k, ((label, t), &fp)) in succ.zip(my_fps).enumerate() {
                     if let Some(&next) = next_ahead.next() {
                         g.store.prefetch(next);
                     }
                     if let Some(&late) = late_ahead.next() {
                         g.store.prefetch_late(late);
                     }
-                    if ample.as_ref().is_some_and(|a| !a.contains(&k)) {
+                    if ample.as_ref().is_some_and(|a| !a.contains(&(k as u32))) {
                         continue;
                     }
                     if let Some(why) = model.beyond(&label) {
@@ -897,9 +911,10 @@ fn search<M: Model, T>(
                 g.mark(*src, edge_start, !cut);
             }
             drop(all);
+            fps.clear();
             // As many as the jobs usually out: those handed out to last a growth are freed.
-            if transitions.len() < expander.ahead() {
-                transitions.push(successors);
+            if founds.len() < expander.ahead() {
+                founds.push(found);
             }
             states.clear();
             pool.push(states);
