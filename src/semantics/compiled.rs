@@ -458,6 +458,53 @@ thread_local! {
     static LOCAL_IMAGES: std::cell::RefCell<LocalImages> = Default::default();
 }
 
+/// How many entries each table of a thread's [`LocalParts`] has (a power of two).
+const LOCAL_PARTS: usize = 1 << 12;
+
+/// Per thread, the parts a transition made last, direct-mapped: a job's states are
+/// mostly successors of a few states and make the same parts again. Looked up here, a part
+/// costs no shard's lock (whose cache line the threads passed back and forth) and no probe
+/// of a shared table far larger than the cache.
+#[derive(Default)]
+struct LocalParts {
+    /// The [`Compiled::serial`] these parts are of.
+    serial: u64,
+    /// By the addresses of a belief base and of an act phase's outcome that changes it:
+    /// the belief base it makes, by address.
+    bases: Vec<(usize, usize, usize)>,
+    /// By an agenda's hash ([`Agenda::mixed`]): an agenda interned, by address.
+    agendas: Vec<(u64, usize)>,
+    /// By a memo ([`Memoized`]), the address of the part it was read for and of the
+    /// belief base: the outcome, by address (the belief base decides the beliefs the part
+    /// reads, so the memo's [`Key`] need not be made).
+    memos: Vec<(usize, usize, usize, usize)>,
+}
+
+/// Which memo an entry of [`LocalParts::memos`] is of.
+#[derive(Clone, Copy)]
+enum Memoized {
+    Deliberation = 1,
+    ProcAct = 2,
+    Act = 3,
+}
+
+impl LocalParts {
+    /// These tables, emptied first if they are of another compiled system than `serial`.
+    fn of(&mut self, serial: u64) -> &mut LocalParts {
+        if self.serial != serial || self.bases.is_empty() {
+            self.serial = serial;
+            self.bases = vec![(0, 0, 0); LOCAL_PARTS];
+            self.agendas = vec![(0, 0); LOCAL_PARTS];
+            self.memos = vec![(0, 0, 0, 0); LOCAL_PARTS];
+        }
+        self
+    }
+}
+
+thread_local! {
+    static LOCAL_PARTS_MADE: std::cell::RefCell<LocalParts> = Default::default();
+}
+
 /// The bit that marks a map id as a caller's own code rather than one of
 /// [`Compiled::map_id`]'s.
 pub const MAP_CODE: u64 = 1 << 63;
@@ -909,10 +956,30 @@ impl<'s, 'p> Compiled<'s, 'p> {
         })
     }
 
-    /// `agenda` interned; its parts must be in this system's tables.
+    /// `agenda` interned; its parts must be in this system's tables. Found in this thread's
+    /// [`LocalParts`] when it made it lately.
     fn agenda_of(&self, agenda: Agenda) -> Held<Part<Agenda>> {
-        self.agendas
-            .intern_hashed(agenda.mixed(), agenda, |_| AtomSet::default())
+        let hash = agenda.mixed();
+        let slot = hash as usize & (LOCAL_PARTS - 1);
+        let known = LOCAL_PARTS_MADE.with_borrow_mut(|l| {
+            let (h, at) = l.of(self.serial).agendas[slot];
+            // SAFETY: a nonzero address is of an agenda in this system's tables (the cache
+            // is emptied for another system), which are never dropped while it lives.
+            (h == hash && at != 0)
+                .then(|| unsafe { &*(at as *const Part<Agenda>) })
+                .filter(|p| p.value == agenda)
+                .map(Held::new)
+        });
+        if let Some(held) = known {
+            return held;
+        }
+        let held = self
+            .agendas
+            .intern_hashed(hash, agenda, |_| AtomSet::default());
+        LOCAL_PARTS_MADE.with_borrow_mut(|l| {
+            l.of(self.serial).agendas[slot] = (hash, held.0.as_ptr() as usize)
+        });
+        held
     }
 
     /// The state a packed one stands for.
@@ -1344,15 +1411,16 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let mut before = Notes::default();
         let mut event = event;
         let chosen = loop {
-            let key = Key::new(event, &p.beliefs.value, 0);
             // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
             let (chosen, goes_on) = unsafe {
-                self.deliberations
-                    .get(key, || {
+                self.recently(Memoized::Deliberation, event, p.beliefs, || {
+                    let key = Key::new(event, &p.beliefs.value, 0);
+                    self.deliberations.get(key, || {
                         self.computed(Phase::Deliberation(Held::new(event), Held::new(p.beliefs)));
                         self.deliberate(event, &p.beliefs.value)
                     })
-                    .get(self)
+                })
+                .get(self)
             };
             match agenda.events().get(taken) {
                 Some(next) if *goes_on => {
@@ -1387,14 +1455,15 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let Some(pending) = p.pending.take() else {
             return;
         };
-        let key = Key::new(pending, &p.beliefs.value, 0);
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let done = self
-                .proc_acts
-                .get(key, || {
-                    self.computed(Phase::ProcAct(Held::new(pending)));
-                    self.compute_proc_act(pending)
+                .recently(Memoized::ProcAct, pending, p.beliefs, || {
+                    let key = Key::new(pending, &p.beliefs.value, 0);
+                    self.proc_acts.get(key, || {
+                        self.computed(Phase::ProcAct(Held::new(pending)));
+                        self.compute_proc_act(pending)
+                    })
                 })
                 .get(self);
             p.events.extend_from_slice(refs(&done.events));
@@ -1413,24 +1482,21 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let first = p.intentions.remove(0);
         let held: &'c Part<Base> = p.beliefs;
         let base = &held.value;
-        // How many environment atoms hold decides the order of perceived effects.
-        let env = self.sem.env_count(&base.0);
-        let key = Key::new(first, base, self.sem.env_class(env));
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let acted = self
-                .acts
-                .get(key, || {
-                    self.computed(Phase::Act(Held::new(first), Held::new(held)));
-                    self.compute_act(first, base, env)
+                .recently(Memoized::Act, first, held, || {
+                    // How many environment atoms hold decides the order of perceived effects.
+                    let env = self.sem.env_count(&base.0);
+                    let key = Key::new(first, base, self.sem.env_class(env));
+                    self.acts.get(key, || {
+                        self.computed(Phase::Act(Held::new(first), Held::new(held)));
+                        self.compute_act(first, base, env)
+                    })
                 })
                 .get(self);
             if !acted.added.is_empty() || !acted.removed.is_empty() {
-                let next = base.0.with_changes(&acted.added, &acted.removed);
-                let mut order = base.1.clone();
-                self.sem
-                    .reorder_front(&mut order, &acted.front, &acted.removed, &acted.added);
-                p.beliefs = self.belief_set((next, order)).get(self);
+                p.beliefs = self.acted_on(held, acted).get(self);
             }
             p.events.extend_from_slice(refs(&acted.events));
             if let Some(i) = acted.back {
@@ -1441,6 +1507,61 @@ impl<'s, 'p> Compiled<'s, 'p> {
             }
             notes.0.push(&acted.notes[..]);
         }
+    }
+
+    /// What `get` reads of the memo `memo` for `part` in a state with belief base `base`:
+    /// found in this thread's [`LocalParts`] when it read it lately. Every memo's key is
+    /// made of the part and of what the belief base decides.
+    fn recently<T, V>(
+        &self,
+        memo: Memoized,
+        part: &Part<T>,
+        base: &Part<Base>,
+        get: impl FnOnce() -> Held<V>,
+    ) -> Held<V> {
+        let key = (address(part), address(base), memo as usize);
+        let slot = mix(key.0 as u64 ^ (key.1 as u64).rotate_left(29) ^ key.2 as u64) as usize
+            & (LOCAL_PARTS - 1);
+        let known = LOCAL_PARTS_MADE.with_borrow_mut(|l| {
+            let e = l.of(self.serial).memos[slot];
+            ((e.0, e.1, e.2) == key).then_some(e.3)
+        });
+        if let Some(at) = known {
+            // SAFETY: the address is of this memo's outcome for this key (the memo is told
+            // by `memo`, and the cache is emptied for another system), in this system's
+            // tables, which are never dropped while it lives.
+            return Held(unsafe { NonNull::new_unchecked(at as *mut V) });
+        }
+        let held = get();
+        LOCAL_PARTS_MADE.with_borrow_mut(|l| {
+            l.of(self.serial).memos[slot] = (key.0, key.1, key.2, held.0.as_ptr() as usize)
+        });
+        held
+    }
+
+    /// The belief base `acted` (an act phase's outcome that changes beliefs) makes of
+    /// `held`: found in this thread's [`LocalParts`] when it made it lately.
+    fn acted_on(&self, held: &Part<Base>, acted: &Acted) -> Held<Part<Base>> {
+        let key = (address(held), acted as *const Acted as usize);
+        let slot = mix(key.0 as u64 ^ (key.1 as u64).rotate_left(32)) as usize & (LOCAL_PARTS - 1);
+        let known = LOCAL_PARTS_MADE.with_borrow_mut(|l| {
+            let e = l.of(self.serial).bases[slot];
+            ((e.0, e.1) == key).then_some(e.2)
+        });
+        if let Some(made) = known {
+            // SAFETY: the address is of a belief base in this system's tables (the cache is
+            // emptied for another system), which are never dropped while it lives.
+            return Held(unsafe { NonNull::new_unchecked(made as *mut Part<Base>) });
+        }
+        let base = &held.value;
+        let next = base.0.with_changes(&acted.added, &acted.removed);
+        let mut order = base.1.clone();
+        (self.sem).reorder_front(&mut order, &acted.front, &acted.removed, &acted.added);
+        let made = self.belief_set((next, order));
+        LOCAL_PARTS_MADE.with_borrow_mut(|l| {
+            l.of(self.serial).bases[slot] = (key.0, key.1, made.0.as_ptr() as usize)
+        });
+        made
     }
 
     /// The `ProcAct` stage of `pending` (it reads no belief).
