@@ -175,6 +175,29 @@ impl<'c> Model for CompiledAgent<'c, '_, '_> {
         self.compiled.successors_into(s, out);
     }
 
+    /// The state's agenda and belief base, then the first event or intention the cycle
+    /// reads: reading the agenda of a state met long before was most of opening it (perf,
+    /// 6-cup kitchen: a twentieth of the worker's time).
+    fn prefetch(&self, s: &Packed<'c>, stage: usize) {
+        use super::chunked::prefetch;
+        match stage {
+            0 => {
+                let agenda = s.agenda_key() as *const u8;
+                (0..3).for_each(|line| prefetch(agenda.wrapping_add(64 * line)));
+                prefetch(s.beliefs());
+            }
+            1 => match s.first_event() {
+                Some(e) => prefetch(e),
+                None => {
+                    if let Some(i) = s.intentions().next() {
+                        prefetch(i);
+                    }
+                }
+            },
+            _ => {}
+        }
+    }
+
     fn beyond(&self, label: &Notes<'c>) -> Option<(crate::syntax::Span, String)> {
         beyond_of(label.iter())
     }
