@@ -48,10 +48,9 @@ pub fn populate_later<T>(start: *const T, len: usize) {
     #[cfg(target_os = "linux")]
     {
         use std::sync::mpsc::{channel, Sender};
-        use std::sync::{Mutex, OnceLock};
+        use std::sync::OnceLock;
         /// Where ranges (address, length) are sent to be faulted in, if the helper runs.
-        type Helper = Option<Mutex<Sender<(usize, usize)>>>;
-        static HELPER: OnceLock<Helper> = OnceLock::new();
+        static HELPER: OnceLock<Option<Sender<(usize, usize)>>> = OnceLock::new();
         let helper = HELPER.get_or_init(|| {
             let (tx, rx) = channel::<(usize, usize)>();
             let spawned = std::thread::Builder::new()
@@ -65,15 +64,35 @@ pub fn populate_later<T>(start: *const T, len: usize) {
                         };
                     }
                 });
-            spawned.ok().map(|_| Mutex::new(tx))
+            spawned.ok().map(|_| tx)
         });
         if let Some(tx) = helper {
-            let tx = tx.lock().unwrap_or_else(|e| e.into_inner());
             let _ = tx.send((start as usize, len));
         }
     }
     #[cfg(not(target_os = "linux"))]
     let _ = (start, len);
+}
+
+/// A chunk of `size` elements: `spare` if it is that large (`exact`: exactly that large),
+/// else a new one; `spare` then becomes the chunk of `next` elements after it, faulted in
+/// ahead ([`populate_later`]) when it is large. Without a spare (memory short), the next
+/// chunk is allocated when it is needed.
+fn next_chunk<T>(
+    spare: &mut Vec<T>,
+    (size, exact): (usize, bool),
+    next: usize,
+) -> Result<Vec<T>, OutOfMemory> {
+    let mut chunk = std::mem::take(spare);
+    if chunk.capacity() < size || (exact && chunk.capacity() != size) {
+        chunk = Vec::new();
+        chunk.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
+    }
+    let bytes = next * std::mem::size_of::<T>();
+    if bytes >= POPULATED && spare.try_reserve_exact(next).is_ok() {
+        populate_later(spare.as_ptr(), bytes);
+    }
+    Ok(chunk)
 }
 
 /// A growable array in chunks that never move.
@@ -186,21 +205,10 @@ impl<T: Copy> Chunked<T> {
     #[cold]
     #[inline(never)]
     fn add_chunk(&mut self, k: usize) -> Result<(), OutOfMemory> {
-        let mut chunk = std::mem::take(&mut self.spare);
-        if chunk.capacity() != capacity(k) {
-            chunk = Vec::new();
-            chunk
-                .try_reserve_exact(capacity(k))
-                .map_err(|_| OutOfMemory)?;
-        }
+        // Exactly its size: where an element is follows from the chunks' sizes.
+        let chunk = next_chunk(&mut self.spare, (capacity(k), true), capacity(k + 1))?;
         self.chunks.try_reserve(1).map_err(|_| OutOfMemory)?;
         self.chunks.push(chunk);
-        // The next chunk, faulted in while this one fills (without it, when memory is
-        // short, the next push allocates it again).
-        let bytes = capacity(k + 1) * std::mem::size_of::<T>();
-        if bytes >= POPULATED && self.spare.try_reserve_exact(capacity(k + 1)).is_ok() {
-            populate_later(self.spare.as_ptr(), bytes);
-        }
         Ok(())
     }
 
@@ -277,19 +285,11 @@ impl Lists {
         let size = (self.items.last())
             .map_or(1024, |c| (c.capacity() * 2).min(LIST_CHUNK))
             .max(n);
-        let mut chunk = std::mem::take(&mut self.spare);
-        if chunk.capacity() < size {
-            chunk = Vec::new();
-            chunk.try_reserve_exact(size).map_err(|_| OutOfMemory)?;
-        }
+        let next = (size * 2).min(LIST_CHUNK);
+        let chunk = next_chunk(&mut self.spare, (size, false), next)?;
         self.items.try_reserve(1).map_err(|_| OutOfMemory)?;
         self.items.push(chunk);
         self.before.take();
-        // The next chunk, faulted in while this one fills (as `Chunked`'s).
-        let next = (size * 2).min(LIST_CHUNK);
-        if next * 4 >= POPULATED && self.spare.try_reserve_exact(next).is_ok() {
-            populate_later(self.spare.as_ptr(), next * 4);
-        }
         Ok(())
     }
 

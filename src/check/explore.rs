@@ -827,7 +827,7 @@ fn search<M: Model, T>(
                 let succ = all.by_ref().take(n);
                 let my_fps = &fps[at..at + n];
                 at += n;
-                let Some(n) = r.successors.filter(|_| expanded).map(|n| n as usize) else {
+                if r.successors.is_none() || !expanded {
                     succ.for_each(drop);
                     g.mark(*src, g.edges.as_ref().map_or(0, |e| e.lists.end()), false);
                     continue;

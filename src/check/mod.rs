@@ -41,7 +41,7 @@ mod chunked;
 mod explained_runs;
 mod failures;
 mod liveness;
-mod recent;
+use crate::semantics::recent;
 mod safety;
 mod search;
 mod settle;

@@ -22,6 +22,7 @@
 //! threads).
 
 use super::cycle::{Note, Semantics};
+use super::recent::{recently, Recently};
 use super::state::{hash_parts, part_hash, requests_of, Event, Intention, Pending, State};
 use crate::model::atoms::{AtomId, AtomSet};
 
@@ -439,9 +440,6 @@ type Images<T> = PerPart<Held<Part<T>>>;
 /// that it stays where it is while the table grows.
 type Derived<T> = PerPart<Box<[T]>>;
 
-/// The next [`Compiled`]'s serial.
-static SERIAL: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-
 /// Per thread, the images [`Compiled::map`] met, by the address of the part (or the
 /// requests made) and the map id: a symmetric search maps every successor by several
 /// renamings, and two threads taking the shared tables' locks for the same few entries
@@ -458,29 +456,11 @@ thread_local! {
     static LOCAL_IMAGES: std::cell::RefCell<LocalImages> = Default::default();
 }
 
-/// How many entries each table of a thread's [`LocalParts`] has (a power of two).
+/// How many entries each of a thread's tables of parts made lately has ([`LOCAL_BASES`],
+/// [`LOCAL_AGENDAS`], [`LOCAL_MEMOS`]).
 const LOCAL_PARTS: usize = 1 << 12;
 
-/// Per thread, the parts a transition made last, direct-mapped: a job's states are
-/// mostly successors of a few states and make the same parts again. Looked up here, a part
-/// costs no shard's lock (whose cache line the threads passed back and forth) and no probe
-/// of a shared table far larger than the cache.
-#[derive(Default)]
-struct LocalParts {
-    /// The [`Compiled::serial`] these parts are of.
-    serial: u64,
-    /// By the addresses of a belief base and of an act phase's outcome that changes it:
-    /// the belief base it makes, by address.
-    bases: Vec<(usize, usize, usize)>,
-    /// By an agenda's hash ([`Agenda::mixed`]): an agenda interned, by address.
-    agendas: Vec<(u64, usize)>,
-    /// By a memo ([`Memoized`]), the address of the part it was read for and of the
-    /// belief base: the outcome, by address (the belief base decides the beliefs the part
-    /// reads, so the memo's [`Key`] need not be made).
-    memos: Vec<(usize, usize, usize, usize)>,
-}
-
-/// Which memo an entry of [`LocalParts::memos`] is of.
+/// Which memo an entry of [`LOCAL_MEMOS`] is of.
 #[derive(Clone, Copy)]
 enum Memoized {
     Deliberation = 1,
@@ -488,21 +468,20 @@ enum Memoized {
     Act = 3,
 }
 
-impl LocalParts {
-    /// These tables, emptied first if they are of another compiled system than `serial`.
-    fn of(&mut self, serial: u64) -> &mut LocalParts {
-        if self.serial != serial || self.bases.is_empty() {
-            self.serial = serial;
-            self.bases = vec![(0, 0, 0); LOCAL_PARTS];
-            self.agendas = vec![(0, 0); LOCAL_PARTS];
-            self.memos = vec![(0, 0, 0, 0); LOCAL_PARTS];
-        }
-        self
-    }
-}
-
+// Per thread, the parts a transition made last (`recently`, tagged with the system's
+// serial): a job's states are mostly successors of a few states and make the same parts
+// again. Found there, a part costs no shard's lock (whose cache line the threads passed
+// back and forth) and no probe of a shared table far larger than the cache.
 thread_local! {
-    static LOCAL_PARTS_MADE: std::cell::RefCell<LocalParts> = Default::default();
+    /// By the addresses of a belief base and of an act phase's outcome that changes it:
+    /// the belief base it makes, by address.
+    static LOCAL_BASES: Recently<(usize, usize), usize> = const { std::cell::RefCell::new(Vec::new()) };
+    /// By an agenda's hash ([`Agenda::mixed`]): an agenda interned with it, by address.
+    static LOCAL_AGENDAS: Recently<u64, usize> = const { std::cell::RefCell::new(Vec::new()) };
+    /// By the address of a part, of a belief base and the memo ([`Memoized`]): what the
+    /// memo holds for them, by address (the belief base decides the beliefs the part reads,
+    /// so the memo's [`Key`] need not be made).
+    static LOCAL_MEMOS: Recently<(usize, usize, usize), usize> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// The bit that marks a map id as a caller's own code rather than one of
@@ -833,7 +812,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         }
         let mut c = Compiled {
             sem,
-            serial: SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            serial: super::recent::serial(),
             beliefs: Interner::new(),
             events: Interner::new(),
             intentions: Interner::new(),
@@ -957,29 +936,33 @@ impl<'s, 'p> Compiled<'s, 'p> {
     }
 
     /// `agenda` interned; its parts must be in this system's tables. Found in this thread's
-    /// [`LocalParts`] when it made it lately.
+    /// [`LOCAL_AGENDAS`] when it made it lately.
     fn agenda_of(&self, agenda: Agenda) -> Held<Part<Agenda>> {
         let hash = agenda.mixed();
-        let slot = hash as usize & (LOCAL_PARTS - 1);
-        let known = LOCAL_PARTS_MADE.with_borrow_mut(|l| {
-            let (h, at) = l.of(self.serial).agendas[slot];
-            // SAFETY: a nonzero address is of an agenda in this system's tables (the cache
-            // is emptied for another system), which are never dropped while it lives.
-            (h == hash && at != 0)
-                .then(|| unsafe { &*(at as *const Part<Agenda>) })
-                .filter(|p| p.value == agenda)
-                .map(Held::new)
-        });
-        if let Some(held) = known {
-            return held;
+        let mut new = Some(agenda);
+        let at = recently(
+            &LOCAL_AGENDAS,
+            LOCAL_PARTS,
+            (self.serial, hash),
+            || {
+                let agenda = new.take().expect("interned once");
+                let held = self
+                    .agendas
+                    .intern_hashed(hash, agenda, |_| AtomSet::default());
+                held.0.as_ptr() as usize
+            },
+            |&at| at,
+        );
+        // SAFETY: the address is of an agenda in this system's tables (the entries are of
+        // this system: its serial), which are never dropped while it lives.
+        let held = Held(unsafe { NonNull::new_unchecked(at as *mut Part<Agenda>) });
+        match new {
+            // Another agenda of the same hash: interned, and not kept here.
+            Some(agenda) if unsafe { held.get(self) }.value != agenda => self
+                .agendas
+                .intern_hashed(hash, agenda, |_| AtomSet::default()),
+            _ => held,
         }
-        let held = self
-            .agendas
-            .intern_hashed(hash, agenda, |_| AtomSet::default());
-        LOCAL_PARTS_MADE.with_borrow_mut(|l| {
-            l.of(self.serial).agendas[slot] = (hash, held.0.as_ptr() as usize)
-        });
-        held
     }
 
     /// The state a packed one stands for.
@@ -1413,7 +1396,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         let chosen = loop {
             // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
             let (chosen, goes_on) = unsafe {
-                self.recently(Memoized::Deliberation, event, p.beliefs, || {
+                self.memo_read(Memoized::Deliberation, event, p.beliefs, || {
                     let key = Key::new(event, &p.beliefs.value, 0);
                     self.deliberations.get(key, || {
                         self.computed(Phase::Deliberation(Held::new(event), Held::new(p.beliefs)));
@@ -1458,7 +1441,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let done = self
-                .recently(Memoized::ProcAct, pending, p.beliefs, || {
+                .memo_read(Memoized::ProcAct, pending, p.beliefs, || {
                     let key = Key::new(pending, &p.beliefs.value, 0);
                     self.proc_acts.get(key, || {
                         self.computed(Phase::ProcAct(Held::new(pending)));
@@ -1485,7 +1468,7 @@ impl<'s, 'p> Compiled<'s, 'p> {
         // SAFETY: memoized outcomes and the parts they hold are in this system's tables.
         unsafe {
             let acted = self
-                .recently(Memoized::Act, first, held, || {
+                .memo_read(Memoized::Act, first, held, || {
                     // How many environment atoms hold decides the order of perceived effects.
                     let env = self.sem.env_count(&base.0);
                     let key = Key::new(first, base, self.sem.env_class(env));
@@ -1510,9 +1493,9 @@ impl<'s, 'p> Compiled<'s, 'p> {
     }
 
     /// What `get` reads of the memo `memo` for `part` in a state with belief base `base`:
-    /// found in this thread's [`LocalParts`] when it read it lately. Every memo's key is
+    /// found in this thread's [`LOCAL_MEMOS`] when it read it lately. Every memo's key is
     /// made of the part and of what the belief base decides.
-    fn recently<T, V>(
+    fn memo_read<T, V>(
         &self,
         memo: Memoized,
         part: &Part<T>,
@@ -1520,48 +1503,39 @@ impl<'s, 'p> Compiled<'s, 'p> {
         get: impl FnOnce() -> Held<V>,
     ) -> Held<V> {
         let key = (address(part), address(base), memo as usize);
-        let slot = mix(key.0 as u64 ^ (key.1 as u64).rotate_left(29) ^ key.2 as u64) as usize
-            & (LOCAL_PARTS - 1);
-        let known = LOCAL_PARTS_MADE.with_borrow_mut(|l| {
-            let e = l.of(self.serial).memos[slot];
-            ((e.0, e.1, e.2) == key).then_some(e.3)
-        });
-        if let Some(at) = known {
-            // SAFETY: the address is of this memo's outcome for this key (the memo is told
-            // by `memo`, and the cache is emptied for another system), in this system's
-            // tables, which are never dropped while it lives.
-            return Held(unsafe { NonNull::new_unchecked(at as *mut V) });
-        }
-        let held = get();
-        LOCAL_PARTS_MADE.with_borrow_mut(|l| {
-            l.of(self.serial).memos[slot] = (key.0, key.1, key.2, held.0.as_ptr() as usize)
-        });
-        held
+        let at = recently(
+            &LOCAL_MEMOS,
+            LOCAL_PARTS,
+            (self.serial, key),
+            || get().0.as_ptr() as usize,
+            |&at| at,
+        );
+        // SAFETY: the address is of this memo's outcome for this key (the memo is told by
+        // `memo`, the system by its serial), in this system's tables, which are never
+        // dropped while it lives.
+        Held(unsafe { NonNull::new_unchecked(at as *mut V) })
     }
 
     /// The belief base `acted` (an act phase's outcome that changes beliefs) makes of
-    /// `held`: found in this thread's [`LocalParts`] when it made it lately.
+    /// `held`: found in this thread's [`LOCAL_BASES`] when it made it lately.
     fn acted_on(&self, held: &Part<Base>, acted: &Acted) -> Held<Part<Base>> {
         let key = (address(held), acted as *const Acted as usize);
-        let slot = mix(key.0 as u64 ^ (key.1 as u64).rotate_left(32)) as usize & (LOCAL_PARTS - 1);
-        let known = LOCAL_PARTS_MADE.with_borrow_mut(|l| {
-            let e = l.of(self.serial).bases[slot];
-            ((e.0, e.1) == key).then_some(e.2)
-        });
-        if let Some(made) = known {
-            // SAFETY: the address is of a belief base in this system's tables (the cache is
-            // emptied for another system), which are never dropped while it lives.
-            return Held(unsafe { NonNull::new_unchecked(made as *mut Part<Base>) });
-        }
-        let base = &held.value;
-        let next = base.0.with_changes(&acted.added, &acted.removed);
-        let mut order = base.1.clone();
-        (self.sem).reorder_front(&mut order, &acted.front, &acted.removed, &acted.added);
-        let made = self.belief_set((next, order));
-        LOCAL_PARTS_MADE.with_borrow_mut(|l| {
-            l.of(self.serial).bases[slot] = (key.0, key.1, made.0.as_ptr() as usize)
-        });
-        made
+        let at = recently(
+            &LOCAL_BASES,
+            LOCAL_PARTS,
+            (self.serial, key),
+            || {
+                let base = &held.value;
+                let next = base.0.with_changes(&acted.added, &acted.removed);
+                let mut order = base.1.clone();
+                (self.sem).reorder_front(&mut order, &acted.front, &acted.removed, &acted.added);
+                self.belief_set((next, order)).0.as_ptr() as usize
+            },
+            |&at| at,
+        );
+        // SAFETY: the address is of a belief base in this system's tables (the entries are
+        // of this system: its serial), which are never dropped while it lives.
+        Held(unsafe { NonNull::new_unchecked(at as *mut Part<Base>) })
     }
 
     /// The `ProcAct` stage of `pending` (it reads no belief).

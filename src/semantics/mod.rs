@@ -20,6 +20,7 @@ mod messages;
 mod perceive;
 pub mod query;
 mod reads;
+pub(crate) mod recent;
 pub mod state;
 pub mod system;
 mod wait;

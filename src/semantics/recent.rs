@@ -6,7 +6,7 @@
 //! the memo's [`serial`], so that an entry is never given to another memo (or another
 //! search) with equal keys.
 
-use crate::semantics::compiled::{mix, Quick};
+use super::compiled::{mix, Quick};
 use std::hash::{BuildHasher, Hash};
 
 /// A thread's table of entries: the memo (by [`serial`]), the key, the value.
