@@ -830,6 +830,27 @@ thread_local! {
     /// the reads hit a table of 2^14 (5-cup kitchen), and the shared memo's lock, hashing
     /// and probe were a tenth of the search.
     static SEEN_RECENTLY: Recently<(usize, usize), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// [`Tables::seen`]'s entries for notes of one word on which explanations were due, by
+    /// view (address), word and the explanations' words ([`Explained::given_key`]: how
+    /// many, then up to two). A fifth of a user's transitions on the kitchen take this
+    /// path, and the shared memo's lock and probe of a key of two `SmallVec`s.
+    static DUE_RECENTLY: Recently<(usize, usize, [usize; 3]), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// [`Tables::judged`]'s entries for robot states of one intentions word, by view
+    /// (address), [`judged_flags`] and the word.
+    static JUDGED_RECENTLY: Recently<(usize, usize, usize), Arc<Judged>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// [`Tables::contents`]' entries, by action note (address).
+    static CONTENTS_RECENTLY: Recently<usize, Arc<Option<(Explanation, LiteralAtoms)>>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// A [`JudgedKey`]'s failure, sense and changes as one word, when its view has at most 61
+/// open explanations (bit 0 failed, bit 1 unsensed, bit `k + 2` the `k`-th changed).
+fn judged_flags(failed: bool, unsensed: bool, changed: &[bool]) -> Option<usize> {
+    (changed.len() <= usize::BITS as usize - 2).then(|| {
+        (changed.iter().enumerate()).fold(
+            usize::from(failed) | usize::from(unsensed) << 1,
+            |bits, (k, &c)| bits | usize::from(c) << (k + 2),
+        )
+    })
 }
 
 /// Tables are split in this many shards, each behind its own lock.
@@ -842,7 +863,7 @@ const SHARDS: usize = 32;
 struct Tables {
     views: [Mutex<HashSet<Shared, Quick>>; SHARDS],
     seen: Table<SeenKey, Seen>,
-    judged: Table<JudgedKey, (Shared, Vec<Violation>)>,
+    judged: Table<JudgedKey, Judged>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
     /// explanation and the truth of its context, one of `judgeables` (interned, so that its
     /// address stands for it in a memo key while the search lasts).
@@ -897,6 +918,9 @@ type Judgeable = (Explanation, Vec<bool>);
 
 /// A memo: values by key, in shards.
 type Table<K, V> = [Mutex<HashMap<K, Arc<V>, Quick>>; SHARDS];
+
+/// A view after a transition judged: the view, and the violations found.
+type Judged = (Shared, Vec<Violation>);
 
 /// A view after a transition's notes (by address), whether they failed, whether the robot
 /// has yet to sense, whether each open explanation's context changed on the robot's
@@ -1499,13 +1523,33 @@ impl<'a, W: Runs> Explained<'a, W> {
                                 }
                                 _ => None,
                             })
-                            .collect();
-                        memo_read(
-                            &self.tables.seen,
-                            SeenKey(at, key, given),
-                            || self.see(view, before, &notes, None, beliefs),
-                            |s| s.read(),
-                        )
+                            .collect::<SmallVec<[usize; 2]>>();
+                        let see = || self.see(view, before, &notes, None, beliefs);
+                        match (key.as_slice(), given.as_slice()) {
+                            (&[word], g) if g.len() <= 2 => {
+                                let words = [
+                                    g.len(),
+                                    g.first().map_or(0, |&x| x),
+                                    g.get(1).map_or(0, |&x| x),
+                                ];
+                                recently(
+                                    &DUE_RECENTLY,
+                                    READ_RECENTLY,
+                                    (self.serial, (at, word, words)),
+                                    || {
+                                        memo(
+                                            &self.tables.seen,
+                                            SeenKey(at, key.clone(), given.clone()),
+                                            see,
+                                        )
+                                    },
+                                    |s| s.read(),
+                                )
+                            }
+                            _ => memo_read(&self.tables.seen, SeenKey(at, key, given), see, |s| {
+                                s.read()
+                            }),
+                        }
                     }
                 }
             }
@@ -1530,24 +1574,38 @@ impl<'a, W: Runs> Explained<'a, W> {
                 // Judging reads the beliefs only through whether each open explanation's
                 // context changed (see `judge`).
                 let beliefs = self.runs.robot_beliefs(&next);
-                let changed = after
+                let changed: SmallVec<[bool; 4]> = after
                     .open
                     .iter()
                     .map(|o| self.context_changed(o, beliefs))
                     .collect();
-                let key = JudgedKey(
-                    Arc::as_ptr(&seen.view.0) as usize,
-                    seen.failed,
-                    unsensed,
-                    changed,
-                    key,
-                );
-                memo_read(
-                    &self.tables.judged,
-                    key,
-                    || self.after(&seen.view, &next, seen.failed, unsensed),
-                    |judged| (judged.0.clone(), judged.1.clone()),
-                )
+                let at = Arc::as_ptr(&seen.view.0) as usize;
+                let after = || self.after(&seen.view, &next, seen.failed, unsensed);
+                let read = |judged: &Arc<Judged>| (judged.0.clone(), judged.1.clone());
+                match (
+                    key.as_slice(),
+                    judged_flags(seen.failed, unsensed, &changed),
+                ) {
+                    (&[word], Some(flags)) => recently(
+                        &JUDGED_RECENTLY,
+                        READ_RECENTLY,
+                        (self.serial, (at, flags, word)),
+                        || {
+                            memo(
+                                &self.tables.judged,
+                                JudgedKey(at, seen.failed, unsensed, changed.clone(), key.clone()),
+                                after,
+                            )
+                        },
+                        read,
+                    ),
+                    _ => memo_read(
+                        &self.tables.judged,
+                        JudgedKey(at, seen.failed, unsensed, changed, key),
+                        after,
+                        read,
+                    ),
+                }
             }
             None => self.after(&seen.view, &next, seen.failed, unsensed),
         };
@@ -1853,12 +1911,21 @@ impl<'a, W: Runs> Explained<'a, W> {
         stack: &[crate::semantics::FrameView],
     ) -> usize {
         if !self.ex.is_semantic() {
-            let content = self.content(key.0, stack);
-            let Some((e, atoms)) = content.as_ref() else {
-                return 0;
-            };
-            if atoms.0.len() < usize::BITS as usize - 1 {
-                return truth_bits(atoms.truths(&e.content.context, believed));
+            let bits = recently(
+                &CONTENTS_RECENTLY,
+                READ_RECENTLY,
+                (self.serial, key.0),
+                || self.content(key.0, stack),
+                |content| match content.as_ref() {
+                    None => Some(0),
+                    Some((e, atoms)) if atoms.0.len() < usize::BITS as usize - 1 => {
+                        Some(truth_bits(atoms.truths(&e.content.context, believed)))
+                    }
+                    Some(_) => None,
+                },
+            );
+            if let Some(bits) = bits {
+                return bits;
             }
         }
         Arc::as_ptr(&self.explained(key, believed, stack)) as usize
@@ -2285,6 +2352,9 @@ fn user_search<W: Runs>(
     );
     // The searching threads other than this one are gone, and their caches with them.
     SEEN_RECENTLY.with_borrow_mut(Vec::clear);
+    DUE_RECENTLY.with_borrow_mut(Vec::clear);
+    JUDGED_RECENTLY.with_borrow_mut(Vec::clear);
+    CONTENTS_RECENTLY.with_borrow_mut(Vec::clear);
     (graph, violations, given)
 }
 
@@ -2651,6 +2721,24 @@ fn verify_runs<W: Runs + Clone>(
 
 #[cfg(test)]
 mod tests {
+    /// The word that stands for a judged transition's failure, sense and changes in the
+    /// threads' caches tells every two of them apart (of one view: as many changes), and
+    /// is refused where they would not fit.
+    #[test]
+    fn judged_flags_tell_every_judgement_apart() {
+        use super::judged_flags;
+        for open in 0..6usize {
+            let mut seen = std::collections::HashSet::new();
+            for bits in 0..1usize << (open + 2) {
+                let changed: Vec<bool> = (0..open).map(|k| bits >> (k + 2) & 1 == 1).collect();
+                let flags = judged_flags(bits & 1 == 1, bits & 2 == 2, &changed);
+                assert!(seen.insert(flags.expect("fits")), "{open} {bits}");
+            }
+        }
+        assert!(judged_flags(true, false, &[true; 62]).is_some());
+        assert_eq!(judged_flags(true, false, &[true; 63]), None);
+    }
+
     /// Under symmetry, a user's state's fingerprint takes the renamed view's hash from a
     /// memo per view and renaming: on a walk of the kitchen's users' searches (two cups,
     /// both renamings met), each is the one made without the memo.
