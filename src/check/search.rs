@@ -8,6 +8,7 @@ use super::model::{AgentState, CycleNotes, Model};
 use super::recent::{recently, Recently};
 use super::runs::{Letter, RunAtoms};
 use crate::model::cond::Cond;
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 
 /// What the search keeps of every state ([`search_agent`]): a number for each label, and
@@ -281,9 +282,10 @@ where
         .and_then(|d| std::time::Instant::now().checked_add(d));
     let unchecked = std::sync::atomic::AtomicBool::new(false);
     let mut steps = super::runs::StepLetters::default();
-    // The `did` propositions per notes (by identity): the merging thread reads them on
-    // every transition, and finding them anew (a lock and a term hashed per action) was
-    // 4% of the 5-cup kitchen's search with its `ltl` properties.
+    // The `did` propositions per notes (by identity), kept whether or not there are run
+    // properties (the notes met): the merging thread reads them on every transition, and
+    // finding them anew (a lock and a term hashed per action) was 4% of the 5-cup
+    // kitchen's search with its `ltl` properties.
     let mut did: HashMap<[usize; 4], Option<Letter>, crate::semantics::compiled::Quick> =
         HashMap::default();
     let by_beliefs = ByBeliefs::new();
@@ -318,16 +320,24 @@ where
             facts.record(i, sum, eventually)
         },
         |src, k, label: &M::Label, fp| {
-            failures.record(src, k, fp, label.notes());
-            let Some(r) = conditions.runs else {
-                return;
+            let step_letter = || {
+                conditions
+                    .runs
+                    .and_then(|r| r.step_letter(0, label.notes()))
             };
-            let letter = match label.identity() {
-                Some(key) => (did.entry(key))
-                    .or_insert_with(|| r.step_letter(0, label.notes()))
-                    .clone(),
-                None => r.step_letter(0, label.notes()),
+            // Failures keep the first transition that shows each, and `applied` is a set:
+            // notes met before (by identity) add nothing to them, and reading them again on
+            // every transition was 4% of the merging thread at 6 cups.
+            let (letter, new) = match label.identity() {
+                Some(key) => match did.entry(key) {
+                    Entry::Occupied(e) => (e.get().clone(), false),
+                    Entry::Vacant(e) => (e.insert(step_letter()).clone(), true),
+                },
+                None => (step_letter(), true),
             };
+            if new {
+                failures.record(src, k, fp, label.notes());
+            }
             if let Some(l) = letter {
                 steps.insert((src, k), l);
             }
