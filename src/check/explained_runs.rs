@@ -52,7 +52,7 @@ pub(super) fn decide<W: Runs>(
         limits,
         &opts,
         |s: &ExplainedState<W::State>, _| (reading.facts)(&s.state),
-        |i, (letter, b)| {
+        |i, _, (letter, b)| {
             letters.push(letter);
             if busy.len() <= i as usize {
                 busy.resize(i as usize + 1, 0);

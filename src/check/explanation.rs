@@ -2339,7 +2339,7 @@ fn user_search<W: Runs>(
         limits,
         opts,
         |_, _| (),
-        |_, ()| {},
+        |_, _, ()| {},
         |src, k, step: &Step<W::Notes>, fp| {
             given += step.given.iter().flat_map(|g| g.iter()).flatten().count();
             for v in &step.violations {

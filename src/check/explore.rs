@@ -396,7 +396,7 @@ pub fn explore<M: Model>(
         limits,
         &Options::default(),
         &mut inline,
-        |_, ()| {},
+        |_, _, ()| {},
         |src, k, label, _| on_transition(src, k, label),
         progress,
     )
@@ -414,7 +414,7 @@ pub fn explore_with<M, T>(
     limits: Limits,
     opts: &Options,
     summarize: impl Fn(&M::State, Option<&Successors<M>>) -> T + Sync,
-    on_state: impl FnMut(u32, T),
+    on_state: impl FnMut(u32, &M::State, T),
     on_transition: impl FnMut(u32, u32, &M::Label, u64),
     progress: impl FnMut(usize, u32, f64),
 ) -> Graph<M::State>
@@ -631,7 +631,7 @@ fn search<M: Model, T>(
     limits: Limits,
     opts: &Options,
     expander: &mut impl Expander<M::State, T, M::Label>,
-    mut on_state: impl FnMut(u32, T),
+    mut on_state: impl FnMut(u32, &M::State, T),
     mut on_transition: impl FnMut(u32, u32, &M::Label, u64),
     mut progress: impl FnMut(usize, u32, f64),
 ) -> Graph<M::State> {
@@ -820,8 +820,8 @@ fn search<M: Model, T>(
             let mut all = successors.drain(..);
             // Where the next state's fingerprints begin in `fps`.
             let mut at = 0;
-            for ((src, _), r) in states.iter().zip(results) {
-                on_state(*src, r.summary);
+            for ((src, s), r) in states.iter().zip(results) {
+                on_state(*src, s, r.summary);
                 // This state's successors: each path below takes them all.
                 let n = r.successors.unwrap_or(0) as usize;
                 let succ = all.by_ref().take(n);
@@ -1214,7 +1214,7 @@ mod tests {
             limits,
             &opts,
             |_, _| (),
-            |_, ()| {},
+            |_, _, ()| {},
             |_, _, _, _| {},
             |_, _, _| {},
         )
@@ -1371,7 +1371,7 @@ mod tests {
                 unbounded(),
                 &opts,
                 |s, succ: Option<&Successors<M>>| (*s, succ.map(|v| v.len())),
-                |i, s| seen.push((i, s)),
+                |i, _, s| seen.push((i, s)),
                 |_, _, _, _| {},
                 |_, _, _| {},
             );

@@ -298,24 +298,26 @@ where
             if late {
                 unchecked.store(true, std::sync::atomic::Ordering::Relaxed);
             }
-            let unequal = if late { None } else { equivariance(s, succ) };
-            // Numbered in the exploring threads: the merging one bounds the search.
-            let kept = number.map(|number| {
+            // Boxed: the summary crosses to the merging thread, a rare message in it.
+            let unequal = if late { None } else { equivariance(s, succ) }.map(Box::new);
+            // Numbered in the exploring threads: the merging one bounds the search. The
+            // state is kept from the merge's own copy, and does not cross with them.
+            let labels = number.map(|number| {
                 let labels = succ.iter().flat_map(|v| v.iter().map(|(l, _)| number(l)));
-                (s.clone(), labels.collect())
+                labels.collect()
             });
             (
                 conditions.summarize(s, &applicable, &by_beliefs),
                 unequal,
-                kept,
+                labels,
             )
         },
-        |i, (sum, unequal, kept)| {
+        |i, s: &M::State, (sum, unequal, labels)| {
             if not_equivariant.is_none() {
-                not_equivariant = unequal;
+                not_equivariant = unequal.map(|m| *m);
             }
-            if let (Some(sink), Some((s, labels))) = (sink.as_mut(), kept) {
-                sink(s, labels);
+            if let (Some(sink), Some(labels)) = (sink.as_mut(), labels) {
+                sink(s.clone(), labels);
             }
             facts.record(i, sum, eventually)
         },

@@ -188,7 +188,7 @@ where
         limits,
         &Options::default(),
         |s, _| summary(s),
-        |i, x| {
+        |i, _, x| {
             let i = i as usize;
             if facts.len() <= i {
                 facts.resize(i + 1, (false, true));

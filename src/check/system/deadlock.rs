@@ -118,7 +118,7 @@ pub fn stuck_states(
         },
         &opts,
         |s, _| busy_agents(s),
-        |i, bits| record_busy(&mut busy, i, bits),
+        |i, _, bits| record_busy(&mut busy, i, bits),
         |src, _, label, fp| steps.transition(src, label, fp),
         |_, _, _| {},
     );

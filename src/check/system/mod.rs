@@ -357,7 +357,7 @@ pub fn verify_system(
         limits,
         &opts,
         |s, _| summary(s, true),
-        |i, sum| {
+        |i, _, sum| {
             for (j, &fails) in sum.fails.iter().enumerate() {
                 let first = if fails {
                     &mut first_fails[j]
@@ -601,7 +601,7 @@ pub fn verify_system(
             left,
             &opts,
             |s, _| summary(s, false),
-            |i, sum| {
+            |i, _, sum| {
                 all_facts
                     .borrow_mut()
                     .state(i, sum.busy, sum.pending, sum.holds)
