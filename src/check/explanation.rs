@@ -842,7 +842,7 @@ thread_local! {
     static CONTENTS_RECENTLY: Recently<usize, Arc<Option<(Explanation, LiteralAtoms)>>> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
-/// A [`JudgedKey`]'s failure, sense and changes as one word, when its view has at most 61
+/// A [`JudgedKey`]'s failure, sense and changes as one word, when its view has at most 62
 /// open explanations (bit 0 failed, bit 1 unsensed, bit `k + 2` the `k`-th changed).
 fn judged_flags(failed: bool, unsensed: bool, changed: &[bool]) -> Option<usize> {
     (changed.len() <= usize::BITS as usize - 2).then(|| {
@@ -1527,11 +1527,8 @@ impl<'a, W: Runs> Explained<'a, W> {
                         let see = || self.see(view, before, &notes, None, beliefs);
                         match (key.as_slice(), given.as_slice()) {
                             (&[word], g) if g.len() <= 2 => {
-                                let words = [
-                                    g.len(),
-                                    g.first().map_or(0, |&x| x),
-                                    g.get(1).map_or(0, |&x| x),
-                                ];
+                                let at_ = |k: usize| g.get(k).copied().unwrap_or(0);
+                                let words = [g.len(), at_(0), at_(1)];
                                 recently(
                                     &DUE_RECENTLY,
                                     READ_RECENTLY,

@@ -584,7 +584,8 @@ impl Store {
         }
         // Seven eighths of the way to the table's next growth, the memory it will grow
         // into is faulted in by a helper thread (`Slots::prepare`): the merging thread
-        // stores about 2.5 M states a second at 6 cups, and has more than 7 M to go.
+        // stores about 2.5 M states a second at 6 cups, and has 6 M to go before the
+        // last growth there, the helper 0.34 GB to fault in.
         let cap = self.slots.len() * self.full / 8;
         if cap >= PREPARED && i as usize == cap - cap / 8 {
             self.slots.prepare(self.slots.len() * 2);
