@@ -1527,8 +1527,8 @@ impl<'a, W: Runs> Explained<'a, W> {
                         let see = || self.see(view, before, &notes, None, beliefs);
                         match (key.as_slice(), given.as_slice()) {
                             (&[word], g) if g.len() <= 2 => {
-                                let at_ = |k: usize| g.get(k).copied().unwrap_or(0);
-                                let words = [g.len(), at_(0), at_(1)];
+                                let nth = |k: usize| g.get(k).copied().unwrap_or(0);
+                                let words = [g.len(), nth(0), nth(1)];
                                 recently(
                                     &DUE_RECENTLY,
                                     READ_RECENTLY,
