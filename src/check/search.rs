@@ -303,8 +303,9 @@ where
             // Numbered in the exploring threads: the merging one bounds the search. The
             // state is kept from the merge's own copy, and does not cross with them.
             let labels = number.map(|number| {
-                let labels = succ.iter().flat_map(|v| v.iter().map(|(l, _)| number(l)));
-                labels.collect()
+                (succ.iter())
+                    .flat_map(|v| v.iter().map(|(l, _)| number(l)))
+                    .collect()
             });
             (
                 conditions.summarize(s, &applicable, &by_beliefs),
