@@ -804,7 +804,7 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     }
 
     fn fingerprint_numbered(&self, s: &Node<'g, 'c>, view: u64) -> Option<u64> {
-        // Exact: the pair's own bits, mixed. The user's store keeps the first two views met
+        // Exact: the pair's own bits, mixed. The user's store keeps the first four views met
         // at each agent state by the state's number (`Store::fingerprints_by_place`).
         Some(pair_fingerprint(u32::try_from(view).ok()?, s.index))
     }

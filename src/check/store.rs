@@ -21,8 +21,9 @@
 //!
 //! A user's search on the agent's stored graph meets states that are pairs (the user's
 //! view, the agent's state), fingerprinted exactly ([`pair_fingerprint`]). Its store
-//! ([`Store::fingerprints_by_place`]) keeps the first two pairs met at each agent state in
-//! an array by agent state (8 bytes each), and the others in the table: the agent's states
+//! ([`Store::fingerprints_by_place`]) keeps the first four pairs met at each agent state in
+//! an array by agent state (their views' numbers, 2 bytes each), and the others in the
+//! table: the agent's states
 //! are numbered breadth first, and a user's search meets them nearly in that order, so
 //! most lookups read memory next to the last one's instead of a random slot of a
 //! gigabyte-sized table.
@@ -100,12 +101,15 @@ pub struct Vacant {
     slot: Option<usize>,
     len: usize,
     /// When `slot` is of a place, what goes there: the pair's tag plus one.
-    place: Option<u32>,
+    place: Option<u16>,
 }
 
 /// The pairs kept by place, per place ([`Store::fingerprints_by_place`]): at 6 cups, a
-/// user meets 1.6 views per agent state.
-const PER_PLACE: usize = 2;
+/// user meets 1.6 views per agent state, and with two a place 12% of its states went to
+/// the table, each a lookup at random in a table of huge pages (the first write to one
+/// costs several times a small page's in this project's virtual machines). Four tags of
+/// 2 bytes take the 8 bytes two of 4 did.
+const PER_PLACE: usize = 4;
 
 /// The fingerprint of the pair `(tag, place)`: a bijection (SplitMix64's finalizer,
 /// `semantics::compiled::mix`, of `tag << 32 | place`), so two pairs never share one,
@@ -169,8 +173,9 @@ struct Fingerprints {
     len: usize,
     zero: bool,
     /// Per place, [`PER_PLACE`] slots: the tags of the first pairs met there, plus one
-    /// (0: none yet).
-    first: Vec<u32>,
+    /// (0: none yet). A tag of 2^16 - 1 or more (a user's view numbered so: 39 K views
+    /// at 6 cups) goes to the table.
+    first: Vec<u16>,
 }
 
 impl Fingerprints {
@@ -192,12 +197,12 @@ impl Fingerprints {
     /// hold others (it is then in the table, if anywhere: a place's slots are filled in
     /// order, and never emptied).
     #[inline]
-    fn at_place(&self, fp: u64) -> Option<Result<usize, (usize, u32)>> {
+    fn at_place(&self, fp: u64) -> Option<Result<usize, (usize, u16)>> {
         if self.first.is_empty() {
             return None;
         }
         let (tag, place) = pair_of(fp);
-        let tag = tag.checked_add(1)?;
+        let tag = u16::try_from(tag).ok()?.checked_add(1)?;
         let from = (place as usize).checked_mul(PER_PLACE)?;
         let slots = self.first.get(from..from + PER_PLACE)?;
         slots.iter().enumerate().find_map(|(k, &t)| match t {
@@ -308,17 +313,18 @@ impl Store {
     }
 
     /// A store of fingerprints only ([`Store::fingerprints_only`]) of pairs `(tag, place)`
-    /// ([`pair_fingerprint`]), places below `places`: the first two pairs met at each
-    /// place are kept in an array by place, the others in the table, which makes room
-    /// for a quarter of `states` beyond `places` (a user's search on the 5-cup kitchen:
-    /// 1.6 views per agent state, 11-12% of its states beyond the first two of theirs).
+    /// ([`pair_fingerprint`]), places below `places`: the first [`PER_PLACE`] pairs met at
+    /// each place (of tags below 2^16 - 1) are kept in an array by place, the others in
+    /// the table, which makes room for a sixteenth of `states` beyond `places` (a user's
+    /// search on the 5-cup kitchen: 1.6 views per agent state, 11-12% of its states
+    /// beyond the first two of theirs, 1.3-2.5% beyond the first four; at 6 cups 1.7-2.5%).
     /// Any fingerprint may be stored: one of no such pair goes to the table. Without
     /// places, [`Store::fingerprints_only`] with room for `states`.
     pub fn fingerprints_by_place(states: usize, places: usize) -> Store {
         if places == 0 {
             return Store::fingerprints_only(states);
         }
-        let mut s = Store::fingerprints_only(states.saturating_sub(places) / 4);
+        let mut s = Store::fingerprints_only(states.saturating_sub(places) / 16);
         if let Some(f) = &mut s.only {
             // Read nearly in order, so small pages: the first write to a huge page cost
             // 3.5 times as much in this project's virtual machines (`slots`), and huge
@@ -626,7 +632,7 @@ impl Store {
     /// Bytes held (capacity, not just length).
     pub fn bytes(&self) -> usize {
         let only =
-            (self.only.as_ref()).map_or(0, |f| f.table.capacity() * 8 + f.first.capacity() * 4);
+            (self.only.as_ref()).map_or(0, |f| f.table.capacity() * 8 + f.first.capacity() * 2);
         self.fps.bytes() + self.parent.bytes() + self.slots.bytes() + only
     }
 }
@@ -845,13 +851,33 @@ mod tests {
             assert!((0..9_000).all(|k| a.contains(fp(k)) == b.contains(fp(k))));
             assert_eq!(b.insert(fp(4), None), Ok((UNNUMBERED, false)));
             if places > 1 {
-                // The first two of each of 900 places are kept by place, and the table
+                // The four tags of each of 900 places are kept by place, and the table
                 // holds the rest only.
                 let f = b.only.as_ref().expect("fingerprints only");
-                assert_eq!(f.first.iter().filter(|&&t| t != 0).count(), 1800);
-                assert_eq!(f.held + 1800, b.len());
+                assert_eq!(f.first.iter().filter(|&&t| t != 0).count(), 3600);
+                assert_eq!(f.held + 3600, b.len());
             }
         }
+    }
+
+    #[test]
+    fn tags_of_more_than_two_bytes_and_a_fifth_tag_go_to_the_table() {
+        // At place 3: the greatest tag a place keeps (2^16 - 2, stored plus one), the
+        // first it does not, a tag of four bytes, then three small tags, of which the
+        // last finds the place's four slots taken.
+        let tags = [65_534, 65_535, 1 << 20, 0, 1, 2, 3];
+        let (mut a, mut b) = (
+            Store::fingerprints_only(0),
+            Store::fingerprints_by_place(0, 10),
+        );
+        // Keys that are multiples of 5: no other state is stored before a vacant one.
+        let keys = (tags.iter()).map(|&t| pair_fingerprint(t, 3));
+        look_up_alike((&mut a, &mut b), (0..).step_by(5).zip(keys), |k| k);
+        let f = b.only.as_ref().expect("fingerprints only");
+        assert_eq!(f.first[12..16], [65_535, 1, 2, 3]);
+        assert_eq!(f.held, 3);
+        assert!(tags.iter().all(|&t| b.contains(pair_fingerprint(t, 3))));
+        assert!(!b.contains(pair_fingerprint(4, 3)) && !b.contains(pair_fingerprint(0, 4)));
     }
 
     #[test]
