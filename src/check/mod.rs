@@ -325,6 +325,9 @@ pub fn verify_with(
     // cycle every memoized phase is checked for it once the search ends
     // (Symmetry::phase_violation), on the reference cycle every stored state
     // (Symmetry::equivariance_violation); where it does not hold, the report says so.
+    // The agent's table, dropped when its search ends, is the memory of a user's array by
+    // place (`slots::keep_a_freed_table`), until the users' searches are over.
+    let keeping = stored.is_some().then(slots::Keeping::start);
     let (graph, not_equivariant, unchecked) = agent_search(
         &agent,
         compiled.as_ref(),
@@ -465,6 +468,7 @@ pub fn verify_with(
         done_with(exact);
         (join(live), users.map(|u| (whole, u)))
     });
+    drop(keeping);
     findings.extend(live);
     let (whole_runs, users) = run_and_user_findings?;
     let (user_found, user_phases, phases) = users;

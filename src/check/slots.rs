@@ -12,6 +12,10 @@
 //! On Linux, a table reserves address space once (no memory: `PROT_NONE`), and makes
 //! the part it uses readable and writable as it grows. Where that reservation cannot be
 //! made (another system, an address-space limit), each size is a fresh vector as before.
+//!
+//! For the same reason a thread may keep the next table it drops ([`keep_a_freed_table`])
+//! for the next slots it makes that fit in it ([`Slots::in_kept`]): the agent's table,
+//! dropped when its search ends, is the first user's array by place.
 
 use super::store::OutOfMemory;
 
@@ -65,6 +69,73 @@ fn page() -> usize {
 #[cfg(target_os = "linux")]
 const RESERVE: usize = 1 << 36;
 
+/// A table's reservation kept when the table was dropped, its usable memory written
+/// (so faulted in): [`keep_a_freed_table`], [`Slots::in_kept`]. Given back when dropped.
+#[cfg(target_os = "linux")]
+struct Kept {
+    start: usize,
+    reserved: usize,
+    base: usize,
+    usable: usize,
+}
+
+#[cfg(target_os = "linux")]
+impl Drop for Kept {
+    fn drop(&mut self) {
+        // SAFETY: a reservation a dropped table made, which nothing refers to.
+        unsafe { libc::munmap(self.start as *mut libc::c_void, self.reserved) };
+    }
+}
+
+#[cfg(target_os = "linux")]
+thread_local! {
+    /// Whether the next table this thread drops is kept, and the one kept. Per thread, so
+    /// that which search gets it does not depend on timing: the agent's search drops its
+    /// table on the thread that then runs the first user's search.
+    static KEPT: std::cell::RefCell<(bool, Option<Kept>)> = const { std::cell::RefCell::new((false, None)) };
+}
+
+/// While `on`, the next table this thread drops keeps its memory for this thread's next
+/// [`Slots::in_kept`] instead of giving it back; turned off, what is kept is given back.
+/// The agent's table (671 MB at 6 cups) is dropped when its search ends, and a user's
+/// search begins by writing 525 MB of fresh memory (its array by place,
+/// [`super::store::Store::fingerprints_by_place`]): in this project's virtual machines
+/// the first write to memory the process has not written costs several times a write to
+/// memory it has, and 4-5 s of a user's thread at 6 cups went to it.
+pub(super) fn keep_a_freed_table(on: bool) {
+    #[cfg(target_os = "linux")]
+    {
+        let given_back = KEPT.with_borrow_mut(|k| {
+            k.0 = on;
+            if on {
+                None
+            } else {
+                k.1.take()
+            }
+        });
+        drop(given_back);
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = on;
+}
+
+/// Keeps the next table dropped ([`keep_a_freed_table`]) until this is dropped.
+pub(super) struct Keeping;
+
+impl Keeping {
+    /// From now on, the next table dropped is kept.
+    pub(super) fn start() -> Keeping {
+        keep_a_freed_table(true);
+        Keeping
+    }
+}
+
+impl Drop for Keeping {
+    fn drop(&mut self) {
+        keep_a_freed_table(false);
+    }
+}
+
 impl<T: Copy> Default for Slots<T> {
     fn default() -> Self {
         Slots {
@@ -81,6 +152,56 @@ impl<T: Copy> Slots<T> {
             s = Slots::default();
         }
         s
+    }
+
+    /// Slots on the heap: `v`.
+    pub(super) fn from_vec(v: Vec<T>) -> Slots<T> {
+        Slots { mem: Mem::Heap(v) }
+    }
+
+    /// `len` slots, each `empty`, in the memory of the table kept ([`keep_a_freed_table`])
+    /// if there is one that large: it is then no longer kept, and nothing more will be.
+    /// Its memory beyond the slots, in whole huge pages, is given back.
+    pub(super) fn in_kept(len: usize, empty: T) -> Option<Slots<T>> {
+        #[cfg(target_os = "linux")]
+        {
+            let bytes = len.checked_mul(std::mem::size_of::<T>())?;
+            let kept = KEPT.with_borrow_mut(|k| {
+                if bytes == 0 || k.1.as_ref().is_none_or(|kept| kept.usable < bytes) {
+                    return None;
+                }
+                k.0 = false;
+                k.1.take()
+            })?;
+            // The reservation is the table's from here on (its `Mapping` gives it back).
+            let kept = std::mem::ManuallyDrop::new(kept);
+            let usable = bytes.next_multiple_of(HUGE).min(kept.usable);
+            if usable < kept.usable {
+                let tail = (kept.base + usable) as *mut libc::c_void;
+                // SAFETY: pages of the kept reservation past the slots: made inaccessible
+                // again and given back; nothing refers to them.
+                unsafe {
+                    libc::mprotect(tail, kept.usable - usable, libc::PROT_NONE);
+                    libc::madvise(tail, kept.usable - usable, libc::MADV_DONTNEED);
+                }
+            }
+            let mut s = Slots {
+                mem: Mem::Mapped(Mapping {
+                    start: kept.start as *mut libc::c_void,
+                    reserved: kept.reserved,
+                    base: kept.base as *mut T,
+                    usable,
+                    len,
+                }),
+            };
+            s.fill(empty);
+            Some(s)
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = (len, empty);
+            None
+        }
     }
 
     /// Makes the table `len` slots, each `empty`, in the memory it had where it can
@@ -226,6 +347,22 @@ impl<T> Mapping<T> {
 #[cfg(target_os = "linux")]
 impl<T> Drop for Mapping<T> {
     fn drop(&mut self) {
+        let kept = KEPT.try_with(|k| {
+            let mut k = k.borrow_mut();
+            let keep = k.0 && k.1.is_none() && self.usable > 0;
+            if keep {
+                k.1 = Some(Kept {
+                    start: self.start as usize,
+                    reserved: self.reserved,
+                    base: self.base as usize,
+                    usable: self.usable,
+                });
+            }
+            keep
+        });
+        if kept == Ok(true) {
+            return;
+        }
         // SAFETY: the mapping `reserve` made, which nothing refers to any more.
         unsafe { libc::munmap(self.start, self.reserved) };
     }
@@ -291,6 +428,40 @@ mod tests {
         };
         h.prepare(1 << 20);
         assert_eq!((h.len(), h.bytes()), (8, 64));
+    }
+
+    /// While this thread keeps a freed table, the next table it drops is the memory of its
+    /// next `in_kept` slots that fit in it, once; otherwise nothing is kept.
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_table_dropped_while_keeping_is_the_memory_of_the_next_slots_in_kept() {
+        drop(Slots::new(1 << 20, [0xffu8; 5]));
+        assert!(Slots::<u16>::in_kept(16, 0).is_none(), "not keeping");
+        let keeping = Keeping::start();
+        let mut t = Slots::new(1 << 20, [0xffu8; 5]);
+        t[9] = [1; 5];
+        let base = t.as_ptr() as usize;
+        drop(t);
+        assert!(
+            Slots::<u16>::in_kept(1 << 22, 7).is_none(),
+            "too large for it"
+        );
+        let s = Slots::<u16>::in_kept(1 << 20, 7).expect("the table dropped");
+        assert_eq!(s.as_ptr() as usize, base);
+        assert_eq!(s.len(), 1 << 20);
+        assert!(s.iter().all(|&x| x == 7));
+        // The memory past the slots, in whole huge pages, is given back.
+        assert_eq!(s.bytes(), HUGE);
+        // Kept once: the next table dropped is given back.
+        drop(Slots::new(1 << 20, [0xffu8; 5]));
+        assert!(Slots::<u16>::in_kept(16, 0).is_none(), "kept once");
+        drop(keeping);
+        drop(s);
+        // Stopping gives back what is kept.
+        let keeping = Keeping::start();
+        drop(Slots::new(1 << 10, 0u64));
+        drop(keeping);
+        assert!(Slots::<u16>::in_kept(16, 0).is_none(), "given back");
     }
 
     #[test]

@@ -175,7 +175,7 @@ struct Fingerprints {
     /// Per place, [`PER_PLACE`] slots: the tags of the first pairs met there, plus one
     /// (0: none yet). A tag of 2^16 - 1 or more (a user's view numbered so: 39 K views
     /// at 6 cups) goes to the table.
-    first: Vec<u16>,
+    first: Slots<u16>,
 }
 
 impl Fingerprints {
@@ -326,11 +326,14 @@ impl Store {
         }
         let mut s = Store::fingerprints_only(states.saturating_sub(places) / 16);
         if let Some(f) = &mut s.only {
-            // Read nearly in order, so small pages: the first write to a huge page cost
-            // 3.5 times as much in this project's virtual machines (`slots`), and huge
-            // pages spare TLB misses only to lookups at random.
+            // In the memory of the table this thread dropped last, if it kept it (the
+            // agent's: `slots::keep_a_freed_table`), which was written already. Else in
+            // fresh memory of small pages: read nearly in order, it needs no huge pages,
+            // whose first write cost several times a small page's in this project's
+            // virtual machines (`slots`); huge pages spare TLB misses to lookups at random.
             let n = places.min(u32::MAX as usize) * PER_PLACE;
-            f.first = table(n, 0, false).unwrap_or_default();
+            f.first = Slots::in_kept(n, 0)
+                .unwrap_or_else(|| Slots::from_vec(table(n, 0, false).unwrap_or_default()));
         }
         s
     }
@@ -625,14 +628,13 @@ impl Store {
     pub fn drop_index(&mut self) {
         self.slots = Slots::default();
         if let Some(f) = &mut self.only {
-            (f.table, f.zero, f.first) = (Vec::new(), false, Vec::new());
+            (f.table, f.zero, f.first) = (Vec::new(), false, Slots::default());
         }
     }
 
     /// Bytes held (capacity, not just length).
     pub fn bytes(&self) -> usize {
-        let only =
-            (self.only.as_ref()).map_or(0, |f| f.table.capacity() * 8 + f.first.capacity() * 2);
+        let only = (self.only.as_ref()).map_or(0, |f| f.table.capacity() * 8 + f.first.bytes());
         self.fps.bytes() + self.parent.bytes() + self.slots.bytes() + only
     }
 }
