@@ -313,7 +313,7 @@ impl Store {
     }
 
     /// A store of fingerprints only ([`Store::fingerprints_only`]) of pairs `(tag, place)`
-    /// ([`pair_fingerprint`]), places below `places`: the first [`PER_PLACE`] pairs met at
+    /// ([`pair_fingerprint`]), places below `places`: the first four pairs met at
     /// each place (of tags below 2^16 - 1) are kept in an array by place, the others in
     /// the table, which makes room for a sixteenth of `states` beyond `places` (a user's
     /// search on the 5-cup kitchen: 1.6 views per agent state, 11-12% of its states
