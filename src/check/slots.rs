@@ -95,8 +95,9 @@ thread_local! {
     static KEPT: std::cell::RefCell<(bool, Option<Kept>)> = const { std::cell::RefCell::new((false, None)) };
 }
 
-/// While `on`, the next table this thread drops keeps its memory for this thread's next
-/// [`Slots::in_kept`] instead of giving it back; turned off, what is kept is given back.
+/// While `on`, the largest table this thread drops keeps its memory for this thread's
+/// next [`Slots::in_kept`] instead of giving it back; turned off, what is kept is given
+/// back.
 /// The agent's table (671 MB at 6 cups) is dropped when its search ends, and a user's
 /// search begins by writing 525 MB of fresh memory (its array by place,
 /// [`super::store::Store::fingerprints_by_place`]): in this project's virtual machines
@@ -347,17 +348,20 @@ impl<T> Mapping<T> {
 #[cfg(target_os = "linux")]
 impl<T> Drop for Mapping<T> {
     fn drop(&mut self) {
+        // A larger table than the one kept takes its place (the kept one is given back).
         let kept = KEPT.try_with(|k| {
             let mut k = k.borrow_mut();
-            let keep = k.0 && k.1.is_none() && self.usable > 0;
-            if keep {
-                k.1 = Some(Kept {
+            let keep = k.0 && self.usable > k.1.as_ref().map_or(0, |kept| kept.usable);
+            let replaced = keep.then(|| {
+                k.1.replace(Kept {
                     start: self.start as usize,
                     reserved: self.reserved,
                     base: self.base as usize,
                     usable: self.usable,
-                });
-            }
+                })
+            });
+            drop(k);
+            drop(replaced);
             keep
         });
         if kept == Ok(true) {
@@ -430,18 +434,21 @@ mod tests {
         assert_eq!((h.len(), h.bytes()), (8, 64));
     }
 
-    /// While this thread keeps a freed table, the next table it drops is the memory of its
-    /// next `in_kept` slots that fit in it, once; otherwise nothing is kept.
+    /// While this thread keeps a freed table, the largest table it drops is the memory of
+    /// its next `in_kept` slots that fit in it, once; otherwise nothing is kept.
     #[test]
     #[cfg(target_os = "linux")]
     fn a_table_dropped_while_keeping_is_the_memory_of_the_next_slots_in_kept() {
         drop(Slots::new(1 << 20, [0xffu8; 5]));
         assert!(Slots::<u16>::in_kept(16, 0).is_none(), "not keeping");
         let keeping = Keeping::start();
+        // The largest dropped is kept, whether dropped before a smaller one or after.
+        drop(Slots::new(1 << 10, [0xffu8; 5]));
         let mut t = Slots::new(1 << 20, [0xffu8; 5]);
         t[9] = [1; 5];
         let base = t.as_ptr() as usize;
         drop(t);
+        drop(Slots::new(1 << 10, [0xffu8; 5]));
         assert!(
             Slots::<u16>::in_kept(1 << 22, 7).is_none(),
             "too large for it"

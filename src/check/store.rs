@@ -23,10 +23,9 @@
 //! view, the agent's state), fingerprinted exactly ([`pair_fingerprint`]). Its store
 //! ([`Store::fingerprints_by_place`]) keeps the first four pairs met at each agent state in
 //! an array by agent state (their views' numbers, 2 bytes each), and the others in the
-//! table: the agent's states
-//! are numbered breadth first, and a user's search meets them nearly in that order, so
-//! most lookups read memory next to the last one's instead of a random slot of a
-//! gigabyte-sized table.
+//! table: the agent's states are numbered breadth first, and a user's search meets them
+//! nearly in that order, so most lookups read memory next to the last one's instead of a
+//! random slot of a gigabyte-sized table.
 
 /// Marks an empty hash-table slot, and "no parent".
 const NONE: u32 = u32::MAX;
