@@ -321,13 +321,13 @@ pub fn verify_with(
     // read its graph instead of running the cycle again.
     let mut stored =
         (users_may_read_a_graph && agent.symmetry.is_none()).then(explanation::Stored::default);
+    // The agent's table, dropped when its search ends, is the memory of a user's array by
+    // place (`slots::keep_a_freed_table`), until the users' searches are over.
+    let keeping = stored.is_some().then(slots::Keeping::start);
     // Reduction is only exact if renaming a state renames its successors: on the compiled
     // cycle every memoized phase is checked for it once the search ends
     // (Symmetry::phase_violation), on the reference cycle every stored state
     // (Symmetry::equivariance_violation); where it does not hold, the report says so.
-    // The agent's table, dropped when its search ends, is the memory of a user's array by
-    // place (`slots::keep_a_freed_table`), until the users' searches are over.
-    let keeping = stored.is_some().then(slots::Keeping::start);
     let (graph, not_equivariant, unchecked) = agent_search(
         &agent,
         compiled.as_ref(),

@@ -103,7 +103,7 @@ thread_local! {
 /// [`super::store::Store::fingerprints_by_place`]): in this project's virtual machines
 /// the first write to memory the process has not written costs several times a write to
 /// memory it has, and 4-5 s of a user's thread at 6 cups went to it.
-pub(super) fn keep_a_freed_table(on: bool) {
+fn keep_a_freed_table(on: bool) {
     #[cfg(target_os = "linux")]
     {
         let given_back = KEPT.with_borrow_mut(|k| {
