@@ -323,7 +323,7 @@ pub fn verify_with(
         (users_may_read_a_graph && agent.symmetry.is_none()).then(explanation::Stored::default);
     // The agent's table, dropped when its search ends, is the memory of a user's array by
     // place (`slots::keep_a_freed_table`), until the users' searches are over.
-    let keeping = stored.is_some().then(slots::Keeping::start);
+    let mut keeping = stored.is_some().then(slots::Keeping::start);
     // Reduction is only exact if renaming a state renames its successors: on the compiled
     // cycle every memoized phase is checked for it once the search ends
     // (Symmetry::phase_violation), on the reference cycle every stored state
@@ -443,6 +443,11 @@ pub fn verify_with(
             (Some(c), Some((st, g))) => explanation::AloneStored::new(c, st, g),
             _ => None,
         };
+        if stored_runs.is_none() && exact_runs.is_none() {
+            // No user's search reads a stored graph, so none makes an array by place: the
+            // table kept for one (hundreds of megabytes) is given back now.
+            drop(keeping.take());
+        }
         let symmetry = agent.symmetry.as_ref().filter(|_| !exact_complete);
         let users = users_and_explanations(
             (project, &sem, compiled.as_ref(), symmetry),

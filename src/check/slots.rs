@@ -13,7 +13,7 @@
 //! the part it uses readable and writable as it grows. Where that reservation cannot be
 //! made (another system, an address-space limit), each size is a fresh vector as before.
 //!
-//! For the same reason a thread may keep the next table it drops ([`keep_a_freed_table`])
+//! For the same reason a thread may keep the largest table it drops ([`keep_a_freed_table`])
 //! for the next slots it makes that fit in it ([`Slots::in_kept`]): the agent's table,
 //! dropped when its search ends, is the first user's array by place.
 
@@ -98,6 +98,7 @@ thread_local! {
 /// While `on`, the largest table this thread drops keeps its memory for this thread's
 /// next [`Slots::in_kept`] instead of giving it back; turned off, what is kept is given
 /// back.
+///
 /// The agent's table (671 MB at 6 cups) is dropped when its search ends, and a user's
 /// search begins by writing 525 MB of fresh memory (its array by place,
 /// [`super::store::Store::fingerprints_by_place`]): in this project's virtual machines
@@ -120,11 +121,12 @@ fn keep_a_freed_table(on: bool) {
     let _ = on;
 }
 
-/// Keeps the next table dropped ([`keep_a_freed_table`]) until this is dropped.
+/// Keeps the largest table this thread drops ([`keep_a_freed_table`]) until this is
+/// dropped.
 pub(super) struct Keeping;
 
 impl Keeping {
-    /// From now on, the next table dropped is kept.
+    /// From now on, the largest table this thread drops is kept.
     pub(super) fn start() -> Keeping {
         keep_a_freed_table(true);
         Keeping
