@@ -37,6 +37,11 @@ pub fn prefetch<T>(p: *const T) {
 /// Chunks at least this large (in bytes) are faulted in ahead ([`populate_later`]).
 const POPULATED: usize = 1 << 18;
 
+/// How much [`populate_later`]'s helper faults in at one call (a power of two): a huge
+/// page, about 12 ms of the kernel's work where fresh memory is slowest here.
+#[cfg(target_os = "linux")]
+const POPULATE_PIECE: usize = 1 << 21;
+
 /// Asks a helper thread to fault in the pages of the `len` bytes at `start` (Linux's
 /// `MADV_POPULATE_WRITE`), so that the thread that writes them first finds them ready: on
 /// this project's machines the kernel clearing fresh pages costs about 1.5 s a gigabyte,
@@ -57,11 +62,7 @@ pub fn populate_later<T>(start: *const T, len: usize) {
                 .name("populate".into())
                 .spawn(move || {
                     for (at, n) in rx {
-                        // SAFETY: advice to fault pages in; it changes no memory's content
-                        // and is refused for a range that is not mapped.
-                        unsafe {
-                            libc::madvise(at as *mut libc::c_void, n, libc::MADV_POPULATE_WRITE)
-                        };
+                        populate_now(at, n);
                     }
                 });
             spawned.ok().map(|_| tx)
@@ -72,6 +73,39 @@ pub fn populate_later<T>(start: *const T, len: usize) {
     }
     #[cfg(not(target_os = "linux"))]
     let _ = (start, len);
+}
+
+/// Faults in the whole pages of the `n` bytes at `at` (`MADV_POPULATE_WRITE`), a piece of
+/// [`POPULATE_PIECE`] at a time: faulting in holds the process's memory map for reading,
+/// and a thread that maps memory meanwhile waits until the call returns (mimalloc growing
+/// does, under its own lock, which the other threads then wait for). In one call, the
+/// 6-cup table's growth stalled both searching threads for 1.7 s. A partial first page is
+/// left to the thread that writes it; a piece refused (unmapped meanwhile) ends it.
+#[cfg(target_os = "linux")]
+fn populate_now(at: usize, n: usize) {
+    // SAFETY: sysconf reads a constant of the system.
+    let page = usize::try_from(unsafe { libc::sysconf(libc::_SC_PAGESIZE) })
+        .ok()
+        .filter(|p| p.is_power_of_two())
+        .unwrap_or(4096);
+    let end = at.saturating_add(n);
+    let mut from = at.next_multiple_of(page);
+    while from < end {
+        let to = ((from + POPULATE_PIECE) & !(POPULATE_PIECE - 1)).min(end);
+        // SAFETY: advice to fault pages in; it changes no memory's content and is refused
+        // for a range that is not mapped.
+        let done = unsafe {
+            libc::madvise(
+                from as *mut libc::c_void,
+                to - from,
+                libc::MADV_POPULATE_WRITE,
+            )
+        };
+        if done != 0 {
+            break;
+        }
+        from = to;
+    }
 }
 
 /// A chunk of `size` elements: `spare` if it is that large (`exact`: exactly that large),
@@ -513,5 +547,48 @@ mod tests {
         let mut a = Chunked::default();
         a.push(1u32).unwrap();
         a.get(1);
+    }
+
+    /// Faulting in by pieces reaches every whole page of a range that starts and ends
+    /// inside pages and spans several pieces, and nothing before it.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn populating_faults_in_every_whole_page_of_the_range() {
+        const LEN: usize = 4 * POPULATE_PIECE;
+        // SAFETY: a fresh private anonymous mapping, unmapped below; nothing else uses it.
+        let base = unsafe {
+            libc::mmap(
+                std::ptr::null_mut(),
+                LEN,
+                libc::PROT_READ | libc::PROT_WRITE,
+                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                -1,
+                0,
+            )
+        };
+        assert_ne!(base, libc::MAP_FAILED);
+        // Small pages, so that residency is told page by page.
+        // SAFETY: advice on the mapping made above.
+        unsafe { libc::madvise(base, LEN, libc::MADV_NOHUGEPAGE) };
+        let page = usize::try_from(unsafe { libc::sysconf(libc::_SC_PAGESIZE) }).unwrap();
+        let resident = || {
+            let mut v = vec![0u8; LEN / page];
+            // SAFETY: `v` has a byte for each page of the mapping.
+            assert_eq!(unsafe { libc::mincore(base, LEN, v.as_mut_ptr()) }, 0);
+            v.iter().map(|b| b & 1 == 1).collect::<Vec<bool>>()
+        };
+        assert!(resident().iter().all(|&r| !r));
+        // From inside the third page to inside the page three pieces and one page later.
+        let (from, n) = (2 * page + 100, 3 * POPULATE_PIECE);
+        populate_now(base as usize + from, n);
+        let r = resident();
+        let whole = (3..(from + n) / page).collect::<Vec<usize>>();
+        assert!(
+            whole.iter().all(|&p| r[p]),
+            "a whole page of the range is missing"
+        );
+        assert!(!r[0] && !r[1], "a page before the range was faulted in");
+        // SAFETY: the mapping made above, no longer read.
+        unsafe { libc::munmap(base, LEN) };
     }
 }
