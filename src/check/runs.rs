@@ -1220,12 +1220,7 @@ fn product_search(
         .filter(|ps| without_fairness || ps.iter().all(|p| matches!(p, Piece::At(_))))
     {
         let mut visited = 0;
-        let held = holds_by_pieces(
-            &g,
-            (&pieces, map.len()),
-            &mut products.scratch,
-            &mut visited,
-        );
+        let held = holds_by_pieces(&g, &pieces, &mut products.scratch, &mut visited);
         if held {
             products.reached += visited;
             return Ok(Some(None));
@@ -1335,7 +1330,7 @@ pub(crate) fn decide(
 /// have one are read.
 fn holds_everywhere<G: RunGraph>(g: &G, body: &Ltl) -> bool {
     // Letters repeat: each is judged once, when the formula reads few propositions.
-    let mut judge = Judge::new((body, &Ltl::False), body.props() as usize);
+    let mut judge = Judge::new((body, &Ltl::False));
     let mut at = |letter: u64| judge.at(letter).0;
     let states = (0..g.len()).all(|i| at(g.state_letter(i)));
     for i in 0..g.len() {
@@ -1393,11 +1388,10 @@ fn pieces(body: &Ltl) -> Option<Vec<Piece<'_>>> {
 }
 
 /// Whether `[]` of the conjunction of `pieces` holds on every run of `g`, when no
-/// fairness of agents is owed (`props`: how many propositions the letters have); adds the
-/// states it visited to `visited`.
+/// fairness of agents is owed; adds the states it visited to `visited`.
 fn holds_by_pieces<G: RunGraph>(
     g: &G,
-    (pieces, props): (&[Piece], usize),
+    pieces: &[Piece],
     scratch: &mut Scratch,
     visited: &mut usize,
 ) -> bool {
@@ -1413,13 +1407,13 @@ fn holds_by_pieces<G: RunGraph>(
             Piece::Responds(a, q) => responses.push((*a, *q)),
         }
     }
-    responses.is_empty() || responds(g, (&responses, props), scratch, visited)
+    responses.is_empty() || responds(g, &responses, scratch, visited)
 }
 
 /// Whether each response `(a, q)`, `a | <> q`, holds at every position of every run of
 /// `g` (runs are paths from an initial state, infinite or ended in a state where a run may
-/// end, which then repeats), when no fairness of agents is owed (`props`: how many
-/// propositions the letters have); adds the states it visited to `visited`.
+/// end, which then repeats), when no fairness of agents is owed; adds the states it
+/// visited to `visited`.
 ///
 /// A run violates one at a position where neither `a` nor `q` holds, followed by
 /// positions where `q` never does. From a state `j`, a run may go on avoiding `q` exactly
@@ -1430,12 +1424,12 @@ fn holds_by_pieces<G: RunGraph>(
 /// decides).
 fn responds<G: RunGraph>(
     g: &G,
-    (responses, props): (&[(&Ltl, &Ltl)], usize),
+    responses: &[(&Ltl, &Ltl)],
     scratch: &mut Scratch,
     visited: &mut usize,
 ) -> bool {
     let mut judges: Vec<Judge> = (responses.iter())
-        .map(|&response| Judge::new(response, props))
+        .map(|&response| Judge::new(response))
         .collect();
     // Per response, the states entered by a position where neither holds (for an initial
     // state, its own position), all found in one pass over the letters. A run that ends
@@ -1512,21 +1506,35 @@ fn responds<G: RunGraph>(
 }
 
 /// What [`responds`] (and [`holds_everywhere`], `q` false) reads of a letter: whether `a`
-/// and `q` hold there, kept per letter when the formulas read few propositions.
+/// and `q` hold there, kept per value of the propositions they read when they read at
+/// most [`JUDGED_PROPS`] (a letter holds every property's propositions: at 6 cups the
+/// kitchen's were past the 16th, and judging each anew was a tenth of the `ltl` products).
 struct Judge<'f> {
     a: &'f Ltl,
     q: &'f Ltl,
-    /// Per letter: 0 unknown, else 1 + (a) + 2 (q).
+    /// The propositions `a` and `q` read, when few enough to be kept per value.
+    read: Option<Vec<u32>>,
+    /// Per value of `read` (bit `i` the `i`-th proposition's): 0 unknown, else 1 + (a) +
+    /// 2 (q).
     judged: Vec<u8>,
 }
 
+/// The most propositions a [`Judge`] keeps its answers for, per value.
+const JUDGED_PROPS: usize = 16;
+
 impl<'f> Judge<'f> {
-    /// The judge of `a` and `q` on letters of `props` propositions.
-    fn new((a, q): (&'f Ltl, &'f Ltl), props: usize) -> Judge<'f> {
+    /// The judge of `a` and `q`.
+    fn new((a, q): (&'f Ltl, &'f Ltl)) -> Judge<'f> {
+        let mut read = a.named_props();
+        read.extend(q.named_props());
+        read.sort_unstable();
+        read.dedup();
+        let read = (read.len() <= JUDGED_PROPS && read.iter().all(|&p| p < 64)).then_some(read);
         Judge {
             a,
             q,
-            judged: vec![0; 1 << props.min(16)],
+            judged: vec![0; read.as_ref().map_or(0, |r| 1 << r.len())],
+            read,
         }
     }
 
@@ -1536,15 +1544,18 @@ impl<'f> Judge<'f> {
             let v = |f: &Ltl| f.at_letter(l).unwrap_or(false);
             (v(a), v(q))
         };
-        match self.judged.get_mut(letter as usize) {
-            Some(j) if *j != 0 => ((*j - 1) & 1 == 1, (*j - 1) & 2 == 2),
-            Some(j) => {
-                let (x, y) = eval(letter);
-                *j = 1 + u8::from(x) + 2 * u8::from(y);
-                (x, y)
-            }
-            None => eval(letter),
+        let Some(read) = &self.read else {
+            return eval(letter);
+        };
+        let value = (read.iter().enumerate())
+            .fold(0usize, |v, (i, &p)| v | (((letter >> p) & 1) as usize) << i);
+        let j = &mut self.judged[value];
+        if *j != 0 {
+            return ((*j - 1) & 1 == 1, (*j - 1) & 2 == 2);
         }
+        let (x, y) = eval(letter);
+        *j = 1 + u8::from(x) + 2 * u8::from(y);
+        (x, y)
     }
 
     /// Whether a position of this letter is bad: neither `a` nor `q` holds there.
@@ -2176,6 +2187,50 @@ mod tests {
         assert!(pieces(always_body(&until).expect("a [] formula")).is_none());
     }
 
+    /// A judge answers as the formulas do at every letter: kept per value of the
+    /// propositions it reads (here past the 16th, where letters are past the table of
+    /// every letter), or judged anew when it reads more than it keeps.
+    #[test]
+    fn a_judge_answers_as_its_formulas_do() {
+        let mut r = Rng(0x2545_f491_4f6c_dd1d);
+        let few = |r: &mut Rng| {
+            let (a, b) = (
+                Ltl::Prop(17 + r.next(40) as u32),
+                Ltl::Prop(r.next(64) as u32),
+            );
+            match r.next(3) {
+                0 => Ltl::and(a, Ltl::not(b)),
+                1 => Ltl::or(a, b),
+                _ => a,
+            }
+        };
+        let many = (0..20).map(Ltl::Prop).reduce(Ltl::and).expect("a conjunct");
+        for case in 0..200 {
+            let (a, q) = match case % 4 {
+                0 => (many.clone(), few(&mut r)),
+                _ => (few(&mut r), few(&mut r)),
+            };
+            let mut judge = Judge::new((&a, &q));
+            assert_eq!(judge.read.is_none(), case % 4 == 0, "case {case}");
+            for _ in 0..64 {
+                // Letters of few and of many propositions, each judged twice.
+                let letter = match r.next(2) {
+                    0 => r.0 ^ (r.0 << 7),
+                    _ => ((1u64 << 20) - 1) | (r.0 & (1u64 << 63)),
+                };
+                r.next(2);
+                let want = (a.at_letter(letter), q.at_letter(letter));
+                let want = (want.0.expect("no temporal operator"), want.1.expect("none"));
+                assert_eq!(judge.at(letter), want, "case {case}, letter {letter:#x}");
+                assert_eq!(
+                    judge.at(letter),
+                    want,
+                    "case {case}, letter {letter:#x}, again"
+                );
+            }
+        }
+    }
+
     #[test]
     fn one_pass_per_response_decides_as_the_product_does() {
         let mut r = Rng(0x9e37_79b9_7f4a_7c15);
@@ -2212,7 +2267,7 @@ mod tests {
                 .and_then(|p| p.search(&mut scratch).expect("memory"))
                 .is_none();
             let mut visited = 0;
-            let pass = holds_by_pieces(&g, (&pieces, 3), &mut scratch, &mut visited);
+            let pass = holds_by_pieces(&g, &pieces, &mut scratch, &mut visited);
             if all_reachable(&g) {
                 assert_eq!(pass, product, "case {case}: {body:?}");
             } else {
