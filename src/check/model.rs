@@ -221,6 +221,11 @@ pub trait AgentState {
     fn beliefs_key(&self) -> Option<usize> {
         None
     }
+    /// Where a memo may keep what it derives from the beliefs, with them, when they are
+    /// shared between states ([`Annex`](crate::semantics::compiled::Annex)).
+    fn beliefs_annex(&self) -> Option<&crate::semantics::compiled::Annex> {
+        None
+    }
     /// The requests still being served.
     fn pending_requests(&self) -> u64;
     /// Whether the agent has nothing to do.
@@ -271,6 +276,9 @@ impl AgentState for Packed<'_> {
     }
     fn beliefs_key(&self) -> Option<usize> {
         Some(Packed::beliefs_key(self))
+    }
+    fn beliefs_annex(&self) -> Option<&crate::semantics::compiled::Annex> {
+        Some(Packed::beliefs_annex(self))
     }
     fn pending_requests(&self) -> u64 {
         Packed::pending_requests(self)

@@ -8,6 +8,7 @@ use super::model::{AgentState, CycleNotes, Model};
 use super::recent::{recently, Recently};
 use super::runs::{Letter, RunAtoms};
 use crate::model::cond::Cond;
+use crate::semantics::compiled::{Annex, Annexed};
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 
@@ -70,7 +71,7 @@ impl Conditions<'_> {
         memo: &ByBeliefs,
     ) -> Summary {
         let (mut holds, on_beliefs) = match s.beliefs_key() {
-            Some(key) => memo.get(key, || self.on_beliefs(s.beliefs())),
+            Some(key) => memo.get((key, s.beliefs_annex()), || self.on_beliefs(s.beliefs())),
             None => self.on_beliefs(s.beliefs()),
         };
         let mut set = |j: usize| holds[j / 64] |= 1 << (j % 64);
@@ -108,7 +109,10 @@ const SHARDS: usize = 64;
 /// for one search, and the run properties' propositions about beliefs: far fewer belief
 /// bases than states occur. Evaluating the conditions on every state took a third of the
 /// exploring threads' time, and the propositions of the kitchen's four `ltl` properties
-/// another quarter of the search.
+/// another quarter of the search. The first search of a compiled cycle keeps them with
+/// the belief bases themselves ([`AgentState::beliefs_annex`]); reading them from the
+/// shared map (behind the threads' caches) was 8% of the 6-cup kitchen's search, most of
+/// it a probe that missed the processor's cache. Another search keeps them in the map.
 struct ByBeliefs {
     /// Keyed by address with the quick hasher: SipHash on every state was a tenth of
     /// summarizing it.
@@ -137,7 +141,29 @@ impl ByBeliefs {
         }
     }
 
-    fn get(&self, key: usize, compute: impl FnOnce() -> (Holds, Letter)) -> (Holds, Letter) {
+    /// The values for the belief base `key`: kept in its `annex` when this memo owns it
+    /// (or is the first to ask), else in the shared map.
+    fn get(
+        &self,
+        (key, annex): (usize, Option<&Annex>),
+        compute: impl FnOnce() -> (Holds, Letter),
+    ) -> (Holds, Letter) {
+        match annex.map(|a| (a, a.read(self.serial))) {
+            Some((_, Annexed::Mine(words))) => {
+                let (holds, letter) = words[1..].split_at(words[0] as usize);
+                return (Holds::from_slice(holds), Letter::from_slice(letter));
+            }
+            Some((a, Annexed::Empty)) => {
+                let (holds, letter) = compute();
+                let words = std::iter::once(holds.len() as u64)
+                    .chain(holds.iter().copied())
+                    .chain(letter.iter().copied())
+                    .collect();
+                a.set(self.serial, words);
+                return (holds, letter);
+            }
+            Some((_, Annexed::Other)) | None => {}
+        }
         recently(
             &RECENT_BELIEFS,
             RECENT,
@@ -369,7 +395,7 @@ mod tests {
         for round in 0..3 {
             for key in (0..3 * RECENT).chain((0..3 * RECENT).rev()) {
                 for (memo, m) in [(1, &a), (2, &b)] {
-                    let got = m.get(key, || {
+                    let got = m.get((key, None), || {
                         computed.set(computed.get() + 1);
                         value(memo, key)
                     });
@@ -379,5 +405,38 @@ mod tests {
         }
         // Each value computed once, whatever the thread kept.
         assert_eq!(computed.get(), 2 * 3 * RECENT);
+    }
+
+    #[test]
+    fn beliefs_annexed_are_the_first_memos_and_the_others_keep_theirs() {
+        // Two searches' memos over the same belief bases, each base with its annex: the
+        // first to ask keeps its values there, the other in its map; each value is
+        // computed once, and neither reads the other's.
+        let (a, b) = (ByBeliefs::new(), ByBeliefs::new());
+        let annexes: Vec<Annex> = (0..100).map(|_| Annex::default()).collect();
+        let value = |memo: u64, key: usize| {
+            let holds = Holds::from_slice(&vec![memo; key % 3]);
+            (holds, Letter::from_slice(&vec![key as u64; key % 2]))
+        };
+        let computed = std::cell::Cell::new(0);
+        for round in 0..3 {
+            for (key, annex) in annexes.iter().enumerate() {
+                // `b` asks first for odd bases.
+                let order = match key % 2 {
+                    0 => [(1, &a), (2, &b)],
+                    _ => [(2, &b), (1, &a)],
+                };
+                for (memo, m) in order {
+                    let got = m.get((key, Some(annex)), || {
+                        computed.set(computed.get() + 1);
+                        value(memo, key)
+                    });
+                    assert_eq!(got, value(memo, key), "round {round}, key {key}");
+                }
+                let first = if key % 2 == 0 { &a } else { &b };
+                assert!(matches!(annex.read(first.serial), Annexed::Mine(_)));
+            }
+        }
+        assert_eq!(computed.get(), 2 * annexes.len());
     }
 }

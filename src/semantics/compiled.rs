@@ -42,6 +42,43 @@ pub struct Part<T> {
     hash: u64,
     reads: AtomSet,
     value: T,
+    /// What a client derived from the part, kept with it ([`Annex`]).
+    annex: Annex,
+}
+
+/// Words that one client (a memo, by its serial) derived from a part, kept with the part:
+/// read where the part is, which the state being summarized has just read, instead of
+/// in a table of its own (at 6 cups, a million belief bases: a lock and a probe that
+/// missed the cache on most states). The first client to set it owns it; any other keeps
+/// what it derives elsewhere.
+#[derive(Debug, Default)]
+pub struct Annex(std::sync::OnceLock<(u64, Box<[u64]>)>);
+
+/// What [`Annex::read`] finds.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Annexed<'a> {
+    /// Nothing yet.
+    Empty,
+    /// The words the client asking set.
+    Mine(&'a [u64]),
+    /// Another client's words.
+    Other,
+}
+
+impl Annex {
+    /// What the client `serial` finds.
+    pub fn read(&self, serial: u64) -> Annexed<'_> {
+        match self.0.get() {
+            None => Annexed::Empty,
+            Some((owner, words)) if *owner == serial => Annexed::Mine(words),
+            Some(_) => Annexed::Other,
+        }
+    }
+
+    /// Keeps `words` for the client `serial`, unless a client set some first.
+    pub fn set(&self, serial: u64, words: Box<[u64]>) {
+        let _ = self.0.set((serial, words));
+    }
 }
 
 impl<T> Deref for Part<T> {
@@ -163,6 +200,7 @@ impl<T: Hash + Eq> Interner<T> {
             hash,
             reads: AtomSet::default(),
             value,
+            annex: Annex::default(),
         };
         let mut shard = lock(&self.shards[shard_of(probe.hash)]);
         if let Some(p) = shard.get(&probe) {
@@ -553,6 +591,12 @@ impl<'c> Packed<'c> {
         h.write_usize(self.agenda as *const Part<Agenda> as usize);
         h.write_u64(self.requested);
         h.finish()
+    }
+
+    /// What a client derived from the belief base ([`Annex`]): the same for every state
+    /// with equal beliefs and order.
+    pub fn beliefs_annex(&self) -> &'c Annex {
+        &self.beliefs.annex
     }
 
     /// An identity of the beliefs and their order: equal for equal ones (belief bases are
@@ -1696,6 +1740,7 @@ mod tests {
             hash: 0xdead_beef_1234,
             reads: AtomSet::default(),
             value: 3u8,
+            annex: Annex::default(),
         };
         assert_eq!(pass_through(&part), 0xdead_beef_1234);
         let key = Key::new(&part, &(AtomSet::default(), Vec::new()), 9);
@@ -1719,16 +1764,28 @@ mod tests {
     }
 
     #[test]
+    fn an_annex_is_its_first_clients() {
+        let annex = Annex::default();
+        assert_eq!(annex.read(7), Annexed::Empty);
+        annex.set(7, Box::new([1, 2]));
+        annex.set(8, Box::new([3]));
+        assert_eq!(annex.read(7), Annexed::Mine(&[1, 2]));
+        assert_eq!(annex.read(8), Annexed::Other);
+    }
+
+    #[test]
     fn a_memo_computes_each_key_once() {
         let part = Part {
             hash: 5,
             reads: AtomSet::default(),
             value: (),
+            annex: Annex::default(),
         };
         let other = Part {
             hash: 5,
             reads: AtomSet::default(),
             value: (),
+            annex: Annex::default(),
         };
         let base = (AtomSet::default(), Vec::new());
         let memo: Memo<u32> = Memo::new();
