@@ -1507,8 +1507,9 @@ fn responds<G: RunGraph>(
 
 /// What [`responds`] (and [`holds_everywhere`], `q` false) reads of a letter: whether `a`
 /// and `q` hold there, kept per value of the propositions they read when they read at
-/// most [`JUDGED_PROPS`] (a letter holds every property's propositions: at 6 cups the
-/// kitchen's were past the 16th, and judging each anew was a tenth of the `ltl` products).
+/// most [`JUDGED_PROPS`] (a letter holds all the propositions of a property's instances:
+/// at 6 cups the kitchen's were past the 16th, and judging those letters anew was 4% of
+/// the samples of the phase the `ltl` products run in).
 struct Judge<'f> {
     a: &'f Ltl,
     q: &'f Ltl,
