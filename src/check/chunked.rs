@@ -83,13 +83,8 @@ pub fn populate_later<T>(start: *const T, len: usize) {
 /// left to the thread that writes it; a piece refused (unmapped meanwhile) ends it.
 #[cfg(target_os = "linux")]
 fn populate_now(at: usize, n: usize) {
-    // SAFETY: sysconf reads a constant of the system.
-    let page = usize::try_from(unsafe { libc::sysconf(libc::_SC_PAGESIZE) })
-        .ok()
-        .filter(|p| p.is_power_of_two())
-        .unwrap_or(4096);
     let end = at.saturating_add(n);
-    let mut from = at.next_multiple_of(page);
+    let mut from = at.next_multiple_of(super::slots::page());
     while from < end {
         let to = ((from + POPULATE_PIECE) & !(POPULATE_PIECE - 1)).min(end);
         // SAFETY: advice to fault pages in; it changes no memory's content and is refused
@@ -576,7 +571,7 @@ mod tests {
         // Small pages, so that residency is told page by page.
         // SAFETY: advice on the mapping made above.
         unsafe { libc::madvise(base, LEN, libc::MADV_NOHUGEPAGE) };
-        let page = usize::try_from(unsafe { libc::sysconf(libc::_SC_PAGESIZE) }).unwrap();
+        let page = crate::check::slots::page();
         let resident = || {
             let mut v = vec![0u8; LEN / page];
             // SAFETY: `v` has a byte for each page of the mapping.

@@ -53,9 +53,10 @@ unsafe impl<T: Sync> Sync for Mapping<T> {}
 #[cfg(target_os = "linux")]
 const HUGE: usize = 2 << 20;
 
-/// The system's page size, the unit of `mprotect`.
+/// The system's page size, the unit of `mprotect` and `madvise` (a huge page, where the
+/// system will not say).
 #[cfg(target_os = "linux")]
-fn page() -> usize {
+pub(super) fn page() -> usize {
     // SAFETY: reads a constant of the system.
     usize::try_from(unsafe { libc::sysconf(libc::_SC_PAGESIZE) })
         .ok()
