@@ -6,7 +6,7 @@
 use bdi_check::check::explore::fingerprint;
 use bdi_check::model::atoms::{AtomId, AtomSet};
 use bdi_check::model::project::{load_project, load_system};
-use bdi_check::semantics::compiled::Sizes;
+use bdi_check::semantics::compiled::{Sizes, Words};
 use bdi_check::semantics::{Compiled, Packed, Semantics, State};
 use std::collections::{HashSet, VecDeque};
 use std::path::{Path, PathBuf};
@@ -129,6 +129,45 @@ fn same_view(dir: &Path, s: &State, p: &Packed) {
     assert_eq!(p.first_event(), s.events.first(), "{at}: {s:?}");
     assert_eq!(p.is_idle(), s.is_idle(), "{at}: {s:?}");
     assert_eq!(p.pending_requests(), s.pending_requests(), "{at}: {s:?}");
+}
+
+#[test]
+fn a_word_gives_back_the_state_it_was_made_of_on_every_project() {
+    // The first states of every compiled agent, each packed in one word (as the agent's
+    // stored graph keeps them) and read back: the same parts and requests. States that
+    // share an agenda and requests share its number, and only those.
+    let mut packed = 0;
+    for dir in projects() {
+        for p in &load_system(&dir).unwrap_or_else(|e| panic!("{}: {e:?}", dir.display())) {
+            let sem = Semantics::new(p).expect("the semantics");
+            let Some(compiled) = Compiled::new(&sem) else {
+                continue;
+            };
+            let mut words = Words::default();
+            let mut met: HashSet<Packed> = HashSet::new();
+            let mut made = Vec::new();
+            let mut queue: VecDeque<Packed> = compiled.initial_states().into();
+            while let Some(s) = queue.pop_front() {
+                if made.len() == 2_000 || !met.insert(s) {
+                    continue;
+                }
+                let word = words.word(&s).expect("an address within 47 bits");
+                made.push((s, word));
+                queue.extend(compiled.successors(&s).into_iter().map(|(_, n)| n));
+            }
+            let mut rests = HashSet::new();
+            for (s, word) in &made {
+                // SAFETY: `word` was made by `words.word`.
+                let (beliefs, rest) = unsafe { words.split(*word) };
+                assert!(words.packed(beliefs, rest) == *s, "{}", dir.display());
+                assert_eq!(words.agenda_key(rest), s.agenda_key());
+                rests.insert((s.agenda_key(), s.requested()));
+            }
+            assert_eq!(words.numbered(), rests.len(), "{}", dir.display());
+            packed += made.len();
+        }
+    }
+    assert!(packed > 5_000, "{packed}");
 }
 
 #[test]

@@ -168,16 +168,6 @@ fn locate(i: usize) -> (usize, usize) {
     }
 }
 
-impl<T> Chunked<T> {
-    /// Element `i`, borrowed (panics past the end, as slices do).
-    #[inline]
-    pub fn at(&self, i: usize) -> &T {
-        assert!(i < self.len, "index {i} past the end ({})", self.len);
-        let (k, at) = locate(i);
-        &self.chunks[k][at]
-    }
-}
-
 impl<T: Copy> Chunked<T> {
     /// Number of elements.
     pub fn len(&self) -> usize {

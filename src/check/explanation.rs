@@ -48,7 +48,7 @@
 
 use super::chunked::{prefetch, Chunked};
 use super::explore::{explore_with, fingerprint, Graph, Limits, Options, Walk};
-use super::model::{CycleNotes, Model};
+use super::model::{AgentState, CycleNotes, Model};
 use super::recent::{recently, Recently};
 use super::store::{pair_fingerprint, OutOfMemory};
 use super::symmetry::{Renaming, Symmetry};
@@ -60,7 +60,7 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
-use crate::semantics::compiled::{mix, Quick};
+use crate::semantics::compiled::{mix, Base, Part, Quick, Words};
 use crate::semantics::{
     Compiled, Intention, Note, Notes, Origin, Packed, Semantics, State, System, SystemState,
 };
@@ -181,6 +181,30 @@ pub trait Runs: Sync {
         _extra: impl Fn(&Renaming) -> H,
     ) -> Option<u64> {
         None
+    }
+}
+
+/// Runs of one agent, whose states the agent's run properties read.
+pub trait OneAgent: Runs {
+    /// The agent's state at `s`.
+    fn agent_state<'s>(&'s self, s: &'s Self::State) -> impl AgentState + 's;
+}
+
+impl OneAgent for Alone<'_> {
+    fn agent_state<'s>(&'s self, s: &'s State) -> impl AgentState + 's {
+        s
+    }
+}
+
+impl OneAgent for AloneCompiled<'_, '_, '_> {
+    fn agent_state<'s>(&'s self, s: &'s Self::State) -> impl AgentState + 's {
+        s
+    }
+}
+
+impl<'c> OneAgent for AloneStored<'_, 'c, '_, '_> {
+    fn agent_state<'s>(&'s self, s: &'s Node<'c>) -> impl AgentState + 's {
+        self.packed(s)
     }
 }
 
@@ -485,17 +509,21 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
 /// The agent's graph as its exact, complete search stored it on the compiled cycle: every
 /// state, and the notes of each of its transitions in the graph's order. A user's search
 /// then follows the stored transitions ([`AloneStored`]) instead of running the cycle
-/// again: a user meets each agent state once per view it may have there. About 26 bytes
-/// a state: the state's parts, and a number per transition for its notes ([`NoteIds`]).
+/// again: a user meets each agent state once per view it may have there. About 13 bytes
+/// a state: the state in a word ([`Words`]), and a number per transition for its notes
+/// ([`NoteIds`]).
 #[derive(Default)]
 pub struct Stored<'c> {
-    states: Chunked<Packed<'c>>,
+    /// The states in the graph's order, as [`Stored::words`] made them.
+    states: Chunked<u64>,
+    words: Words<'c>,
     /// Per transition, state by state in the graph's order, its notes' number: a state's
     /// begin where its edges do ([`Graph::first_transition`]).
     notes: Chunked<u32>,
     /// The notes by number, once the search is over ([`Stored::finish`]).
     distinct: Vec<Vec<Notes<'c>>>,
-    /// Whether a state could not be held (too many transitions to number, or memory):
+    /// Whether a state could not be held (too many transitions to number, too many
+    /// agendas and requests or an address beyond a word's bits ([`Words::word`]), or memory):
     /// the graph is then unusable.
     broken: bool,
 }
@@ -507,8 +535,12 @@ impl<'c> Stored<'c> {
         if self.broken {
             return;
         }
+        let Some(word) = self.words.word(&state) else {
+            self.broken = true;
+            return;
+        };
         let held = || -> Result<(), OutOfMemory> {
-            self.states.push(state)?;
+            self.states.push(word)?;
             for n in notes {
                 self.notes.push(n)?;
             }
@@ -538,6 +570,12 @@ impl<'c> Stored<'c> {
     /// The notes numbered `id`.
     fn notes(&self, id: u32) -> &Notes<'c> {
         &self.distinct[id as usize % SHARDS][id as usize / SHARDS]
+    }
+
+    /// State `i`'s belief base, and the number of its agenda and requests in `words`.
+    fn state(&self, i: u32) -> (&'c Part<Base>, u32) {
+        // SAFETY: every word of `states` is one `words` made (`Stored::push`).
+        unsafe { self.words.split(self.states.get(i as usize)) }
     }
 }
 
@@ -613,48 +651,32 @@ impl<'c> NoteIds<'c> {
 }
 
 /// A state of [`AloneStored`]: its number in the agent's graph, which alone identifies it
-/// (hashed and compared), and the state.
+/// (hashed and compared), and the state: its belief base, and the number of its agenda and
+/// requests in [`Stored`]'s [`Words`] (in 16 bytes: a user's frontier holds millions).
 #[derive(Clone, Copy)]
-pub struct Node<'g, 'c> {
+pub struct Node<'c> {
     index: u32,
-    state: &'g Packed<'c>,
+    rest: u32,
+    beliefs: &'c Part<Base>,
 }
 
-impl PartialEq for Node<'_, '_> {
-    fn eq(&self, o: &Node<'_, '_>) -> bool {
+impl PartialEq for Node<'_> {
+    fn eq(&self, o: &Node<'_>) -> bool {
         self.index == o.index
     }
 }
 
-impl Eq for Node<'_, '_> {}
+impl Eq for Node<'_> {}
 
-impl Hash for Node<'_, '_> {
+impl Hash for Node<'_> {
     fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
         self.index.hash(h);
     }
 }
 
-impl Debug for Node<'_, '_> {
+impl Debug for Node<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "state {} of the agent's graph", self.index)
-    }
-}
-
-impl super::model::AgentState for Node<'_, '_> {
-    fn beliefs(&self) -> &AtomSet {
-        self.state.beliefs()
-    }
-    fn beliefs_key(&self) -> Option<usize> {
-        Some(self.state.beliefs_key())
-    }
-    fn pending_requests(&self) -> u64 {
-        self.state.pending_requests()
-    }
-    fn is_idle(&self) -> bool {
-        self.state.is_idle()
-    }
-    fn goals(&self, events: bool) -> Vec<&Term> {
-        super::model::AgentState::goals(self.state, events)
     }
 }
 
@@ -703,16 +725,23 @@ impl<'g, 'c, 's, 'p> AloneStored<'g, 'c, 's, 'p> {
         })
     }
 
-    fn node(&self, index: u32) -> Node<'g, 'c> {
+    fn node(&self, index: u32) -> Node<'c> {
+        let (beliefs, rest) = self.stored.state(index);
         Node {
             index,
-            state: self.stored.states.at(index as usize),
+            rest,
+            beliefs,
         }
+    }
+
+    /// The agent's state at `s`.
+    fn packed(&self, s: &Node<'c>) -> Packed<'c> {
+        self.stored.words.packed(s.beliefs, s.rest)
     }
 }
 
 impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
-    type State = Node<'g, 'c>;
+    type State = Node<'c>;
     type Notes = StoredNotes<'g, 'c>;
 
     fn agents(&self) -> &[Semantics<'_>] {
@@ -727,34 +756,30 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
         None
     }
 
-    fn robot_beliefs<'s>(&self, s: &'s Node<'g, 'c>) -> &'s AtomSet {
-        s.state.beliefs()
+    fn robot_beliefs<'s>(&self, s: &'s Node<'c>) -> &'s AtomSet {
+        &s.beliefs.0
     }
 
-    fn robot_intentions<'s>(&self, s: &'s Node<'g, 'c>) -> impl Iterator<Item = &'s Intention> {
-        s.state.all_intentions()
+    fn robot_intentions<'s>(&self, s: &'s Node<'c>) -> impl Iterator<Item = &'s Intention> {
+        self.packed(s).all_intentions()
     }
 
-    fn world<'s>(&self, s: &'s Node<'g, 'c>) -> &'s AtomSet {
-        s.state.beliefs()
+    fn world<'s>(&self, s: &'s Node<'c>) -> &'s AtomSet {
+        &s.beliefs.0
     }
 
-    fn initial(&self) -> Box<dyn Iterator<Item = Node<'g, 'c>> + '_> {
+    fn initial(&self) -> Box<dyn Iterator<Item = Node<'c>> + '_> {
         // The search numbers the initial states first, in the order the cycle gives them.
         Box::new((0..self.graph.initial as u32).map(|i| self.node(i)))
     }
 
-    fn successors(&self, s: &Node<'g, 'c>) -> Vec<(u8, StoredNotes<'g, 'c>, Node<'g, 'c>)> {
+    fn successors(&self, s: &Node<'c>) -> Vec<(u8, StoredNotes<'g, 'c>, Node<'c>)> {
         let mut out = Vec::new();
         self.each_successor(s, |agent, notes, next| out.push((agent, notes, next)));
         out
     }
 
-    fn each_successor(
-        &self,
-        s: &Node<'g, 'c>,
-        mut f: impl FnMut(u8, StoredNotes<'g, 'c>, Node<'g, 'c>),
-    ) {
+    fn each_successor(&self, s: &Node<'c>, mut f: impl FnMut(u8, StoredNotes<'g, 'c>, Node<'c>)) {
         let targets = (self.graph.successors(s.index))
             .expect("a complete graph keeps every state's transitions");
         let st = self.stored;
@@ -767,21 +792,18 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
         }
     }
 
-    fn prefetch(&self, s: &Node<'g, 'c>, stage: usize) {
+    fn prefetch(&self, s: &Node<'c>, stage: usize) {
         let st = self.stored;
         match stage {
             // The state itself was read when it was met, long before.
-            0 => {
-                self.graph.prefetch_successors(s.index, false);
-                prefetch(s.state);
-            }
+            0 => self.graph.prefetch_successors(s.index, false),
             1 => {
                 self.graph.prefetch_successors(s.index, true);
                 if let Some(from) = self.graph.first_transition(s.index) {
                     st.notes.prefetch(from as usize);
                 }
-                prefetch(s.state.beliefs());
-                prefetch(s.state.agenda_key() as *const u8);
+                prefetch(s.beliefs);
+                prefetch(self.stored.words.agenda_key(s.rest) as *const u8);
             }
             _ => {
                 for &t in self.graph.successors_unchecked(s.index) {
@@ -795,15 +817,15 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
         Some(smallvec::smallvec![notes.id as usize])
     }
 
-    fn beliefs_key(&self, s: &Node<'g, 'c>) -> usize {
-        s.state.beliefs_key()
+    fn beliefs_key(&self, s: &Node<'c>) -> usize {
+        s.beliefs as *const Part<Base> as usize
     }
 
-    fn intentions_key(&self, s: &Node<'g, 'c>) -> Option<SmallVec<[usize; 8]>> {
-        Some(smallvec::smallvec![s.state.agenda_key()])
+    fn intentions_key(&self, s: &Node<'c>) -> Option<SmallVec<[usize; 8]>> {
+        Some(smallvec::smallvec![self.stored.words.agenda_key(s.rest)])
     }
 
-    fn fingerprint_numbered(&self, s: &Node<'g, 'c>, view: u64) -> Option<u64> {
+    fn fingerprint_numbered(&self, s: &Node<'c>, view: u64) -> Option<u64> {
         // Exact: the pair's own bits, mixed. The user's store keeps the first four views met
         // at each agent state by the state's number (`Store::fingerprints_by_place`).
         Some(pair_fingerprint(u32::try_from(view).ok()?, s.index))
@@ -1264,6 +1286,11 @@ impl<'a> Explained<'a> {
 }
 
 impl<'a, W: Runs> Explained<'a, W> {
+    /// The runs watched.
+    pub fn runs(&self) -> &W {
+        &self.runs
+    }
+
     /// The runs `runs` as `user`, watching their robot, sees them, explained by `ex` (made
     /// for the robot).
     pub fn watching(runs: W, ex: &'a Explainer<'a>, user: &'a User) -> Explained<'a, W> {

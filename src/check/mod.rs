@@ -704,18 +704,18 @@ fn fixing_runs<'c>(
 /// The run properties `props` about the explanations `user` gets: decided on `model`, that
 /// user's explanation search (on the compiled cycle when the agent has one), with one
 /// finding each, and the phase.
-fn user_runs<W: explanation::Runs>(
+fn user_runs<W: explanation::OneAgent>(
     project: &Project,
     (user, model): (&str, explanation::Explained<W>),
     (props, atoms): (&[&crate::model::property::RunProperty], &runs::RunAtoms),
     bounds: (Limits, &Options),
     progress: &mut dyn FnMut(&str, usize, u32, f64),
-) -> (Vec<Finding>, crate::findings::Phase)
-where
-    W::State: model::AgentState,
-{
+) -> (Vec<Finding>, crate::findings::Phase) {
     use model::AgentState;
-    let facts = |s: &W::State| (atoms.state_letter(s), u64::from(!s.is_idle()));
+    let facts = |s: &W::State| {
+        let agent = model.runs().agent_state(s);
+        (atoms.state_letter(&agent), u64::from(!agent.is_idle()))
+    };
     let reading = explained_runs::Reading {
         facts: &facts,
         fair_agents: None,

@@ -255,6 +255,27 @@ fn goals_of<'a>(
     out
 }
 
+impl<T: AgentState> AgentState for &T {
+    fn beliefs(&self) -> &AtomSet {
+        T::beliefs(self)
+    }
+    fn beliefs_key(&self) -> Option<usize> {
+        T::beliefs_key(self)
+    }
+    fn beliefs_annex(&self) -> Option<&crate::semantics::compiled::Annex> {
+        T::beliefs_annex(self)
+    }
+    fn pending_requests(&self) -> u64 {
+        T::pending_requests(self)
+    }
+    fn is_idle(&self) -> bool {
+        T::is_idle(self)
+    }
+    fn goals(&self, events: bool) -> Vec<&crate::model::term::Term> {
+        T::goals(self, events)
+    }
+}
+
 impl AgentState for State {
     fn beliefs(&self) -> &AtomSet {
         &self.beliefs

@@ -693,6 +693,111 @@ impl<'c> Packed<'c> {
     }
 }
 
+/// [`Packed`] states as one word each, for a graph that keeps every state (the users'
+/// searches read the agent's: `check::explanation::Stored`): a third of a [`Packed`]'s 24
+/// bytes, a gigabyte less at 6 cups, whose fresh pages the kernel (and this project's
+/// virtual machines' hosts) must clear. A word holds the belief base's address (shifted:
+/// parts are aligned to 8 bytes) in its low 44 bits, and in the other 20 the
+/// number of the state's agenda and requests, numbered in the order they are met: a state
+/// read back needs no table for its beliefs, which most of what reads it uses.
+#[derive(Default)]
+pub struct Words<'c> {
+    /// The agendas and requests, by number.
+    rest: Vec<(&'c Part<Agenda>, u64)>,
+    /// Their numbers, by the agenda's address and the requests.
+    numbers: HashMap<(usize, u64), u32, Quick>,
+    /// Direct-mapped: the agendas' addresses, requests and numbers (plus one; 0 when
+    /// empty) met lately. Consecutive states often share them, and a graph has millions of
+    /// states to the table's thousands of entries.
+    recent: Vec<(usize, u64, u32)>,
+}
+
+/// The bits of a [`Words`] word that hold the belief base's address divided by 8: every
+/// address below 2^47, which user space on x86-64 and on aarch64 with 47 or 48-bit
+/// addresses gives unless asked for more (a larger one is refused: [`Words::word`]).
+const ADDRESS_BITS: u32 = 44;
+
+/// How many agendas and requests [`Words`] keeps at hand (a power of two): the 6-cup
+/// kitchen has thousands (7,007 at 5 cups), and with 1,024 slots perf put 1 s of the
+/// merging thread in the table behind them.
+const RECENT_REST: usize = 1 << 13;
+
+impl<'c> Words<'c> {
+    /// `p` as one word; `None` when its belief base's address does not fit
+    /// (below 2^47) or 2^20 agendas and requests have numbers already.
+    pub fn word(&mut self, p: &Packed<'c>) -> Option<u64> {
+        let address = (p.beliefs as *const Part<Base>).expose_provenance();
+        if address & 7 != 0 || address >> (ADDRESS_BITS + 3) != 0 {
+            return None;
+        }
+        let rest = self.number(p.agenda, p.requested)?;
+        Some((address >> 3) as u64 | u64::from(rest) << ADDRESS_BITS)
+    }
+
+    /// The number of `agenda` with `requested`, given when first met.
+    fn number(&mut self, agenda: &'c Part<Agenda>, requested: u64) -> Option<u32> {
+        let key = (agenda as *const Part<Agenda> as usize, requested);
+        if self.recent.is_empty() {
+            self.recent = vec![(0, 0, 0); RECENT_REST];
+        }
+        let slot = mix(key.0 as u64 ^ requested.rotate_left(29)) as usize & (RECENT_REST - 1);
+        let (a, r, n) = self.recent[slot];
+        if n != 0 && (a, r) == key {
+            return Some(n - 1);
+        }
+        let n = match self.numbers.get(&key) {
+            Some(&n) => n,
+            None => {
+                let n = u32::try_from(self.rest.len())
+                    .ok()
+                    .filter(|n| u64::from(*n) < 1 << (64 - ADDRESS_BITS))?;
+                self.rest.push((agenda, requested));
+                self.numbers.insert(key, n);
+                n
+            }
+        };
+        self.recent[slot] = (key.0, key.1, n + 1);
+        Some(n)
+    }
+
+    /// The belief base of `word`, and the number of its agenda and requests
+    /// ([`Words::packed`] makes the state of both).
+    ///
+    /// # Safety
+    ///
+    /// `word` must be one that [`Words::word`] of this value returned: its belief base is
+    /// then a part of the compiled cycle, which lives for `'c`.
+    pub unsafe fn split(&self, word: u64) -> (&'c Part<Base>, u32) {
+        let address = ((word & ((1 << ADDRESS_BITS) - 1)) << 3) as usize;
+        // SAFETY: `address` is that of a belief base of the compiled cycle whose address was
+        // exposed by `Words::word` (see above), which lives and stays put for `'c`.
+        let beliefs = unsafe { &*std::ptr::with_exposed_provenance::<Part<Base>>(address) };
+        (beliefs, (word >> ADDRESS_BITS) as u32)
+    }
+
+    /// The state of belief base `beliefs` whose agenda and requests are numbered `rest`
+    /// (panics on a number this value did not give).
+    pub fn packed(&self, beliefs: &'c Part<Base>, rest: u32) -> Packed<'c> {
+        let (agenda, requested) = self.rest[rest as usize];
+        Packed {
+            beliefs,
+            agenda,
+            requested,
+        }
+    }
+
+    /// The agenda's identity ([`Packed::agenda_key`]) of the agenda and requests
+    /// numbered `rest`, without making the state.
+    pub fn agenda_key(&self, rest: u32) -> usize {
+        self.rest[rest as usize].0 as *const Part<Agenda> as usize
+    }
+
+    /// How many agendas and requests have numbers.
+    pub fn numbered(&self) -> usize {
+        self.rest.len()
+    }
+}
+
 /// What a transition of the compiled search did: the notes of its phases, shared with
 /// every transition that took the same phase.
 #[derive(Clone, Debug, Default)]
