@@ -265,18 +265,31 @@ impl<T: Copy> Chunked<T> {
 /// ([`Lists::start`]) at a position [`Lists::end`] gave before.
 #[derive(Debug, Default)]
 pub struct Lists {
-    /// Per list, where it starts, in one word of 4 bytes while every start fits
-    /// ([`narrow`]): the 6-cup kitchen's 65.6 M lists take 262 MB less than in 8 bytes.
-    starts: Chunked<u32>,
-    /// Per list, where it starts (chunk in the high 32 bits, offset), once a start did not
-    /// fit in 4 bytes: then every start is here and `starts` is empty.
-    wide: Option<Chunked<u64>>,
+    /// Per list, where it starts.
+    starts: Starts,
     items: Vec<Vec<u32>>,
     /// The next chunk of items, faulted in ahead ([`populate_later`]) when it is large.
     spare: Vec<u32>,
     /// Per chunk, how many items the chunks before it hold ([`Lists::first_item`]), once
     /// asked for (forgotten when a chunk is added or cut).
     before: std::sync::OnceLock<Vec<u64>>,
+}
+
+/// Where each list of [`Lists`] starts: in 4 bytes each while every start fits
+/// ([`narrow`]; the 6-cup kitchen's 65.6 M lists take 262 MB less than in 8 bytes), else
+/// all of them as positions ([`Lists::end`]: chunk in the high 32 bits, offset).
+#[derive(Debug)]
+enum Starts {
+    /// Each start [`narrow`]: until the first that does not fit.
+    Narrow(Chunked<u32>),
+    /// Each start a position, from then on.
+    Wide(Chunked<u64>),
+}
+
+impl Default for Starts {
+    fn default() -> Starts {
+        Starts::Narrow(Chunked::default())
+    }
 }
 
 /// The largest chunk of [`Lists`] (4 MiB), unless one list is longer.
@@ -294,6 +307,18 @@ fn narrow(at: u64) -> Option<u32> {
         .then_some((chunk as u32) << OFFSET_BITS | offset)
 }
 
+/// The starts `old` in 8 bytes each, then `at`.
+#[cold]
+#[inline(never)]
+fn widened(old: &Chunked<u32>, at: u64) -> Result<Chunked<u64>, OutOfMemory> {
+    let mut wide = Chunked::default();
+    for x in old.iter() {
+        wide.push(widen(x))?;
+    }
+    wide.push(at)?;
+    Ok(wide)
+}
+
 /// The position a [`narrow`] start stands for.
 #[inline]
 fn widen(x: u32) -> u64 {
@@ -304,9 +329,9 @@ impl Lists {
     /// How many lists were started.
     #[inline]
     pub fn len(&self) -> usize {
-        match &self.wide {
-            None => self.starts.len(),
-            Some(w) => w.len(),
+        match &self.starts {
+            Starts::Narrow(n) => n.len(),
+            Starts::Wide(w) => w.len(),
         }
     }
 
@@ -317,21 +342,21 @@ impl Lists {
     // of six alternated 5- and 6-cup runs.
     #[inline(always)]
     fn start_of(&self, i: usize) -> u64 {
-        match &self.wide {
-            None => widen(self.starts.get(i)),
-            Some(w) => w.get(i),
+        match &self.starts {
+            Starts::Narrow(n) => widen(n.get(i)),
+            Starts::Wide(w) => w.get(i),
         }
     }
 
     /// Where list `i` starts and, if there is one, where list `i + 1` does.
     #[inline(always)]
     fn starts_at(&self, i: usize) -> (u64, Option<u64>) {
-        match &self.wide {
-            None => {
-                let (a, next) = self.starts.pair(i);
+        match &self.starts {
+            Starts::Narrow(n) => {
+                let (a, next) = n.pair(i);
                 (widen(a), next.map(widen))
             }
-            Some(w) => w.pair(i),
+            Starts::Wide(w) => w.pair(i),
         }
     }
 
@@ -374,27 +399,15 @@ impl Lists {
     /// Starts the next list at `at`, a position [`Lists::end`] gave (its items pushed
     /// since, in that chunk).
     pub fn start(&mut self, at: u64) -> Result<(), OutOfMemory> {
-        if let Some(w) = &mut self.wide {
-            return w.push(at);
+        match (&mut self.starts, narrow(at)) {
+            (Starts::Narrow(n), Some(x)) => n.push(x),
+            (Starts::Narrow(old), None) => {
+                let wide = widened(old, at)?;
+                self.starts = Starts::Wide(wide);
+                Ok(())
+            }
+            (Starts::Wide(w), _) => w.push(at),
         }
-        match narrow(at) {
-            Some(x) => self.starts.push(x),
-            None => self.widen(at),
-        }
-    }
-
-    /// Moves every start to `wide`, then starts the next list at `at` there.
-    #[cold]
-    #[inline(never)]
-    fn widen(&mut self, at: u64) -> Result<(), OutOfMemory> {
-        let mut wide = Chunked::default();
-        for x in self.starts.iter() {
-            wide.push(widen(x))?;
-        }
-        wide.push(at)?;
-        self.starts = Chunked::default();
-        self.wide = Some(wide);
-        Ok(())
     }
 
     /// Removes the items from `at` (a position [`Lists::end`] gave) on, in its chunk.
@@ -447,9 +460,9 @@ impl Lists {
     #[inline]
     pub fn prefetch(&self, i: usize, near: bool) {
         if !near {
-            return match &self.wide {
-                None => self.starts.prefetch(i),
-                Some(w) => w.prefetch(i),
+            return match &self.starts {
+                Starts::Narrow(n) => n.prefetch(i),
+                Starts::Wide(w) => w.prefetch(i),
             };
         }
         if i < self.len() {
@@ -468,9 +481,10 @@ impl Lists {
 
     /// Bytes allocated.
     pub fn bytes(&self) -> usize {
-        self.starts.bytes()
-            + self.wide.as_ref().map_or(0, Chunked::bytes)
-            + (self.items.iter().map(Vec::capacity).sum::<usize>() + self.spare.capacity()) * 4
+        (match &self.starts {
+            Starts::Narrow(n) => n.bytes(),
+            Starts::Wide(w) => w.bytes(),
+        }) + (self.items.iter().map(Vec::capacity).sum::<usize>() + self.spare.capacity()) * 4
     }
 }
 
@@ -594,7 +608,7 @@ mod tests {
             lens.push(n);
         }
         assert!(lists.chunks() > 3, "{} chunks", lists.chunks());
-        assert_eq!(lists.wide.is_some(), wide);
+        assert_eq!(matches!(lists.starts, Starts::Wide(_)), wide);
         assert_eq!(lists.len(), lens.len());
         let mut first = 0u64;
         for (i, &n) in lens.iter().enumerate() {
