@@ -1223,8 +1223,8 @@ pub struct GivenExplanation {
     pub action: Term,
     /// What the user saw just before it, if anything.
     pub after: Option<Observation>,
-    /// What Algorithm 2 says.
-    pub content: Content,
+    /// What Algorithm 2 says (shared with the explanation it was given from).
+    pub content: Arc<Content>,
 }
 
 impl GivenExplanation {
@@ -1857,7 +1857,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                 term,
                 &after(),
                 emitted.as_ref(),
-                explanation.map(|(e, _)| &e.content),
+                explanation.map(|(e, _)| &*e.content),
                 span,
                 out,
             );

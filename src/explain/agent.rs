@@ -102,8 +102,9 @@ pub fn phrases(p: &Project) -> Phrases {
 /// An explanation as Algorithm 2 builds it for an action of a run.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Explanation {
-    /// `(Γ, (a_i, …, a_k))`.
-    pub content: Content,
+    /// `(Γ, (a_i, …, a_k))`, shared with the explanations given from it: a user's search
+    /// gives it at every transition that explains the action on these beliefs.
+    pub content: std::sync::Arc<Content>,
     /// The block of the top frame's body that the action belongs to.
     pub block: u16,
     /// The position in that block of each step of `content.actions`.
@@ -201,7 +202,7 @@ impl<'p> Explainer<'p> {
         let last = *positions.last()?;
         let positions = positions[..content.actions.len()].to_vec();
         Some(Explanation {
-            content,
+            content: std::sync::Arc::new(content),
             block,
             positions,
             last,
