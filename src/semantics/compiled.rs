@@ -12,7 +12,7 @@
 //! same step of the same intention, with the same atoms around, is computed once however
 //! many states it occurs in. A phase is computed by the reference functions of
 //! [`Semantics`] on a state holding only that part and the read beliefs, and an act phase
-//! is kept as the change it makes to the beliefs; `tests/compiled.rs` checks that the two
+//! is kept as the change it makes to the beliefs; `tests/suite/compiled.rs` checks that the two
 //! transition systems agree on every reachable state of every example project, notes and
 //! fingerprints included.
 //!

@@ -1,5 +1,5 @@
 // Body statements in the combinations whose belief reads are subtle, for the test that
-// the compiled reasoning cycle agrees with the reference one (tests/compiled.rs).
+// the compiled reasoning cycle agrees with the reference one (tests/suite/compiled.rs).
 
 // A `for` ends inside a `while` whose condition mentions the loop's variable: the
 // condition is tested again without the variable bound.

@@ -1,6 +1,6 @@
 ;; Two rooms, two items, a door to unlock: the smallest domain on which lint's subgoal
 ;; summaries, `if` scoping, rules and disjunctions make a difference (compared with brute
-;; force in tests/lint.rs).
+;; force in tests/suite/lint.rs).
 (define (domain depot)
   (:requirements :strips :typing :negative-preconditions :equality :conditional-effects)
   (:types room item)

@@ -3,5 +3,5 @@
 // (content-truthful) and the explanation of `a` ends where the context changes; without
 // `q`, nothing changes and the explanation of `a` stops short of the body's end
 // (content-concise). A search that shares what a user sees across states must still tell
-// the two apart (tests/explain_verify.rs, tests/compiled.rs).
+// the two apart (tests/suite/explain_verify.rs, tests/suite/compiled.rs).
 +!g : p <- a; b.

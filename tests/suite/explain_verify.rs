@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-mod common;
+use crate::common;
 use common::{agent_steps, bdi_check, replay_finding, steps, verify_json};
 
 const CHECKS: [&str; 5] = [

@@ -288,7 +288,7 @@ proptest! {
 }
 
 /// Prints every diagnostic of the invalid files, to review their wording:
-/// `cargo test --release --test pddl show_all -- --ignored --nocapture`.
+/// `cargo test --release --test suite pddl::show_all -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn show_all() {

@@ -3,7 +3,7 @@
 //! report; sharded runs merge to the unsharded verdict; counterexamples found under
 //! symmetry still replay.
 
-mod common;
+use crate::common;
 
 use common::bdi_check;
 use serde_json::Value;

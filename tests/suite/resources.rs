@@ -4,7 +4,7 @@
 //! The limit is far below what these inputs took before the tool bounded them (20 GB for
 //! the 28-object `vary`), and far above what a bounded run needs.
 
-mod common;
+use crate::common;
 
 use common::temp_dir;
 use std::process::Command;

@@ -1,8 +1,8 @@
-//! Facts of the reasoning cycle that the recorded Jason runs (tests/jason.rs) cannot show:
+//! Facts of the reasoning cycle that the recorded Jason runs (tests/suite/jason.rs) cannot show:
 //! what the search may cache (`is_local`, `is_ordered`) and what a transition reports, on
 //! one-plan libraries written for each construct.
 
-mod common;
+use crate::common;
 
 use bdi_check::model::project::{load_project, Project};
 use bdi_check::semantics::{Note, Semantics, State};

@@ -2,7 +2,7 @@
 //! interleaving of their reasoning cycles; the seeded communication defects are found
 //! with runs whose steps name their agents; bad project files are located.
 
-mod common;
+use crate::common;
 use common::{agent_steps, bdi_check, temp_dir, verify_json};
 
 fn failing<'a>(r: &'a serde_json::Value, check: &str) -> Vec<&'a serde_json::Value> {

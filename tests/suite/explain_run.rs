@@ -3,7 +3,7 @@
 
 use std::process::Output;
 
-mod common;
+use crate::common;
 use common::bdi_check;
 
 fn json(o: &Output) -> serde_json::Value {

@@ -2,7 +2,7 @@
 //! modality, found with a run that replays; LTL agreeing with `always` and `eventually`
 //! where both can say the same; refusals with their place.
 
-mod common;
+use crate::common;
 use common::{bdi_check, phase_names, replay_finding as replay, temp_dir, verify_json};
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::process::Output;
 
-mod common;
+use crate::common;
 use common::bdi_check;
 
 fn stdout(o: &Output) -> String {

@@ -21,7 +21,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::process::Output;
 
-mod common;
+use crate::common;
 use common::bdi_check;
 
 fn project(path: &str) -> Project {
