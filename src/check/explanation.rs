@@ -847,18 +847,18 @@ const READ_RECENTLY: usize = 1 << 14;
 
 thread_local! {
     /// [`Tables::seen`]'s entries for notes of one word ([`Runs::notes_key`]) on which no
-    /// explanation is due, by view (address) and word. A user's search on a stored graph
+    /// explanation is due, by view (number) and word. A user's search on a stored graph
     /// reads that memo at most transitions, and few of its entries at a time: 98.5% of
     /// the reads hit a table of 2^14 (5-cup kitchen), and the shared memo's lock, hashing
     /// and probe were a tenth of the search.
     static SEEN_RECENTLY: Recently<(usize, usize), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::seen`]'s entries for notes of one word on which explanations were due, by
-    /// view (address), word and the explanations' words ([`Explained::given_key`]: how
+    /// view (number), word and the explanations' words ([`Explained::given_key`]: how
     /// many, then up to two). A fifth of a user's transitions on the kitchen take this
     /// path, and the shared memo's lock and probe of a key of two `SmallVec`s.
     static DUE_RECENTLY: Recently<(usize, usize, [usize; 3]), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::judged`]'s entries for robot states of one intentions word, by view
-    /// (address), [`judged_flags`] and the word.
+    /// (number), [`judged_flags`] and the word.
     static JUDGED_RECENTLY: Recently<(usize, usize, usize), Arc<Judged>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::contents`]' entries, by action note (address).
     static CONTENTS_RECENTLY: Recently<usize, Arc<Option<(Explanation, LiteralAtoms)>>> = const { std::cell::RefCell::new(Vec::new()) };
@@ -883,7 +883,13 @@ const SHARDS: usize = 32;
 /// already met on another state of the agent.
 #[derive(Default)]
 struct Tables {
-    views: [Mutex<HashSet<Shared, Quick>>; SHARDS],
+    /// The views met so far, each once, by number: a state holds its view's number. A
+    /// shared pointer there had every transition and every state dropped count references
+    /// (3-5 atomic operations a transition, on the views' scattered cache lines), and a
+    /// number is read without them.
+    views: boxcar::Vec<(u64, View)>,
+    /// Per hash of a view, the numbers of the views of that hash.
+    numbers: [Mutex<HashMap<u64, SmallVec<[u32; 1]>, Quick>>; SHARDS],
     seen: Table<SeenKey, Seen>,
     judged: Table<JudgedKey, Judged>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
@@ -903,16 +909,14 @@ struct Tables {
     judgeables: [Mutex<HashSet<Arc<Option<Judgeable>>, Quick>>; SHARDS],
     /// Per context atom, the atoms it unifies with.
     instances: [Mutex<Instances>; SHARDS],
-    /// Under symmetry, per view (by address: views are interned) and renaming: the hash
+    /// Under symmetry, per view (by number: views are interned) and renaming: the hash
     /// of the view renamed. A state's fingerprint tries a renaming or more of every
     /// successor, and renaming a view's terms and hashing them cost more than the rest
     /// of the user's search; a view meets few renamings.
     renamed: [Mutex<RenamedViews>; SHARDS],
-    /// How many views were interned.
-    numbered: std::sync::atomic::AtomicU64,
 }
 
-/// Per view (by address) and renaming: the hash of the view renamed (one shard of
+/// Per view (by number) and renaming: the hash of the view renamed (one shard of
 /// [`Tables::renamed`]).
 type RenamedViews = HashMap<(usize, SmallVec<[u16; 16]>), u64, Quick>;
 
@@ -941,10 +945,10 @@ type Judgeable = (Explanation, Vec<bool>);
 /// A memo: values by key, in shards.
 type Table<K, V> = [Mutex<HashMap<K, Arc<V>, Quick>>; SHARDS];
 
-/// A view after a transition judged: the view, and the violations found.
-type Judged = (Shared, Vec<Violation>);
+/// A view after a transition judged: the view (its number), and the violations found.
+type Judged = (u32, Vec<Violation>);
 
-/// A view after a transition's notes (by address), whether they failed, whether the robot
+/// A view after a transition's notes (by address; the view by number), whether they failed, whether the robot
 /// has yet to sense, whether each open explanation's context changed on the robot's
 /// beliefs after it, and its intentions after it (by [`Runs::intentions_key`]).
 #[derive(PartialEq, Eq, Hash)]
@@ -974,7 +978,7 @@ fn memo_read<K: Hash + Eq, V, R>(
 
 /// What a transition takes of a [`Seen`].
 struct SeenRead {
-    view: Shared,
+    view: u32,
     given: Option<Arc<[Option<GivenExplanation>]>>,
     violations: Vec<Violation>,
     failed: bool,
@@ -984,7 +988,7 @@ impl Seen {
     /// What a transition takes of it.
     fn read(&self) -> SeenRead {
         SeenRead {
-            view: self.view.clone(),
+            view: self.view,
             given: self.given.clone(),
             violations: self.violations.clone(),
             failed: self.failed,
@@ -1000,7 +1004,7 @@ impl Seen {
     }
 }
 
-/// A view (by address: views are interned), the notes (by [`Runs::notes_key`]), and the
+/// A view (by number: views are interned), the notes (by [`Runs::notes_key`]), and the
 /// explanations the due ones get on the robot's beliefs (by address: interned), none when
 /// no explanation is due.
 #[derive(PartialEq, Eq, Hash)]
@@ -1009,7 +1013,8 @@ struct SeenKey(usize, SmallVec<[usize; 4]>, SmallVec<[usize; 2]>);
 /// What a transition's notes made of a view: the view after them, the explanations given
 /// at each, the violations, whether a failure was among them.
 struct Seen {
-    view: Shared,
+    /// Its number.
+    view: u32,
     given: Option<Arc<[Option<GivenExplanation>]>>,
     violations: Vec<Violation>,
     failed: bool,
@@ -1030,46 +1035,36 @@ fn shard<T>(table: &[Mutex<T>; SHARDS], hash: u64) -> MutexGuard<'_, T> {
 }
 
 impl Tables {
-    /// The shared view equal to `view`, numbered when new.
-    fn intern(&self, view: View) -> Shared {
-        let mut new = Shared::new(view);
-        let mut views = shard(&self.views, quick(&new));
-        match views.get(&new) {
-            Some(old) => old.clone(),
-            None => {
-                let number = self
-                    .numbered
-                    .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                if let Some((_, v)) = Arc::get_mut(&mut new.0) {
-                    v.number = Unhashed(number);
-                }
-                views.insert(new.clone());
-                new
-            }
+    /// The number of the view equal to `view`, numbered when new.
+    fn intern(&self, view: View) -> u32 {
+        let hash = fingerprint(&view);
+        let mut numbers = shard(&self.numbers, hash);
+        let same = numbers.entry(hash).or_default();
+        if let Some(&n) = same.iter().find(|&&n| self.views[n as usize].1 == view) {
+            return n;
         }
+        // Numbers are taken while the shard is held: a view is numbered once.
+        let n = u32::try_from(self.views.push((hash, view)))
+            .expect("fewer than 2^32 views of a run (each a distinct state of the user)");
+        same.push(n);
+        n
+    }
+
+    /// The view numbered `n` (by [`Tables::intern`]).
+    fn view(&self, n: u32) -> &View {
+        &self.views[n as usize].1
     }
 }
 
 /// A state of [`Explained`]: the runs' (the agent's, or the system's), and the user's view
-/// of the run so far.
+/// of the run so far ([`Explained::expected`] and [`Explained::last_observed`] read it).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct ExplainedState<S = State> {
     /// The agent, or every agent.
     pub state: S,
-    /// The user's view, shared by the states that have it.
-    view: Shared,
-}
-
-impl<S> ExplainedState<S> {
-    /// The user's expected successors `N`, as Algorithm 1 has updated them on the run so far.
-    pub fn expected(&self) -> &ExpectedSuccessors {
-        &self.view.0 .1.n
-    }
-
-    /// What the user saw last, if anything.
-    pub fn last_observed(&self) -> Option<&Observation> {
-        self.view.0 .1.prev.as_ref()
-    }
+    /// The user's view, by its number in the search's views ([`Tables::intern`]: equal
+    /// views have one number).
+    view: u32,
 }
 
 /// The user's view of a run.
@@ -1088,11 +1083,6 @@ struct View {
     open: Vec<Hashed<Obligation>>,
     /// The agent's own explanation, emitted since the last environment action.
     emitted: Option<Term>,
-    /// Its number among the views interned ([`Tables::intern`]), left out of its equality
-    /// and hash (a view made anew has its parent's until interned): the views of a user's
-    /// search are few, and its states on the agent's stored graph are pairs (view, agent
-    /// state) fingerprinted exactly ([`Runs::fingerprint_numbered`]).
-    number: Unhashed<u64>,
 }
 
 /// A value left out of the equality and hash of what holds it: any two are equal, and
@@ -1111,10 +1101,6 @@ impl<T> Eq for Unhashed<T> {}
 impl<T> Hash for Unhashed<T> {
     fn hash<H: std::hash::Hasher>(&self, _: &mut H) {}
 }
-
-/// A [`View`] with its hash: most transitions leave the view as it was, and then the
-/// next state shares it (a pointer copy) and hashes it in one word.
-type Shared = Hashed<View>;
 
 /// A value with its hash, shared: copied as a pointer, hashed as one word, compared by
 /// address first.
@@ -1320,9 +1306,24 @@ impl<'a, W: Runs> Explained<'a, W> {
                 marks: Vec::new(),
                 open: Vec::new(),
                 emitted: None,
-                number: Unhashed::default(),
             }),
         }
+    }
+
+    /// The user's view in `s` (a state of this search).
+    fn view_of(&self, s: &ExplainedState<W::State>) -> &View {
+        self.tables.view(s.view)
+    }
+
+    /// The user's expected successors `N` in `s` (a state of this search), as Algorithm 1
+    /// has updated them on the run so far.
+    pub fn expected(&self, s: &ExplainedState<W::State>) -> &ExpectedSuccessors {
+        &self.view_of(s).n
+    }
+
+    /// What the user saw last in `s` (a state of this search), if anything.
+    pub fn last_observed(&self, s: &ExplainedState<W::State>) -> Option<&Observation> {
+        self.view_of(s).prev.as_ref()
     }
 
     /// A step of the robot's plan `plan` as a message names it, its bindings read in the
@@ -1492,7 +1493,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             given: None,
             violations: Vec::new(),
         };
-        let view = &s.view.0 .1;
+        let view = self.view_of(s);
         // Another agent's step (a cycle, or a request to it): the user sees none of it,
         // and the robot's state does not change. A step of the robot that the user does
         // not see (no request, no plan adopted, no action, no failure) and that leaves no
@@ -1513,13 +1514,13 @@ impl<'a, W: Runs> Explained<'a, W> {
                 && view.marks.iter().all(|m| self.alive(m, &next)));
         if unseen {
             step.notes = notes;
-            let view = s.view.clone();
+            let view = s.view;
             return (step, ExplainedState { state: next, view });
         }
         let before = &s.state;
         let seen = match (sensed, self.runs.notes_key(&notes)) {
             (None, Some(key)) => {
-                let at = Arc::as_ptr(&s.view.0) as usize;
+                let at = s.view as usize;
                 let beliefs = Some(self.runs.beliefs_key(before));
                 // Most notes do not read the beliefs (no explanation is due): one entry for
                 // every state then.
@@ -1582,7 +1583,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         step.given = seen.given;
         step.violations = seen.violations;
         step.notes = notes;
-        let after = &seen.view.0 .1;
+        let after = self.tables.view(seen.view);
         if after.open.is_empty() && after.marks.iter().all(|m| self.alive(m, &next)) {
             return (
                 step,
@@ -1603,9 +1604,9 @@ impl<'a, W: Runs> Explained<'a, W> {
                     .iter()
                     .map(|o| self.context_changed(o, beliefs))
                     .collect();
-                let at = Arc::as_ptr(&seen.view.0) as usize;
-                let after = || self.after(&seen.view, &next, seen.failed, unsensed);
-                let read = |judged: &Arc<Judged>| (judged.0.clone(), judged.1.clone());
+                let at = seen.view as usize;
+                let after = || self.after(seen.view, &next, seen.failed, unsensed);
+                let read = |judged: &Arc<Judged>| (judged.0, judged.1.clone());
                 match (
                     key.as_slice(),
                     judged_flags(seen.failed, unsensed, &changed),
@@ -1631,7 +1632,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                     ),
                 }
             }
-            None => self.after(&seen.view, &next, seen.failed, unsensed),
+            None => self.after(seen.view, &next, seen.failed, unsensed),
         };
         step.violations.extend(judged.1);
         (
@@ -1647,13 +1648,14 @@ impl<'a, W: Runs> Explained<'a, W> {
     /// explanations judged, its marks of frames gone dropped.
     fn after(
         &self,
-        view: &Shared,
+        view: u32,
         next: &W::State,
         failed: bool,
         unsensed: bool,
-    ) -> (Shared, Vec<Violation>) {
+    ) -> (u32, Vec<Violation>) {
         let mut violations = Vec::new();
-        let mut st = view.0 .1.clone();
+        let before = self.tables.view(view);
+        let mut st = before.clone();
         self.judge(
             &mut st.open,
             (next, self.runs.robot_beliefs(next)),
@@ -1663,8 +1665,8 @@ impl<'a, W: Runs> Explained<'a, W> {
         );
         // Marks of frames that are gone (finished or failed) can never be executed.
         st.marks.retain(|m| self.alive(m, next));
-        let view = if st == view.0 .1 {
-            view.clone()
+        let view = if st == *before {
+            view
         } else {
             self.tables.intern(st)
         };
@@ -2184,8 +2186,8 @@ impl<W: Runs> Model for Explained<'_, W> {
     }
 
     fn fingerprint(&self, s: &Self::State) -> u64 {
-        let v = &s.view.0 .1;
-        let at = Arc::as_ptr(&s.view.0) as usize;
+        let v = self.view_of(s);
+        let at = s.view as usize;
         let renamed = self.runs.fingerprint_with(&s.state, |r| {
             let key = (at, SmallVec::from_slice(r.perm()));
             let known = shard(&self.tables.renamed, mix(at as u64))
@@ -2198,7 +2200,7 @@ impl<W: Runs> Model for Explained<'_, W> {
             })
         });
         renamed
-            .or_else(|| self.runs.fingerprint_numbered(&s.state, v.number.0))
+            .or_else(|| self.runs.fingerprint_numbered(&s.state, u64::from(s.view)))
             .unwrap_or_else(|| fingerprint(s))
     }
 }
@@ -2791,7 +2793,7 @@ mod tests {
                 let direct = sym.fingerprint_with_compiled(&compiled, &s.state, |r| {
                     let moves = r.perm().iter().enumerate().any(|(i, &x)| x as usize != i);
                     renamed.set(renamed.get() + usize::from(moves));
-                    fingerprint(&model.renamed_view(&s.view.0 .1, r))
+                    fingerprint(&model.renamed_view(model.view_of(&s), r))
                 });
                 assert_eq!(model.fingerprint(&s), direct, "{}", user.name);
                 queue.extend(model.next_states(&s).into_iter().map(|(_, t)| t));
@@ -2849,7 +2851,7 @@ mod tests {
                     let whole = compiled.unpack(&s.state);
                     let least = (group.iter())
                         .map(|p| {
-                            let view = symmetric.renamed_view(&s.view.0 .1, &sym.renaming(p));
+                            let view = symmetric.renamed_view(exact.view_of(&s), &sym.renaming(p));
                             fingerprint(&(sym.renamed(&whole, p), fingerprint(&view)))
                         })
                         .min();

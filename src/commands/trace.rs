@@ -56,9 +56,9 @@ fn build(project: &Project, sem: &Semantics, w: &Walk) -> Trace {
     let expected = |views: &[Option<ExplainedState>]| -> Vec<ExpectedView> {
         users
             .iter()
-            .zip(views)
-            .filter_map(|(u, v)| {
-                let n = v.as_ref()?.expected();
+            .zip(views.iter().zip(&models))
+            .filter_map(|(u, (v, m))| {
+                let n = m.expected(v.as_ref()?);
                 Some(ExpectedView {
                     user: u.name.clone(),
                     patterns: n.initial().len(),

@@ -436,11 +436,11 @@ fn a_user_sees_the_requests_to_the_robot_and_its_actions_and_nothing_of_the_othe
             let mut seen: std::collections::HashSet<u64> = queue.iter().map(fingerprint).collect();
             let (mut others_acted, mut explained) = (0, 0);
             while let Some(s) = queue.pop() {
-                let n = s.expected();
+                let n = model.expected(&s);
                 for p in n.learned() {
                     assert!(p.prev.iter().chain([&p.next]).all(by_robot), "{p}");
                 }
-                if let Some(o) = s.last_observed() {
+                if let Some(o) = model.last_observed(&s) {
                     assert!(by_robot(o), "{} saw {o}", user.name);
                 }
                 for (step, t) in model.next_states(&s) {
@@ -452,8 +452,8 @@ fn a_user_sees_the_requests_to_the_robot_and_its_actions_and_nothing_of_the_othe
                             .iter()
                             .flat_map(|g| g.iter())
                             .all(Option::is_none));
-                        assert_eq!(t.last_observed(), s.last_observed());
-                        assert_eq!(t.expected().learned(), n.learned());
+                        assert_eq!(model.last_observed(&t), model.last_observed(&s));
+                        assert_eq!(model.expected(&t).learned(), n.learned());
                         others_acted += step
                             .notes
                             .iter()
