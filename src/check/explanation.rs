@@ -151,6 +151,12 @@ pub trait Runs: Sync {
         None
     }
 
+    /// Whether the user sees any of `notes` ([`shown`]), when the runs know it without
+    /// reading them.
+    fn shown(&self, _notes: &Self::Notes) -> Option<bool> {
+        None
+    }
+
     /// An identity of the robot's beliefs in `s` (with [`Runs::notes_key`]).
     fn beliefs_key(&self, _s: &Self::State) -> usize {
         0
@@ -520,8 +526,9 @@ pub struct Stored<'c> {
     /// Per transition, state by state in the graph's order, its notes' number: a state's
     /// begin where its edges do ([`Graph::first_transition`]).
     notes: Chunked<u32>,
-    /// The notes by number, once the search is over ([`Stored::finish`]).
-    distinct: Vec<Vec<Notes<'c>>>,
+    /// The notes by number, once the search is over ([`Stored::finish`]), each with
+    /// whether the user sees any of them ([`shown`]).
+    distinct: Vec<Vec<(Notes<'c>, bool)>>,
     /// Whether a state could not be held (too many transitions to number, too many
     /// agendas and requests or an address beyond a word's bits ([`Words::word`]), or memory):
     /// the graph is then unusable.
@@ -555,7 +562,15 @@ impl<'c> Stored<'c> {
     pub fn finish(&mut self, ids: NoteIds<'c>) {
         self.broken |= ids.full.into_inner();
         self.distinct = (ids.shards.into_iter())
-            .map(|s| s.into_inner().unwrap_or_else(|e| e.into_inner()).1)
+            .map(|s| {
+                let notes = s.into_inner().unwrap_or_else(|e| e.into_inner()).1;
+                (notes.into_iter())
+                    .map(|n| {
+                        let seen = n.iter().any(shown);
+                        (n, seen)
+                    })
+                    .collect()
+            })
             .collect();
     }
 
@@ -567,8 +582,8 @@ impl<'c> Stored<'c> {
             && graph.kept_transitions() == Some(self.notes.len() as u64)
     }
 
-    /// The notes numbered `id`.
-    fn notes(&self, id: u32) -> &Notes<'c> {
+    /// The notes numbered `id`, and whether the user sees any of them.
+    fn notes(&self, id: u32) -> &(Notes<'c>, bool) {
         &self.distinct[id as usize % SHARDS][id as usize / SHARDS]
     }
 
@@ -685,6 +700,8 @@ impl Debug for Node<'_> {
 #[derive(Clone, Copy, Default)]
 pub struct StoredNotes<'g, 'c> {
     id: u32,
+    /// Whether the user sees any of them ([`shown`]).
+    shown: bool,
     notes: Option<&'g Notes<'c>>,
 }
 
@@ -787,8 +804,17 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
             .expect("a complete graph keeps every state's transitions") as usize;
         for (k, &t) in targets.iter().enumerate() {
             let id = st.notes.get(from + k);
-            let notes = Some(st.notes(id));
-            f(0, StoredNotes { id, notes }, self.node(t));
+            let (notes, shown) = st.notes(id);
+            let notes = Some(notes);
+            f(
+                0,
+                StoredNotes {
+                    id,
+                    shown: *shown,
+                    notes,
+                },
+                self.node(t),
+            );
         }
     }
 
@@ -815,6 +841,10 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
 
     fn notes_key(&self, notes: &StoredNotes<'g, 'c>) -> Option<SmallVec<[usize; 4]>> {
         Some(smallvec::smallvec![notes.id as usize])
+    }
+
+    fn shown(&self, notes: &StoredNotes<'g, 'c>) -> Option<bool> {
+        Some(notes.shown)
     }
 
     fn beliefs_key(&self, s: &Node<'c>) -> usize {
@@ -851,17 +881,31 @@ thread_local! {
     /// reads that memo at most transitions, and few of its entries at a time: 98.5% of
     /// the reads hit a table of 2^14 (5-cup kitchen), and the shared memo's lock, hashing
     /// and probe were a tenth of the search.
-    static SEEN_RECENTLY: Recently<(usize, usize), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
+    static SEEN_RECENTLY: Recently<(usize, usize), Kept<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::seen`]'s entries for notes of one word on which explanations were due, by
     /// view (number), word and the explanations' words ([`Explained::given_key`]: how
     /// many, then up to two). A fifth of a user's transitions on the kitchen take this
     /// path, and the shared memo's lock and probe of a key of two `SmallVec`s.
-    static DUE_RECENTLY: Recently<(usize, usize, [usize; 3]), Arc<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
+    static DUE_RECENTLY: Recently<(usize, usize, [usize; 3]), Kept<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::judged`]'s entries for robot states of one intentions word, by view
     /// (number), [`judged_flags`] and the word.
-    static JUDGED_RECENTLY: Recently<(usize, usize, usize), Arc<Judged>> = const { std::cell::RefCell::new(Vec::new()) };
+    static JUDGED_RECENTLY: Recently<(usize, usize, usize), Kept<Judged>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::contents`]' entries, by action note (address).
     static CONTENTS_RECENTLY: Recently<usize, Arc<Option<(Explanation, LiteralAtoms)>>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Whether the user sees the note `n` (a request, a plan adopted, an action, a failure):
+/// a step of the robot with none of these, no explanation to judge and every mark in place
+/// leaves the user's view as it was.
+fn shown(n: &Note) -> bool {
+    matches!(
+        n,
+        Note::Request { .. }
+            | Note::Plan { .. }
+            | Note::Action { .. }
+            | Note::ActionFailed { .. }
+            | Note::GoalFailed { .. }
+    )
 }
 
 /// A [`JudgedKey`]'s failure, sense and changes as one word, when its view has at most 62
@@ -976,12 +1020,103 @@ fn memo_read<K: Hash + Eq, V, R>(
     read(shard(table, hash).entry(key).or_insert(v))
 }
 
+/// A memo's entry as a thread's cache ([`recently`]) keeps it: most give no explanation
+/// and find no violation, and then the view's number (with the flags) is all a transition
+/// takes, read from the cache's slot instead of through a pointer to the entry (a line
+/// of the memo's, rarely in the cache: a dependent miss at most transitions).
+#[derive(Clone)]
+enum Kept<V> {
+    /// The view after, whether a failure was among the notes, and whether that view has no
+    /// open explanation and no mark (nothing to judge after the transition).
+    Plain {
+        view: u32,
+        failed: bool,
+        quiet: bool,
+    },
+    /// Anything else.
+    Whole(Arc<V>),
+}
+
+impl Kept<Seen> {
+    /// How a thread's cache keeps `seen`, a view after notes in `tables`.
+    fn seen(seen: Arc<Seen>, tables: &Tables) -> Kept<Seen> {
+        match seen.given.is_none() && seen.violations.is_empty() && !seen.reads_beliefs {
+            true => Kept::Plain {
+                view: seen.view,
+                failed: seen.failed,
+                quiet: tables.quiet(seen.view),
+            },
+            false => Kept::Whole(seen),
+        }
+    }
+
+    /// [`Seen::read_unless_due`].
+    fn read_unless_due(&self) -> Result<SeenRead, SmallVec<[u32; 2]>> {
+        match self {
+            Kept::Whole(seen) => seen.read_unless_due(),
+            &Kept::Plain {
+                view,
+                failed,
+                quiet,
+            } => Ok(SeenRead {
+                view,
+                given: None,
+                violations: Vec::new(),
+                failed,
+                quiet: Some(quiet),
+            }),
+        }
+    }
+
+    /// [`Seen::read`].
+    fn read(&self) -> SeenRead {
+        match self {
+            Kept::Whole(seen) => seen.read(),
+            &Kept::Plain {
+                view,
+                failed,
+                quiet,
+            } => SeenRead {
+                view,
+                given: None,
+                violations: Vec::new(),
+                failed,
+                quiet: Some(quiet),
+            },
+        }
+    }
+}
+
+impl Kept<Judged> {
+    /// How a thread's cache keeps `judged`, a view judged in `tables`.
+    fn judged(judged: Arc<Judged>, tables: &Tables) -> Kept<Judged> {
+        match judged.1.is_empty() {
+            true => Kept::Plain {
+                view: judged.0,
+                failed: false,
+                quiet: tables.quiet(judged.0),
+            },
+            false => Kept::Whole(judged),
+        }
+    }
+
+    /// The view and the violations.
+    fn view_and_violations(&self) -> (u32, Vec<Violation>) {
+        match self {
+            Kept::Whole(judged) => (judged.0, judged.1.clone()),
+            &Kept::Plain { view, .. } => (view, Vec::new()),
+        }
+    }
+}
+
 /// What a transition takes of a [`Seen`].
 struct SeenRead {
     view: u32,
     given: Option<Arc<[Option<GivenExplanation>]>>,
     violations: Vec<Violation>,
     failed: bool,
+    /// Whether the view has no open explanation and no mark, when known.
+    quiet: Option<bool>,
 }
 
 impl Seen {
@@ -992,6 +1127,7 @@ impl Seen {
             given: self.given.clone(),
             violations: self.violations.clone(),
             failed: self.failed,
+            quiet: None,
         }
     }
 
@@ -1053,6 +1189,13 @@ impl Tables {
     /// The view numbered `n` (by [`Tables::intern`]).
     fn view(&self, n: u32) -> &View {
         &self.views[n as usize].1
+    }
+
+    /// Whether the view numbered `n` has no open explanation and no mark: a transition
+    /// from a state of it that the user does not see leaves it as it is.
+    fn quiet(&self, n: u32) -> bool {
+        let view = self.view(n);
+        view.open.is_empty() && view.marks.is_empty()
     }
 }
 
@@ -1501,16 +1644,7 @@ impl<'a, W: Runs> Explained<'a, W> {
         let unseen = agent as usize != self.runs.robot()
             || (sensed.is_none()
                 && view.open.is_empty()
-                && !notes.notes().any(|n| {
-                    matches!(
-                        n,
-                        Note::Request { .. }
-                            | Note::Plan { .. }
-                            | Note::Action { .. }
-                            | Note::ActionFailed { .. }
-                            | Note::GoalFailed { .. }
-                    )
-                })
+                && !(self.runs.shown(&notes)).unwrap_or_else(|| notes.notes().any(shown))
                 && view.marks.iter().all(|m| self.alive(m, &next)));
         if unseen {
             step.notes = notes;
@@ -1531,7 +1665,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                         &SEEN_RECENTLY,
                         READ_RECENTLY,
                         (self.serial, (at, word)),
-                        || memo(&self.tables.seen, first(), see),
+                        || Kept::seen(memo(&self.tables.seen, first(), see), &self.tables),
                         |s| s.read_unless_due(),
                     ),
                     _ => memo_read(&self.tables.seen, first(), see, |s| s.read_unless_due()),
@@ -1562,11 +1696,12 @@ impl<'a, W: Runs> Explained<'a, W> {
                                     READ_RECENTLY,
                                     (self.serial, (at, word, words)),
                                     || {
-                                        memo(
+                                        let seen = memo(
                                             &self.tables.seen,
                                             SeenKey(at, key.clone(), given.clone()),
                                             see,
-                                        )
+                                        );
+                                        Kept::seen(seen, &self.tables)
                                     },
                                     |s| s.read(),
                                 )
@@ -1583,6 +1718,15 @@ impl<'a, W: Runs> Explained<'a, W> {
         step.given = seen.given;
         step.violations = seen.violations;
         step.notes = notes;
+        if seen.quiet == Some(true) {
+            return (
+                step,
+                ExplainedState {
+                    state: next,
+                    view: seen.view,
+                },
+            );
+        }
         let after = self.tables.view(seen.view);
         if after.open.is_empty() && after.marks.iter().all(|m| self.alive(m, &next)) {
             return (
@@ -1607,6 +1751,7 @@ impl<'a, W: Runs> Explained<'a, W> {
                 let at = seen.view as usize;
                 let after = || self.after(seen.view, &next, seen.failed, unsensed);
                 let read = |judged: &Arc<Judged>| (judged.0, judged.1.clone());
+                let kept = |judged: Arc<Judged>| Kept::judged(judged, &self.tables);
                 match (
                     key.as_slice(),
                     judged_flags(seen.failed, unsensed, &changed),
@@ -1616,13 +1761,13 @@ impl<'a, W: Runs> Explained<'a, W> {
                         READ_RECENTLY,
                         (self.serial, (at, flags, word)),
                         || {
-                            memo(
+                            kept(memo(
                                 &self.tables.judged,
                                 JudgedKey(at, seen.failed, unsensed, changed.clone(), key.clone()),
                                 after,
-                            )
+                            ))
                         },
-                        read,
+                        Kept::view_and_violations,
                     ),
                     _ => memo_read(
                         &self.tables.judged,
