@@ -151,8 +151,8 @@ pub trait Runs: Sync {
         None
     }
 
-    /// Whether the user sees any of `notes` ([`shown`]), when the runs know it without
-    /// reading them.
+    /// Whether the user sees any of `notes` (a request, a plan adopted, an action, a
+    /// failure), when the runs know it without reading them.
     fn shown(&self, _notes: &Self::Notes) -> Option<bool> {
         None
     }
@@ -933,7 +933,7 @@ struct Tables {
     /// number is read without them.
     views: boxcar::Vec<(u64, View)>,
     /// Per hash of a view, the numbers of the views of that hash.
-    numbers: [Mutex<HashMap<u64, SmallVec<[u32; 1]>, Quick>>; SHARDS],
+    numbers: [Mutex<ViewNumbers>; SHARDS],
     seen: Table<SeenKey, Seen>,
     judged: Table<JudgedKey, Judged>,
     /// Per action note (by address) and beliefs (by [`Runs::beliefs_key`]): Algorithm 2's
@@ -959,6 +959,10 @@ struct Tables {
     /// of the user's search; a view meets few renamings.
     renamed: [Mutex<RenamedViews>; SHARDS],
 }
+
+/// Per hash of a view, the numbers of the views of that hash (one shard of
+/// [`Tables::numbers`]).
+type ViewNumbers = HashMap<u64, SmallVec<[u32; 1]>, Quick>;
 
 /// Per view (by number) and renaming: the hash of the view renamed (one shard of
 /// [`Tables::renamed`]).
