@@ -996,9 +996,10 @@ type Table<K, V> = [Mutex<HashMap<K, Arc<V>, Quick>>; SHARDS];
 /// A view after a transition judged: the view (its number), and the violations found.
 type Judged = (u32, Vec<Violation>);
 
-/// A view after a transition's notes (by address; the view by number), whether they failed, whether the robot
-/// has yet to sense, whether each open explanation's context changed on the robot's
-/// beliefs after it, and its intentions after it (by [`Runs::intentions_key`]).
+/// A view (by number) after a transition's notes (by address), whether they failed,
+/// whether the robot has yet to sense, whether each open explanation's context changed on
+/// the robot's beliefs after it, and its intentions after it (by
+/// [`Runs::intentions_key`]).
 #[derive(PartialEq, Eq, Hash)]
 struct JudgedKey(usize, bool, bool, SmallVec<[bool; 4]>, SmallVec<[usize; 8]>);
 
@@ -1058,17 +1059,7 @@ impl Kept<Seen> {
     fn read_unless_due(&self) -> Result<SeenRead, SmallVec<[u32; 2]>> {
         match self {
             Kept::Whole(seen) => seen.read_unless_due(),
-            &Kept::Plain {
-                view,
-                failed,
-                quiet,
-            } => Ok(SeenRead {
-                view,
-                given: None,
-                violations: Vec::new(),
-                failed,
-                quiet: Some(quiet),
-            }),
+            Kept::Plain { .. } => Ok(self.read()),
         }
     }
 
