@@ -881,15 +881,16 @@ thread_local! {
     /// reads that memo at most transitions, and few of its entries at a time: 98.5% of
     /// the reads hit a table of 2^14 (5-cup kitchen), and the shared memo's lock, hashing
     /// and probe were a tenth of the search.
-    static SEEN_RECENTLY: Recently<(usize, usize), Kept<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
+    static SEEN_RECENTLY: Recently<(usize, usize), Kept> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::seen`]'s entries for notes of one word on which explanations were due, by
     /// view (number), word and the explanations' words ([`Explained::given_key`]: how
     /// many, then up to two). A fifth of a user's transitions on the kitchen take this
     /// path, and the shared memo's lock and probe of a key of two `SmallVec`s.
-    static DUE_RECENTLY: Recently<(usize, usize, [usize; 3]), Kept<Seen>> = const { std::cell::RefCell::new(Vec::new()) };
+    static DUE_RECENTLY: Recently<(usize, usize, [usize; 3]), Kept> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::judged`]'s entries for robot states of one intentions word, by view
-    /// (number), [`judged_flags`] and the word.
-    static JUDGED_RECENTLY: Recently<(usize, usize, usize), Kept<Judged>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// (number), [`judged_flags`] and the word: the view's number alone when the entry
+    /// finds no violation (read without following the pointer, as [`Kept`]), else the entry.
+    static JUDGED_RECENTLY: Recently<(usize, usize, usize), Result<u32, Arc<Judged>>> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::contents`]' entries, by action note (address).
     static CONTENTS_RECENTLY: Recently<usize, Arc<Option<(Explanation, LiteralAtoms)>>> = const { std::cell::RefCell::new(Vec::new()) };
 }
@@ -1025,12 +1026,12 @@ fn memo_read<K: Hash + Eq, V, R>(
     read(shard(table, hash).entry(key).or_insert(v))
 }
 
-/// A memo's entry as a thread's cache ([`recently`]) keeps it: most give no explanation
+/// A [`Seen`] as a thread's cache ([`recently`]) keeps it: most give no explanation
 /// and find no violation, and then the view's number (with the flags) is all a transition
 /// takes, read from the cache's slot instead of through a pointer to the entry (a line
 /// of the memo's, rarely in the cache: a dependent miss at most transitions).
 #[derive(Clone)]
-enum Kept<V> {
+enum Kept {
     /// The view after, whether a failure was among the notes, and whether that view has no
     /// open explanation and no mark (nothing to judge after the transition).
     Plain {
@@ -1039,12 +1040,12 @@ enum Kept<V> {
         quiet: bool,
     },
     /// Anything else.
-    Whole(Arc<V>),
+    Whole(Arc<Seen>),
 }
 
-impl Kept<Seen> {
+impl Kept {
     /// How a thread's cache keeps `seen`, a view after notes in `tables`.
-    fn seen(seen: Arc<Seen>, tables: &Tables) -> Kept<Seen> {
+    fn seen(seen: Arc<Seen>, tables: &Tables) -> Kept {
         match seen.given.is_none() && seen.violations.is_empty() && !seen.reads_beliefs {
             true => Kept::Plain {
                 view: seen.view,
@@ -1078,28 +1079,6 @@ impl Kept<Seen> {
                 failed,
                 quiet: Some(quiet),
             },
-        }
-    }
-}
-
-impl Kept<Judged> {
-    /// How a thread's cache keeps `judged`, a view judged in `tables`.
-    fn judged(judged: Arc<Judged>, tables: &Tables) -> Kept<Judged> {
-        match judged.1.is_empty() {
-            true => Kept::Plain {
-                view: judged.0,
-                failed: false,
-                quiet: tables.quiet(judged.0),
-            },
-            false => Kept::Whole(judged),
-        }
-    }
-
-    /// The view and the violations.
-    fn view_and_violations(&self) -> (u32, Vec<Violation>) {
-        match self {
-            Kept::Whole(judged) => (judged.0, judged.1.clone()),
-            &Kept::Plain { view, .. } => (view, Vec::new()),
         }
     }
 }
@@ -1746,7 +1725,6 @@ impl<'a, W: Runs> Explained<'a, W> {
                 let at = seen.view as usize;
                 let after = || self.after(seen.view, &next, seen.failed, unsensed);
                 let read = |judged: &Arc<Judged>| (judged.0, judged.1.clone());
-                let kept = |judged: Arc<Judged>| Kept::judged(judged, &self.tables);
                 match (
                     key.as_slice(),
                     judged_flags(seen.failed, unsensed, &changed),
@@ -1756,13 +1734,17 @@ impl<'a, W: Runs> Explained<'a, W> {
                         READ_RECENTLY,
                         (self.serial, (at, flags, word)),
                         || {
-                            kept(memo(
+                            let judged = memo(
                                 &self.tables.judged,
                                 JudgedKey(at, seen.failed, unsensed, changed.clone(), key.clone()),
                                 after,
-                            ))
+                            );
+                            match judged.1.is_empty() {
+                                true => Ok(judged.0),
+                                false => Err(judged),
+                            }
                         },
-                        Kept::view_and_violations,
+                        |kept| kept.as_ref().map_or_else(read, |&view| (view, Vec::new())),
                     ),
                     _ => memo_read(
                         &self.tables.judged,
