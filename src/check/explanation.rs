@@ -891,6 +891,9 @@ thread_local! {
     /// (number), [`judged_flags`] and the word: the view's number alone when the entry
     /// finds no violation (read without following the pointer, as [`Kept`]), else the entry.
     static JUDGED_RECENTLY: Recently<(usize, usize, usize), Result<u32, Arc<Judged>>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// Whether every mark of a view is of a frame still in the robot's intentions, by
+    /// view (number) and the robot's intentions of one word ([`Explained::marks_alive`]).
+    static ALIVE_RECENTLY: Recently<(u32, usize), bool> = const { std::cell::RefCell::new(Vec::new()) };
     /// [`Tables::contents`]' entries, by action note (address).
     static CONTENTS_RECENTLY: Recently<usize, Arc<Option<(Explanation, LiteralAtoms)>>> = const { std::cell::RefCell::new(Vec::new()) };
 }
@@ -1619,7 +1622,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             || (sensed.is_none()
                 && view.open.is_empty()
                 && !(self.runs.shown(&notes)).unwrap_or_else(|| notes.notes().any(shown))
-                && view.marks.iter().all(|m| self.alive(m, &next)));
+                && self.marks_alive((s.view, view), &next));
         if unseen {
             step.notes = notes;
             let view = s.view;
@@ -1702,7 +1705,7 @@ impl<'a, W: Runs> Explained<'a, W> {
             );
         }
         let after = self.tables.view(seen.view);
-        if after.open.is_empty() && after.marks.iter().all(|m| self.alive(m, &next)) {
+        if after.open.is_empty() && self.marks_alive((seen.view, after), &next) {
             return (
                 step,
                 ExplainedState {
@@ -1879,6 +1882,27 @@ impl<'a, W: Runs> Explained<'a, W> {
             failed,
             reads_beliefs,
             due,
+        }
+    }
+
+    /// Whether every mark of `view` (numbered `number`) is of a frame still on one of the
+    /// robot's intentions in `s` ([`Explained::alive`]).
+    fn marks_alive(&self, (number, view): (u32, &View), s: &W::State) -> bool {
+        if view.marks.is_empty() {
+            return true;
+        }
+        let all = || view.marks.iter().all(|m| self.alive(m, s));
+        match self.runs.intentions_key(s).as_deref() {
+            // Read on most of a user's transitions (perf: walking the intentions for each
+            // mark was 5% of the newcomer's search at 6 cups), for few distinct pairs.
+            Some(&[word]) => recently(
+                &ALIVE_RECENTLY,
+                READ_RECENTLY,
+                (self.serial, (number, word)),
+                all,
+                |&alive| alive,
+            ),
+            _ => all(),
         }
     }
 
@@ -2922,6 +2946,87 @@ mod tests {
             }
         }
         assert!(renamed.get() > 100, "{} renamed views", renamed.get());
+    }
+
+    /// Whether a view's marks are all alive in a state is read from the threads' cache by
+    /// the view's number and the robot's agenda: for views met on walks of the kitchen's
+    /// users' searches on its stored graph, each with states of the graph its marks may
+    /// be dead in, asked twice in turns for both users on one thread (one cache for
+    /// both), the cached answer is the one found by walking the intentions.
+    #[test]
+    fn marks_alive_are_remembered_per_view_and_agenda() {
+        use super::*;
+        use crate::check::search::{Conditions, Facts};
+        use crate::check::{agent_search, failures::Failures, model::Agent};
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
+        let project = crate::model::project::load_project(&root).expect("the kitchen loads");
+        let sem = Semantics::new(&project).expect("the semantics");
+        let compiled = Compiled::new(&sem).expect("a local library");
+        let agent = Agent {
+            sem: &sem,
+            symmetry: None,
+        };
+        let conditions = Conditions {
+            invariants: Vec::new(),
+            props: Vec::new(),
+            overlaps: Vec::new(),
+            runs: None,
+        };
+        let limits = Limits {
+            max_states: 1_000_000,
+            max_depth: 10_000,
+            timeout: None,
+        };
+        let mut stored = Stored::default();
+        let (graph, _, _) = agent_search(
+            &agent,
+            Some(&compiled),
+            &conditions,
+            (limits, &Options::default()),
+            (&mut Facts::default(), &[], &mut Failures::default()),
+            Some(&mut stored),
+            &mut |_, _, _| {},
+        );
+        let runs = AloneStored::new(&compiled, &stored, &graph).expect("every state held");
+        let ex = crate::explain::agent::Explainer::new(&project, &sem);
+        let users = crate::explain::agent::users(&project, None).expect("the users");
+        let models: Vec<_> = (users.iter())
+            .map(|user| Explained::watching(runs, &ex, user))
+            .collect();
+        // Per user, a state of each view met with marks.
+        let mut marked: Vec<BTreeMap<u32, ExplainedState<Node>>> = vec![BTreeMap::new(); 2];
+        for (k, model) in models.iter().enumerate() {
+            let mut seen = HashSet::new();
+            let mut queue: std::collections::VecDeque<_> = model.init_states().collect();
+            while let Some(s) = queue.pop_front() {
+                if seen.len() == 50_000 || !seen.insert(model.fingerprint(&s)) {
+                    continue;
+                }
+                if !model.view_of(&s).marks.is_empty() {
+                    marked[k].entry(s.view).or_insert_with(|| s.clone());
+                }
+                queue.extend(model.next_states(&s).into_iter().map(|(_, t)| t));
+            }
+        }
+        // Every 97th state of the graph, and each view's own state's successors.
+        let sample: Vec<u32> = (0..graph.len() as u32).step_by(97).collect();
+        let (mut asked, mut dead) = (0, 0);
+        for round in 0..2 {
+            for (k, model) in models.iter().enumerate() {
+                for (&number, s) in &marked[k] {
+                    let view = model.view_of(s);
+                    let nodes = (sample.iter().map(|&i| runs.node(i)))
+                        .chain(runs.successors(&s.state).into_iter().map(|(_, _, t)| t));
+                    for node in nodes {
+                        let direct = view.marks.iter().all(|m| model.alive(m, &node));
+                        assert_eq!(model.marks_alive((number, view), &node), direct, "{round}");
+                        asked += 1;
+                        dead += usize::from(!direct);
+                    }
+                }
+            }
+        }
+        assert!(asked > 1_000 && dead > 100, "{asked} asked, {dead} dead");
     }
 
     /// Under symmetry a user's search stores exactly one state per class: as many states
