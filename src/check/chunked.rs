@@ -144,6 +144,88 @@ impl<T> Default for Chunked<T> {
     }
 }
 
+/// Numbers by position, each in as few bytes as the largest so far needs (one, two or
+/// four): the numbers of a search's distinct letters or sets of pending requests, one per
+/// state, are most often below 2^8 or 2^16 (6-cup kitchen: 121 sets, tens of thousands of
+/// letters), and four bytes a state each was 328 MB of fresh memory, which this project's
+/// virtual machines fill at under 1 GB/s. A number too large for the width so far widens
+/// every number held, once.
+#[derive(Debug)]
+pub enum Narrow {
+    /// Every number below 2^8.
+    Bytes(Chunked<u8>),
+    /// Every number below 2^16.
+    Halves(Chunked<u16>),
+    /// Any number.
+    Words(Chunked<u32>),
+}
+
+impl Default for Narrow {
+    fn default() -> Narrow {
+        Narrow::Bytes(Chunked::default())
+    }
+}
+
+impl Narrow {
+    /// Number of numbers.
+    pub fn len(&self) -> usize {
+        match self {
+            Narrow::Bytes(c) => c.len(),
+            Narrow::Halves(c) => c.len(),
+            Narrow::Words(c) => c.len(),
+        }
+    }
+
+    /// Number `i` (panics past the end, as slices do).
+    #[inline]
+    pub fn get(&self, i: usize) -> u32 {
+        match self {
+            Narrow::Bytes(c) => u32::from(c.get(i)),
+            Narrow::Halves(c) => u32::from(c.get(i)),
+            Narrow::Words(c) => c.get(i),
+        }
+    }
+
+    /// Appends `x`; memory that cannot be had is [`OutOfMemory`].
+    #[inline]
+    pub fn push(&mut self, x: u32) -> Result<(), OutOfMemory> {
+        match self {
+            Narrow::Bytes(c) if x < 1 << 8 => c.push(x as u8),
+            Narrow::Halves(c) if x < 1 << 16 => c.push(x as u16),
+            Narrow::Words(c) => c.push(x),
+            _ => {
+                self.widen(x)?;
+                self.push(x)
+            }
+        }
+    }
+
+    /// Every number held again, in a width that holds `x` too.
+    #[cold]
+    #[inline(never)]
+    fn widen(&mut self, x: u32) -> Result<(), OutOfMemory> {
+        let numbers = (0..self.len()).map(|i| self.get(i));
+        let wider = match x < 1 << 16 {
+            true => {
+                let mut c = Chunked::default();
+                for n in numbers {
+                    c.push(n as u16)?;
+                }
+                Narrow::Halves(c)
+            }
+            false => {
+                let mut c = Chunked::default();
+                for n in numbers {
+                    c.push(n)?;
+                }
+                Narrow::Words(c)
+            }
+        };
+        *self = wider;
+        Ok(())
+    }
+}
+
 /// Chunk `k` holds the elements from `start(k)` on, `capacity(k)` of them: chunks 0 and 1
 /// hold `2^FIRST` each, chunk `k` up to `MAX - FIRST + 1` holds `2^(FIRST + k - 1)`, and
 /// every later one `2^MAX`.
@@ -505,6 +587,35 @@ mod tests {
             let last = next + capacity(k) - 1;
             assert_eq!(locate(last), (k, capacity(k) - 1));
             next = last + 1;
+        }
+    }
+
+    /// Narrow numbers read back as pushed, across both widenings (past the first chunk,
+    /// so that numbers held in several chunks are moved), in the narrowest width that
+    /// holds them all.
+    #[test]
+    fn narrow_numbers_read_back_as_pushed_in_the_least_width() {
+        let n = (1usize << FIRST) + 1_000;
+        let number = |i: usize, top: u32| (i as u32).wrapping_mul(2_654_435_761) % top;
+        let mut a = Narrow::default();
+        let mut pushed = Vec::new();
+        for (top, width) in [(256, 1), (65_536, 2), (u32::MAX, 4)] {
+            for i in 0..n {
+                let x = number(i, top);
+                a.push(x).unwrap();
+                pushed.push(x);
+            }
+            let got = match &a {
+                Narrow::Bytes(_) => 1,
+                Narrow::Halves(_) => 2,
+                Narrow::Words(_) => 4,
+            };
+            assert_eq!(got, width, "below {top}");
+            assert_eq!(a.len(), pushed.len());
+            assert!(
+                (0..pushed.len()).all(|i| a.get(i) == pushed[i]),
+                "below {top}"
+            );
         }
     }
 

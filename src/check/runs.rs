@@ -15,7 +15,7 @@
 
 use super::buchi::Buchi;
 use super::checker::Checker;
-use super::chunked::{Chunked, Lists};
+use super::chunked::{Chunked, Lists, Narrow};
 use super::model::AgentState;
 use super::search::{bit, set_bit};
 use super::store::OutOfMemory;
@@ -55,9 +55,10 @@ pub(crate) type StepLetters = HashMap<(u32, u32), Letter, crate::semantics::comp
 /// letter kept once (few differ: a search has far more states than letters).
 #[derive(Default)]
 pub(crate) struct Letters {
-    /// Per state: an index into `table`. In chunks that never move: a vector of millions
-    /// would be copied into fresh memory at each doubling.
-    pub(crate) ids: Chunked<u32>,
+    /// Per state: an index into `table`, in as few bytes as the indices need ([`Narrow`]),
+    /// in chunks that never move: a vector of millions would be copied into fresh memory at
+    /// each doubling.
+    pub(crate) ids: Narrow,
     /// The distinct letters.
     pub(crate) table: Vec<Letter>,
     /// The letters of more than one word, keyed with the quick hasher.
@@ -572,7 +573,7 @@ pub(crate) struct RunFacts<'a> {
     /// Whether a run may end in a state and stay there.
     pub(crate) may_end: &'a dyn Fn(u32) -> bool,
     /// Per state: an index into `letter_table`.
-    pub(crate) letters: &'a Chunked<u32>,
+    pub(crate) letters: &'a Narrow,
     pub(crate) letter_table: &'a [Letter],
     /// Per transition (source, position) that did a `did` action: those propositions.
     pub(crate) steps: &'a StepLetters,

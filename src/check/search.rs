@@ -199,9 +199,10 @@ pub(super) struct Facts {
     pub(super) first_fails: Vec<Option<u32>>,
     /// Bit per state: idle.
     pub(super) idle: Vec<u64>,
-    /// Per state: an index into `masks` (the requests pending there). In chunks that
-    /// never move: a vector of millions would be copied at each doubling.
-    pub(super) pending: super::chunked::Chunked<u32>,
+    /// Per state: an index into `masks` (the requests pending there), in as few bytes as
+    /// the indices need ([`super::chunked::Narrow`]), in chunks that never move: a vector
+    /// of millions would be copied at each doubling.
+    pub(super) pending: super::chunked::Narrow,
     pub(super) masks: Vec<u64>,
     /// Keyed with the quick hasher: the merging thread looks a mask up for most states
     /// (their parent's seldom has the same), and SipHash made that 3% of the search.
