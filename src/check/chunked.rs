@@ -177,7 +177,9 @@ impl Narrow {
     }
 
     /// Number `i` (panics past the end, as slices do).
-    #[inline]
+    // Always inlined, as `Chunked::get` is: out of line, it and `push` took 305 M
+    // instructions where the callers had taken 180 M inlined (cachegrind, 4 cups).
+    #[inline(always)]
     pub fn get(&self, i: usize) -> u32 {
         match self {
             Narrow::Bytes(c) => u32::from(c.get(i)),
@@ -187,23 +189,20 @@ impl Narrow {
     }
 
     /// Appends `x`; memory that cannot be had is [`OutOfMemory`].
-    #[inline]
+    #[inline(always)]
     pub fn push(&mut self, x: u32) -> Result<(), OutOfMemory> {
         match self {
             Narrow::Bytes(c) if x < 1 << 8 => c.push(x as u8),
             Narrow::Halves(c) if x < 1 << 16 => c.push(x as u16),
             Narrow::Words(c) => c.push(x),
-            _ => {
-                self.widen(x)?;
-                self.push(x)
-            }
+            _ => self.widen_and_push(x),
         }
     }
 
-    /// Every number held again, in a width that holds `x` too.
+    /// Every number held again in a width that holds `x` too, then `x` appended.
     #[cold]
     #[inline(never)]
-    fn widen(&mut self, x: u32) -> Result<(), OutOfMemory> {
+    fn widen_and_push(&mut self, x: u32) -> Result<(), OutOfMemory> {
         let numbers = (0..self.len()).map(|i| self.get(i));
         let wider = match x < 1 << 16 {
             true => {
@@ -222,7 +221,11 @@ impl Narrow {
             }
         };
         *self = wider;
-        Ok(())
+        match self {
+            Narrow::Halves(c) => c.push(x as u16),
+            Narrow::Words(c) => c.push(x),
+            Narrow::Bytes(_) => unreachable!("widened"),
+        }
     }
 }
 

@@ -614,6 +614,9 @@ impl RunGraph for Explored<'_, '_> {
     fn may_end(&self, i: u32) -> bool {
         (self.facts.may_end)(i)
     }
+    // Read for every node a product meets: out of line (once `Narrow` made it longer) it
+    // cost 5% more instructions than the products took inlined (cachegrind, 4 cups).
+    #[inline(always)]
     fn state_letter(&self, i: u32) -> u64 {
         match (i as usize) < self.facts.letters.len() {
             true => self.state_letters[self.facts.letters.get(i as usize) as usize],
