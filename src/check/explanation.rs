@@ -2956,8 +2956,7 @@ mod tests {
     #[test]
     fn marks_alive_are_remembered_per_view_and_agenda() {
         use super::*;
-        use crate::check::search::{Conditions, Facts};
-        use crate::check::{agent_search, failures::Failures, model::Agent};
+        use crate::check::{model::Agent, stored_search};
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("specs/kitchen");
         let project = crate::model::project::load_project(&root).expect("the kitchen loads");
         let sem = Semantics::new(&project).expect("the semantics");
@@ -2966,27 +2965,7 @@ mod tests {
             sem: &sem,
             symmetry: None,
         };
-        let conditions = Conditions {
-            invariants: Vec::new(),
-            props: Vec::new(),
-            overlaps: Vec::new(),
-            runs: None,
-        };
-        let limits = Limits {
-            max_states: 1_000_000,
-            max_depth: 10_000,
-            timeout: None,
-        };
-        let mut stored = Stored::default();
-        let (graph, _, _) = agent_search(
-            &agent,
-            Some(&compiled),
-            &conditions,
-            (limits, &Options::default()),
-            (&mut Facts::default(), &[], &mut Failures::default()),
-            Some(&mut stored),
-            &mut |_, _, _| {},
-        );
+        let (stored, graph) = stored_search(&agent, &compiled, 1);
         let runs = AloneStored::new(&compiled, &stored, &graph).expect("every state held");
         let ex = crate::explain::agent::Explainer::new(&project, &sem);
         let users = crate::explain::agent::users(&project, None).expect("the users");

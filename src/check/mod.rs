@@ -799,6 +799,43 @@ fn agent_search<'c>(
     }
 }
 
+/// The agent's exact, complete search on the compiled cycle (bounded at a million states)
+/// with its graph kept for the users' searches, as `verify` runs it, checking nothing
+/// else: the graph and the states and notes kept (tests).
+#[cfg(test)]
+fn stored_search<'c>(
+    agent: &'c Agent,
+    compiled: &'c Compiled,
+    threads: usize,
+) -> (explanation::Stored<'c>, explore::Graph) {
+    let conditions = Conditions {
+        invariants: Vec::new(),
+        props: Vec::new(),
+        overlaps: Vec::new(),
+        runs: None,
+    };
+    let limits = Limits {
+        max_states: 1_000_000,
+        max_depth: 10_000,
+        timeout: None,
+    };
+    let options = Options {
+        threads,
+        ..Options::default()
+    };
+    let mut stored = explanation::Stored::default();
+    let (graph, _, _) = agent_search(
+        agent,
+        Some(compiled),
+        &conditions,
+        (limits, &options),
+        (&mut Facts::default(), &[], &mut Failures::default()),
+        Some(&mut stored),
+        &mut |_, _, _| {},
+    );
+    (stored, graph)
+}
+
 impl Verification {
     /// The verification a search gave: its findings, statistics, bound and memory (no
     /// symmetry reduction said).
@@ -878,7 +915,7 @@ fn note_handled_gaps(
 
 #[cfg(test)]
 mod tests {
-    use super::explanation::{AloneStored, Runs, Stored};
+    use super::explanation::{AloneStored, Runs};
     use super::*;
     use crate::check::model::CycleNotes;
     use std::collections::{HashMap, VecDeque};
@@ -931,31 +968,7 @@ mod tests {
                 sem: &sem,
                 symmetry: None,
             };
-            let conditions = Conditions {
-                invariants: Vec::new(),
-                props: Vec::new(),
-                overlaps: Vec::new(),
-                runs: None,
-            };
-            let limits = Limits {
-                max_states: 1_000_000,
-                max_depth: 10_000,
-                timeout: None,
-            };
-            let options = Options {
-                threads: 2,
-                ..Options::default()
-            };
-            let mut stored = Stored::default();
-            let (graph, _, _) = agent_search(
-                &agent,
-                Some(&compiled),
-                &conditions,
-                (limits, &options),
-                (&mut Facts::default(), &[], &mut Failures::default()),
-                Some(&mut stored),
-                &mut |_, _, _| {},
-            );
+            let (stored, graph) = stored_search(&agent, &compiled, 2);
             assert!(graph.complete(), "{dir}");
             let runs = AloneStored::new(&compiled, &stored, &graph).expect("every state held");
             let mut met = HashMap::new();
