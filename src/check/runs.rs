@@ -65,7 +65,7 @@ pub(crate) struct Letters {
     index: HashMap<Letter, u32, crate::semantics::compiled::Quick>,
     /// Every one-word letter: open addressing by its word, each slot the word and its
     /// index plus one (0 when empty), at most half full. At 6 cups a direct-mapped table
-    /// of the recent ones missed one state in fifteen, and each miss hashed a letter
+    /// of the recent ones missed one state in eighteen, and each miss hashed a letter
     /// into `index` on the merging thread (perf: 4% of it).
     words: Vec<(u64, u32)>,
     /// The last letter's index: a state stored after another often has its letter.
