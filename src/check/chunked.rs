@@ -203,29 +203,22 @@ impl Narrow {
     #[cold]
     #[inline(never)]
     fn widen_and_push(&mut self, x: u32) -> Result<(), OutOfMemory> {
-        let numbers = (0..self.len()).map(|i| self.get(i));
-        let wider = match x < 1 << 16 {
-            true => {
-                let mut c = Chunked::default();
-                for n in numbers {
-                    c.push(n as u16)?;
-                }
-                Narrow::Halves(c)
+        fn copied<T: Copy>(
+            numbers: impl Iterator<Item = u32>,
+            narrow: impl Fn(u32) -> T,
+        ) -> Result<Chunked<T>, OutOfMemory> {
+            let mut c = Chunked::default();
+            for n in numbers {
+                c.push(narrow(n))?;
             }
-            false => {
-                let mut c = Chunked::default();
-                for n in numbers {
-                    c.push(n)?;
-                }
-                Narrow::Words(c)
-            }
-        };
-        *self = wider;
-        match self {
-            Narrow::Halves(c) => c.push(x as u16),
-            Narrow::Words(c) => c.push(x),
-            Narrow::Bytes(_) => unreachable!("widened"),
+            Ok(c)
         }
+        let numbers = (0..self.len()).map(|i| self.get(i)).chain([x]);
+        *self = match x < 1 << 16 {
+            true => Narrow::Halves(copied(numbers, |n| n as u16)?),
+            false => Narrow::Words(copied(numbers, |n| n)?),
+        };
+        Ok(())
     }
 }
 
