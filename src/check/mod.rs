@@ -41,6 +41,7 @@ mod chunked;
 mod explained_runs;
 mod failures;
 mod liveness;
+mod parents;
 use crate::semantics::recent;
 mod safety;
 mod search;

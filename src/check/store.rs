@@ -1,15 +1,16 @@
 //! The visited-state store: a fingerprint and a parent link per state, nothing else.
 //!
 //! States are numbered in the order they are found (breadth first, so by depth). The store
-//! keeps, per state, its 64-bit fingerprint (8 bytes) and its parent's number (4 bytes),
-//! plus one 5-byte slot of an open-addressing hash table that maps fingerprints to numbers
+//! keeps, per state, its 64-bit fingerprint (8 bytes) and its parent's number (about two
+//! bits in a breadth-first search, whose parents never decrease: `Parents`), plus one
+//! 5-byte slot of an open-addressing hash table that maps fingerprints to numbers
 //! (kept between 3/8 and 3/4 full, so 6.7 to 13.3 bytes per state; up to 7/8 when sized
 //! in advance, [`Store::with_room`]). A slot holds the
 //! state's number and the top byte of its fingerprint, so that probing past other states
-//! seldom reads their fingerprints (a cache miss each). The two arrays grow by chunks
-//! that never move (`Chunked`: copying them into fresh memory cost more than the search
-//! did with it), with less than one chunk (2^18 states) of slack: 19 to 29 bytes per state
-//! from a million states on. No state is kept: a state, or the run to it, is rebuilt by
+//! seldom reads their fingerprints (a cache miss each). The fingerprints and the parents'
+//! bits grow by chunks that never move (`Chunked`: copying them into fresh memory cost
+//! more than the search did with it), with less than one chunk (2^18 states) of slack: 15
+//! to 25 bytes per state from a million states on. No state is kept: a state, or the run to it, is rebuilt by
 //! replaying transitions from an initial state and following the fingerprints (as stateright does). Growth uses
 //! `try_reserve`, so running out of memory ends the search as `incomplete` instead of
 //! aborting the process.
@@ -17,7 +18,7 @@
 //! A search that will not rebuild a run (a user's explanation search that finds nothing
 //! to report) needs neither fingerprints by number nor parents: [`Store::fingerprints_only`]
 //! keeps one 8-byte slot per state in the table (the fingerprint itself) and counts the
-//! states: 9.1 to 18.3 bytes a state (7/16 to 7/8 full) instead of 19 to 29.
+//! states: 9.1 to 18.3 bytes a state (7/16 to 7/8 full) instead of 15 to 25.
 //!
 //! A user's search on the agent's stored graph meets states that are pairs (the user's
 //! view, the agent's state), fingerprinted exactly ([`pair_fingerprint`]). Its store
@@ -27,7 +28,7 @@
 //! nearly in that order, so most lookups read memory next to the last one's instead of a
 //! random slot of a gigabyte-sized table.
 
-/// Marks an empty hash-table slot, and "no parent".
+/// Marks an empty hash-table slot.
 const NONE: u32 = u32::MAX;
 
 /// What [`Store::lookup`] gives for a stored state in a store of fingerprints only.
@@ -56,6 +57,7 @@ fn number(s: &Slot) -> u32 {
 }
 
 use super::chunked::Chunked;
+use super::parents::Parents;
 use super::slots::Slots;
 use crate::semantics::compiled::mix;
 
@@ -152,7 +154,7 @@ const PREPARED: usize = 1 << 20;
 /// Fingerprints and parent links of the visited states.
 pub struct Store {
     fps: Chunked<u64>,
-    parent: Chunked<u32>,
+    parent: Parents,
     slots: Slots<Slot>,
     /// How full the table may be, in eighths of its slots, before it doubles.
     full: usize,
@@ -264,7 +266,7 @@ impl Default for Store {
     fn default() -> Store {
         Store {
             fps: Chunked::default(),
-            parent: Chunked::default(),
+            parent: Parents::default(),
             slots: Slots::default(),
             full: 6,
             only: None,
@@ -384,8 +386,7 @@ impl Store {
             self.numbered(),
             "a store of fingerprints only keeps no parents"
         );
-        let p = self.parent.get(i as usize);
-        (p != NONE).then_some(p)
+        self.parent.get(i as usize)
     }
 
     /// Whether a state with fingerprint `fp` is stored.
@@ -586,7 +587,7 @@ impl Store {
         }
         let i = self.fps.len() as u32;
         self.fps.push(fp)?;
-        if let Err(e) = self.parent.push(parent.unwrap_or(NONE)) {
+        if let Err(e) = self.parent.push(parent) {
             self.fps.pop();
             return Err(e);
         }
@@ -802,7 +803,7 @@ mod tests {
             assert!(!b.contains(fp(1 << 40)) && b.find(fp(1 << 40)).is_none());
             assert_eq!(b.insert(fp(3), None), Ok((UNNUMBERED, false)));
             // 8 bytes a slot, 7/16 to 7/8 full, no fingerprint or parent by number: at
-            // most 18.3 bytes a state (a numbered store: 19 to 29).
+            // most 18.3 bytes a state (a numbered store: 15 to 25).
             assert!(
                 b.bytes() * 10 <= b.len() * 183 + 1024 * 80,
                 "{room}: {}",
