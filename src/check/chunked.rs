@@ -146,11 +146,11 @@ impl<T> Default for Chunked<T> {
 
 /// Numbers by position, each in as few bytes as the largest so far needs (one, two or
 /// four): the numbers of a search's distinct letters or sets of pending requests, one per
-/// state, and of its transitions' distinct notes, one per transition, are most often below
-/// 2^8 or 2^16 (6-cup kitchen: 121 sets, tens of thousands of letters and of notes), and
-/// four bytes a state each was 328 MB of fresh memory (the notes' 287 MB), which this
-/// project's virtual machines fill at under 1 GB/s. A number too large for the width so far widens
-/// every number held, once.
+/// state, and of its transitions' distinct notes, one per transition, are most often
+/// below 2^8 or 2^16 (6-cup kitchen: 121 sets, tens of thousands of letters, fewer than
+/// 2^16 notes), and four bytes a state each was 328 MB of fresh memory (the notes' 287
+/// MB), which this project's virtual machines fill at under 1 GB/s. A number too large
+/// for the width so far widens every number held, once.
 #[derive(Debug)]
 pub enum Narrow {
     /// Every number below 2^8.
