@@ -81,6 +81,20 @@ impl Rising {
         if p < self.last || self.ones == u32::MAX {
             return Ok(false);
         }
+        // A push that runs out of memory partway leaves the bits as they were: the search
+        // may store more states after it (the job's other successors).
+        let mark = self.mark();
+        if let Err(e) = self.place(p) {
+            self.undo_to(mark);
+            return Err(e);
+        }
+        self.ones += 1;
+        self.last = p;
+        Ok(true)
+    }
+
+    /// The one of `p` placed after its gap of zeros (the counts not yet updated).
+    fn place(&mut self, p: u32) -> Result<(), OutOfMemory> {
         // The zeros: whole words of them, then the rest of the gap in this word.
         let mut gap = u64::from(p - self.last);
         while u64::from(self.used) + gap >= 64 {
@@ -98,9 +112,24 @@ impl Rising {
             self.words.push(std::mem::take(&mut self.word))?;
             self.used = 0;
         }
-        self.ones += 1;
-        self.last = p;
-        Ok(true)
+        Ok(())
+    }
+
+    /// What [`Rising::undo_to`] goes back to: the words and samples held, and the word
+    /// being filled.
+    fn mark(&self) -> (usize, usize, u64, u32) {
+        (self.words.len(), self.samples.len(), self.word, self.used)
+    }
+
+    /// The bits as they were at `mark`, what [`Rising::place`] did since taken back.
+    fn undo_to(&mut self, (words, samples, word, used): (usize, usize, u64, u32)) {
+        while self.words.len() > words {
+            self.words.pop();
+        }
+        while self.samples.len() > samples {
+            self.samples.pop();
+        }
+        (self.word, self.used) = (word, used);
     }
 
     /// Link `i` (below [`Rising::len`]).
@@ -242,6 +271,26 @@ mod tests {
             assert!(!a.rising());
             check(&a, &links);
         }
+        // A link placed, then taken back (as a push that ran out of memory partway is),
+        // leaves the bits as they were: a jump past several words, at a sampled one.
+        let mut c = Parents::default();
+        let mut held = Vec::new();
+        for k in 0..(1u32 << SAMPLE) {
+            c.push(Some(k / 2)).unwrap();
+            held.push(Some(k / 2));
+        }
+        let Parents::Rising(r) = &mut c else {
+            unreachable!("rising links")
+        };
+        let mark = r.mark();
+        r.place(r.last + 700).unwrap();
+        r.undo_to(mark);
+        for p in [r.last + 3, r.last + 300] {
+            c.push(Some(p)).unwrap();
+            held.push(Some(p));
+        }
+        assert!(c.rising());
+        check(&c, &held);
         // A `None` after a number also ends the bits.
         let mut b = Parents::default();
         for l in [None, Some(0), Some(0), None] {
