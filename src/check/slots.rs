@@ -15,7 +15,8 @@
 //!
 //! For the same reason a thread may keep the largest table it drops ([`keep_a_freed_table`])
 //! for the next slots it makes that fit in it ([`Slots::in_kept`]): the agent's table,
-//! dropped when its search ends, is the first user's array by place.
+//! dropped when its search ends, is the first user's array by place, and a user's array,
+//! dropped when its search ends, the index of the `ltl` products run next on its thread.
 
 use super::store::OutOfMemory;
 
@@ -40,6 +41,8 @@ struct Mapping<T> {
     base: *mut T,
     usable: usize,
     len: usize,
+    /// Whether its pages are left small ([`Slots::small`]) instead of advised huge.
+    small: bool,
 }
 
 // SAFETY: a `Mapping` owns its memory as a `Vec` does; nothing else points into it.
@@ -163,9 +166,33 @@ impl<T: Copy> Slots<T> {
         Slots { mem: Mem::Heap(v) }
     }
 
+    /// `len` slots, each `empty`, in fresh memory of small pages that a thread keeping
+    /// freed tables keeps when they are dropped ([`Keeping`]; slots on the heap are not
+    /// kept); `None` where that cannot be had. For slots read nearly in order, which need
+    /// no huge pages (their first write costs several times a small page's here).
+    pub(super) fn small(len: usize, empty: T) -> Option<Slots<T>> {
+        #[cfg(target_os = "linux")]
+        {
+            let mut m = Mapping::reserve()?;
+            m.small = true;
+            m.resize(len).ok()?;
+            let mut s = Slots {
+                mem: Mem::Mapped(m),
+            };
+            s.fill(empty);
+            Some(s)
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            let _ = (len, empty);
+            None
+        }
+    }
+
     /// `len` slots, each `empty`, in the memory of the table kept ([`keep_a_freed_table`])
-    /// if there is one that large: it is then no longer kept, and nothing more will be.
-    /// Its memory beyond the slots, in whole huge pages, is given back.
+    /// if there is one that large: it is then no longer kept (while this thread keeps, the
+    /// next table it drops may be). Its memory beyond the slots, in whole huge pages, is
+    /// given back.
     pub(super) fn in_kept(len: usize, empty: T) -> Option<Slots<T>> {
         #[cfg(target_os = "linux")]
         {
@@ -174,7 +201,6 @@ impl<T: Copy> Slots<T> {
                 if bytes == 0 || k.1.as_ref().is_none_or(|kept| kept.usable < bytes) {
                     return None;
                 }
-                k.0 = false;
                 k.1.take()
             })?;
             // The reservation is the table's from here on (its `Mapping` gives it back).
@@ -196,6 +222,7 @@ impl<T: Copy> Slots<T> {
                     base: kept.base as *mut T,
                     usable,
                     len,
+                    small: false,
                 }),
             };
             s.fill(empty);
@@ -305,6 +332,7 @@ impl<T> Mapping<T> {
             base,
             usable: 0,
             len: 0,
+            small: false,
         })
     }
 
@@ -328,7 +356,11 @@ impl<T> Mapping<T> {
             return Ok(None);
         }
         // Whole huge pages once past the first: a small table keeps small pages.
-        let usable = bytes.next_multiple_of(if bytes < HUGE { page() } else { HUGE });
+        let usable = bytes.next_multiple_of(if bytes < HUGE || self.small {
+            page()
+        } else {
+            HUGE
+        });
         // SAFETY: within the reservation; the part made usable is not ours yet.
         let (from, more) = (
             unsafe { self.base.cast::<u8>().add(self.usable) },
@@ -341,8 +373,10 @@ impl<T> Mapping<T> {
         }
         // Read at random: huge pages spare the processor's TLB a miss per lookup
         // (a hint; see `store::huge_pages`).
-        // SAFETY: advice about our own pages, before they are first written.
-        unsafe { libc::madvise(from.cast(), more, libc::MADV_HUGEPAGE) };
+        if !self.small {
+            // SAFETY: advice about our own pages, before they are first written.
+            unsafe { libc::madvise(from.cast(), more, libc::MADV_HUGEPAGE) };
+        }
         self.usable = usable;
         Ok(Some((from.cast_const(), more)))
     }
@@ -438,7 +472,7 @@ mod tests {
     }
 
     /// While this thread keeps a freed table, the largest table it drops is the memory of
-    /// its next `in_kept` slots that fit in it, once; otherwise nothing is kept.
+    /// its next `in_kept` slots that fit in it, once each; otherwise nothing is kept.
     #[test]
     #[cfg(target_os = "linux")]
     fn a_table_dropped_while_keeping_is_the_memory_of_the_next_slots_in_kept() {
@@ -462,11 +496,23 @@ mod tests {
         assert!(s.iter().all(|&x| x == 7));
         // The memory past the slots, in whole huge pages, is given back.
         assert_eq!(s.bytes(), HUGE);
-        // Kept once: the next table dropped is given back.
-        drop(Slots::new(1 << 20, [0xffu8; 5]));
-        assert!(Slots::<u16>::in_kept(16, 0).is_none(), "kept once");
-        drop(keeping);
+        assert!(Slots::<u16>::in_kept(16, 0).is_none(), "taken once");
+        // Still keeping: slots made in kept memory, or fresh small ones, are kept in turn
+        // when dropped (a user's array by place, then the products' index).
+        let small = Slots::<u32>::small(1 << 20, 9).expect("a reservation");
+        assert!(small.iter().all(|&x| x == 9) && small.len() == 1 << 20);
+        let small_base = small.as_ptr() as usize;
         drop(s);
+        drop(small);
+        let again = Slots::<u32>::in_kept(1 << 18, 4).expect("the larger one dropped");
+        assert_eq!(again.as_ptr() as usize, small_base);
+        assert!(again.iter().all(|&x| x == 4));
+        drop(keeping);
+        assert!(
+            Slots::<u16>::in_kept(16, 0).is_none(),
+            "given back when keeping stops"
+        );
+        drop(again);
         // Stopping gives back what is kept.
         let keeping = Keeping::start();
         drop(Slots::new(1 << 10, 0u64));

@@ -332,8 +332,10 @@ impl Store {
             // fresh memory of small pages: read nearly in order, it needs no huge pages,
             // whose first write cost several times a small page's in this project's
             // virtual machines (`slots`); huge pages spare TLB misses to lookups at random.
+            // Either is kept when dropped by a thread that keeps freed tables, for the
+            // `ltl` products that run next on it (`runs::Scratch::head`).
             let n = places.min(u32::MAX as usize) * PER_PLACE;
-            f.first = Slots::in_kept(n, 0)
+            f.first = (Slots::in_kept(n, 0).or_else(|| Slots::small(n, 0)))
                 .unwrap_or_else(|| Slots::from_vec(table(n, 0, false).unwrap_or_default()));
         }
         s
