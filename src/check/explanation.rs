@@ -675,6 +675,7 @@ pub struct Node<'c> {
     graph: PhantomData<&'c Part<Base>>,
 }
 
+// A packed struct's fields are copied out before use: a reference to one may be unaligned.
 impl PartialEq for Node<'_> {
     fn eq(&self, o: &Node<'_>) -> bool {
         let (a, b) = (self.index, o.index);
@@ -862,10 +863,8 @@ impl<'g, 'c> Runs for AloneStored<'g, 'c, '_, '_> {
     }
 
     fn intentions_key(&self, s: &Node<'c>) -> Option<SmallVec<[usize; 8]>> {
-        Some(smallvec::smallvec![self
-            .stored
-            .words
-            .agenda_key(self.split(s).1)])
+        let (_, rest) = self.split(s);
+        Some(smallvec::smallvec![self.stored.words.agenda_key(rest)])
     }
 
     fn fingerprint_numbered(&self, s: &Node<'c>, view: u64) -> Option<u64> {
