@@ -19,7 +19,7 @@ use super::chunked::{Chunked, Lists, Narrow};
 use super::model::AgentState;
 use super::search::{bit, set_bit};
 use super::slots::Slots;
-use super::store::{table, OutOfMemory};
+use super::store::OutOfMemory;
 use crate::findings::{Finding, Status};
 use crate::model::ltl::Ltl;
 use crate::model::property::{Atomic, Atomics, RunProperty};
@@ -724,17 +724,14 @@ pub(crate) struct Scratch {
     head: Slots<u32>,
 }
 
-/// `head` made `n` entries, each `u32::MAX`: in the memory of the table this thread last
-/// dropped and kept ([`Slots::in_kept`]; the products run on a user's search's thread after
-/// it, in the memory of its array by place), else in fresh memory. At 6 cups `head` is
-/// 262 MB, which fresh costs this project's virtual machines about a CPU-second to clear.
+/// `head` made `n` entries, each `u32::MAX`, in the memory of the table this thread last
+/// dropped and kept where it can ([`Slots::reused_or_fresh`]: the products run on a user's
+/// search's thread after it, in the memory of its array by place). At 6 cups `head` is
+/// 262 MB.
 fn fresh_head(head: &mut Slots<u32>, n: usize) -> Result<(), OutOfMemory> {
     // The old one first: it may be the memory kept.
     *head = Slots::default();
-    *head = match Slots::in_kept(n, u32::MAX) {
-        Some(kept) => kept,
-        None => Slots::from_vec(table(n, u32::MAX, false)?),
-    };
+    *head = Slots::reused_or_fresh(n, u32::MAX)?;
     Ok(())
 }
 

@@ -335,8 +335,7 @@ impl Store {
             // Either is kept when dropped by a thread that keeps freed tables, for the
             // `ltl` products that run next on it (`runs::Scratch::head`).
             let n = places.min(u32::MAX as usize) * PER_PLACE;
-            f.first = (Slots::in_kept(n, 0).or_else(|| Slots::small(n, 0)))
-                .unwrap_or_else(|| Slots::from_vec(table(n, 0, false).unwrap_or_default()));
+            f.first = Slots::reused_or_fresh(n, 0).unwrap_or_default();
         }
         s
     }
