@@ -521,8 +521,12 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
 /// ([`NoteIds`]).
 #[derive(Default)]
 pub struct Stored<'c> {
-    /// The states in the graph's order, as [`Stored::words`] made them.
-    states: Chunked<u64>,
+    /// The states in the graph's order, as [`Stored::words`] made them, while the search
+    /// adds them.
+    building: Chunked<u64>,
+    /// The same once the search is over ([`Stored::finish`]), shared with what gives the
+    /// graph's fingerprints from them ([`Stored::fingerprints`]).
+    states: Arc<Chunked<u64>>,
     words: Words<'c>,
     /// Per transition, state by state in the graph's order, its notes' number: a state's
     /// begin where its edges do ([`Graph::first_transition`]). Held in two bytes each
@@ -549,7 +553,7 @@ impl<'c> Stored<'c> {
             return;
         };
         let held = || -> Result<(), OutOfMemory> {
-            self.states.push(word)?;
+            self.building.push(word)?;
             for n in notes {
                 self.notes.push(n)?;
             }
@@ -562,6 +566,7 @@ impl<'c> Stored<'c> {
 
     /// The notes `ids` numbered, held from now on.
     pub fn finish(&mut self, ids: NoteIds<'c>) {
+        self.states = Arc::new(std::mem::take(&mut self.building));
         self.broken |= ids.full.into_inner();
         self.distinct = (ids.shards.into_iter())
             .map(|s| {
@@ -582,6 +587,17 @@ impl<'c> Stored<'c> {
             && graph.complete()
             && self.states.len() == graph.len()
             && graph.kept_transitions() == Some(self.notes.len() as u64)
+    }
+
+    /// What gives the fingerprint of the graph's state `i` from its word, once the search
+    /// is over ([`Stored::finish`]), `compiled` being the cycle it ran: the graph's store
+    /// need not keep them then ([`Graph::derive_fingerprints`]).
+    pub fn fingerprints(&self, compiled: &Compiled<'_, '_>) -> crate::check::store::Derived {
+        let (states, hashes) = (Arc::clone(&self.states), self.words.hashes(compiled));
+        Box::new(move |i| {
+            (hashes.fingerprint(states.get(i as usize)))
+                .expect("a stored state's word is one its words made")
+        })
     }
 
     /// The notes numbered `id`, and whether the user sees any of them.

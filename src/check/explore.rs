@@ -988,6 +988,18 @@ impl<S> Graph<S> {
         self.store.fingerprint(i)
     }
 
+    /// Frees the fingerprints kept by number once the search is over, if `derived` gives
+    /// them alike ([`Store::derive_fingerprints`]); whether it did.
+    pub fn derive_fingerprints(&mut self, derived: super::store::Derived) -> bool {
+        self.store.derive_fingerprints(derived)
+    }
+
+    /// Whether the fingerprints are derived rather than kept
+    /// ([`Graph::derive_fingerprints`]).
+    pub fn fingerprints_derived(&self) -> bool {
+        self.store.derived()
+    }
+
     /// The state `i` was first reached from.
     pub fn parent(&self, i: u32) -> Option<u32> {
         self.store.parent(i)

@@ -161,7 +161,15 @@ pub struct Store {
     /// The fingerprints alone, when the store keeps no numbers ([`Store::fingerprints_only`]):
     /// `fps`, `parent` and `slots` then stay empty.
     only: Option<Fingerprints>,
+    /// Once the search is over, when the fingerprints can be had otherwise
+    /// ([`Store::derive_fingerprints`]): how many states there are, and what gives state
+    /// `i`'s fingerprint; `fps` is then empty.
+    derived: Option<(usize, Derived)>,
 }
+
+/// What gives a stored state's fingerprint by its number, owning what it reads
+/// ([`Store::derive_fingerprints`]).
+pub type Derived = Box<dyn Fn(u32) -> u64 + Send + Sync>;
 
 /// A set of fingerprints: an open-addressing table of the fingerprints themselves (0 marks
 /// an empty slot, so fingerprint 0 is kept apart), and how many there are; when they are
@@ -270,6 +278,7 @@ impl Default for Store {
             slots: Slots::default(),
             full: 6,
             only: None,
+            derived: None,
         }
     }
 }
@@ -363,7 +372,11 @@ impl Store {
 
     /// Number of states stored.
     pub fn len(&self) -> usize {
-        self.only.as_ref().map_or(self.fps.len(), |f| f.len)
+        match (&self.only, &self.derived) {
+            (Some(f), _) => f.len,
+            (None, Some((len, _))) => *len,
+            (None, None) => self.fps.len(),
+        }
     }
 
     /// Whether nothing is stored.
@@ -377,7 +390,43 @@ impl Store {
             self.numbered(),
             "a store of fingerprints only keeps no numbers"
         );
-        self.fps.get(i as usize)
+        match &self.derived {
+            Some((len, derived)) => {
+                assert!((i as usize) < *len, "state {i} of {len}");
+                derived(i)
+            }
+            None => self.fps.get(i as usize),
+        }
+    }
+
+    /// Whether the fingerprints are derived ([`Store::derive_fingerprints`]).
+    pub fn derived(&self) -> bool {
+        self.derived.is_some()
+    }
+
+    /// Frees the fingerprints kept by number (and the hash table: no state is looked up
+    /// any more), once the search is over, if `derived` gives state `i`'s fingerprint as
+    /// the store kept it on a sample of about a thousand states (the first and last
+    /// among them): 8 bytes a state that the searches after this one need only for the
+    /// few runs they replay. Whether it did (if not, nothing changed).
+    pub fn derive_fingerprints(&mut self, derived: Derived) -> bool {
+        assert!(
+            self.numbered(),
+            "a store of fingerprints only keeps no numbers"
+        );
+        let len = self.len();
+        let step = len / 1024 + 1;
+        let sample = (0..len).step_by(step).chain(len.checked_sub(1));
+        if !sample
+            .into_iter()
+            .all(|i| derived(i as u32) == self.fps.get(i))
+        {
+            return false;
+        }
+        self.drop_index();
+        self.derived = Some((len, derived));
+        std::mem::take(&mut self.fps).give_back();
+        true
     }
 
     /// The state `i` was first reached from (`None` for an initial state), in a store
@@ -583,6 +632,10 @@ impl Store {
 
     /// Appends a state's fingerprint and parent (not yet in the table): its number.
     fn push(&mut self, fp: u64, parent: Option<u32>) -> Result<u32, OutOfMemory> {
+        debug_assert!(
+            self.derived.is_none(),
+            "no state is added once the search is over"
+        );
         if self.fps.len() >= NONE as usize - 1 {
             return Err(OutOfMemory);
         }
@@ -811,6 +864,32 @@ mod tests {
                 b.bytes()
             );
         }
+    }
+
+    /// Fingerprints given by a function instead of kept: only one that agrees with the
+    /// kept ones on the sample replaces them; the states keep their numbers and parents,
+    /// and nothing is looked up any more.
+    #[test]
+    fn fingerprints_are_derived_only_alike() {
+        let fp = |k: u64| k.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ 5;
+        let mut s = Store::new();
+        for k in 0..50_000u64 {
+            s.insert(fp(k), k.checked_sub(1).map(|p| p as u32))
+                .expect("room");
+        }
+        // Wrong on one state: the last, or one of the sampled in between.
+        for wrong in [49_999, 49 * 1_000] {
+            let derived = Box::new(move |i: u32| fp(u64::from(i)) ^ u64::from(i == wrong));
+            assert!(!s.derive_fingerprints(derived), "{wrong}");
+            assert!(!s.derived() && s.find(fp(7)) == Some(7));
+        }
+        assert!(s.derive_fingerprints(Box::new(move |i| fp(u64::from(i)))));
+        assert!(s.derived() && s.fps.len() == 0 && s.slots.is_empty());
+        assert_eq!(
+            (s.len(), s.fingerprint(49_999), s.parent(77)),
+            (50_000, fp(49_999), Some(76))
+        );
+        assert_eq!(s.find(fp(7)), None);
     }
 
     #[test]

@@ -796,6 +796,92 @@ impl<'c> Words<'c> {
     pub fn numbered(&self) -> usize {
         self.rest.len()
     }
+
+    /// The fingerprints of the states this value made words of, from the words alone
+    /// ([`WordHashes`]), `compiled` being the cycle whose parts they hold.
+    pub fn hashes(&self, compiled: &Compiled<'_, '_>) -> WordHashes {
+        let mut bases = Vec::with_capacity(compiled.beliefs.len());
+        for shard in &compiled.beliefs.shards {
+            let shard = lock(shard);
+            bases.extend(shard.iter().map(|b| {
+                let address = (&**b as *const Part<Base>).addr() as u64;
+                (address >> 3, b.hash)
+            }));
+        }
+        bases.sort_unstable();
+        let rest = (self.rest.iter())
+            .map(|(agenda, requested)| {
+                let a = &agenda.value;
+                RestHashes {
+                    events: a.events().iter().map(|e| e.hash).collect(),
+                    intentions: a.intentions().iter().map(|i| i.hash).collect(),
+                    pending: a.pending().map(|p| p.hash),
+                    requested: *requested,
+                }
+            })
+            .collect();
+        WordHashes { bases, rest }
+    }
+}
+
+/// The fingerprints of [`Words`] words, with nothing borrowed: the belief bases' hashes
+/// by address and the hashes of the agendas' parts by number. A graph whose states are
+/// held as words need not keep 8 bytes a state of fingerprints too (525 MB at 6 cups):
+/// the few it reads after its search (to replay a run) come from here.
+pub struct WordHashes {
+    /// Every belief base's address (shifted as in a word) and hash, by address.
+    bases: Vec<(u64, u64)>,
+    /// By number, the hashes of the agenda's parts, and the requests.
+    rest: Vec<RestHashes>,
+}
+
+/// What a state's fingerprint reads of its agenda and requests ([`WordHashes`]).
+struct RestHashes {
+    events: Box<[u64]>,
+    intentions: Box<[u64]>,
+    pending: Option<u64>,
+    requested: u64,
+}
+
+impl WordHashes {
+    /// The fingerprint of the state whose word is `word` (as [`part_hash`] of its
+    /// [`Packed`] state), or `None` for a word of no state of the [`Words`] this came from.
+    pub fn fingerprint(&self, word: u64) -> Option<u64> {
+        let address = word & ((1 << ADDRESS_BITS) - 1);
+        let at = (self.bases).binary_search_by_key(&address, |b| b.0).ok()?;
+        let rest = self.rest.get(usize::try_from(word >> ADDRESS_BITS).ok()?)?;
+        Some(part_hash(&Reborn(self.bases[at].1, rest)))
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        let rest: usize = (self.rest.iter())
+            .map(|r| std::mem::size_of::<RestHashes>() + 8 * (r.events.len() + r.intentions.len()))
+            .sum();
+        self.bases.capacity() * 16 + rest
+    }
+}
+
+/// A state's hash from its belief base's hash and its agenda's ([`WordHashes`]): fed as
+/// [`Packed`]'s `Hash` feeds it.
+struct Reborn<'a>(u64, &'a RestHashes);
+
+impl Hash for Reborn<'_> {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        let r = self.1;
+        hash_parts(
+            h,
+            self.0,
+            r.events.iter().copied(),
+            r.intentions.iter().copied(),
+            r.pending,
+            std::iter::empty(),
+            r.requested,
+            None,
+            None,
+            false,
+        );
+    }
 }
 
 /// What a transition of the compiled search did: the notes of its phases, shared with
