@@ -60,7 +60,7 @@ use crate::model::atoms::{AtomId, AtomSet};
 use crate::model::plans::BodyStep;
 use crate::model::project::Project;
 use crate::model::term::Term;
-use crate::semantics::compiled::{mix, Base, Part, Quick, Words};
+use crate::semantics::compiled::{mix, Base, Part, Quick, ShortWords, Words};
 use crate::semantics::{
     Compiled, Intention, Note, Notes, Origin, Packed, Semantics, State, System, SystemState,
 };
@@ -516,17 +516,17 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
 /// The agent's graph as its exact, complete search stored it on the compiled cycle: every
 /// state, and the notes of each of its transitions in the graph's order. A user's search
 /// then follows the stored transitions ([`AloneStored`]) instead of running the cycle
-/// again: a user meets each agent state once per view it may have there. About 13 bytes
-/// a state: the state in a word ([`Words`]), and a number per transition for its notes
-/// ([`NoteIds`]).
+/// again: a user meets each agent state once per view it may have there. About 8 bytes
+/// a state: the state in a word of 6 bytes ([`Words`], [`StateWords`]), and a number per
+/// transition for its notes ([`NoteIds`]).
 #[derive(Default)]
 pub struct Stored<'c> {
     /// The states in the graph's order, as [`Stored::words`] made them, while the search
     /// adds them.
-    building: Chunked<u64>,
+    building: StateWords,
     /// The same once the search is over ([`Stored::finish`]), shared with what gives the
     /// graph's fingerprints from them ([`Stored::fingerprints`]).
-    states: Arc<Chunked<u64>>,
+    states: Arc<StateWords>,
     words: Words<'c>,
     /// Per transition, state by state in the graph's order, its notes' number: a state's
     /// begin where its edges do ([`Graph::first_transition`]). Held in two bytes each
@@ -603,6 +603,78 @@ impl<'c> Stored<'c> {
     /// The notes numbered `id`, and whether the user sees any of them.
     fn notes(&self, id: u32) -> &(Notes<'c>, bool) {
         &self.distinct[id as usize % SHARDS][id as usize / SHARDS]
+    }
+}
+
+/// The words of a graph's states ([`Words::word`]) in its order: in 6 bytes each
+/// ([`ShortWords`]) while every one fits, else all in 8 (widened once).
+enum StateWords {
+    Short(ShortWords, Chunked<[u16; 3]>),
+    Long(Chunked<u64>),
+}
+
+impl Default for StateWords {
+    fn default() -> StateWords {
+        StateWords::Long(Chunked::default())
+    }
+}
+
+/// A 48-bit number in three halves, and back.
+fn halves(x: u64) -> [u16; 3] {
+    [x as u16, (x >> 16) as u16, (x >> 32) as u16]
+}
+
+fn unhalves([a, b, c]: [u16; 3]) -> u64 {
+    u64::from(a) | u64::from(b) << 16 | u64::from(c) << 32
+}
+
+impl StateWords {
+    /// Appends `word`.
+    fn push(&mut self, word: u64) -> Result<(), OutOfMemory> {
+        match self {
+            StateWords::Long(held) if held.len() == 0 => {
+                *self = StateWords::Short(ShortWords::around(word), Chunked::default());
+                self.push(word)
+            }
+            StateWords::Long(held) => held.push(word),
+            StateWords::Short(short, held) => match short.short(word) {
+                Some(x) => held.push(halves(x)),
+                None => {
+                    let mut long = Chunked::default();
+                    for x in held.iter() {
+                        long.push(short.long(unhalves(x)))?;
+                    }
+                    long.push(word)?;
+                    *self = StateWords::Long(long);
+                    Ok(())
+                }
+            },
+        }
+    }
+
+    /// Word `i`.
+    #[inline]
+    fn get(&self, i: usize) -> u64 {
+        match self {
+            StateWords::Short(short, held) => short.long(unhalves(held.get(i))),
+            StateWords::Long(held) => held.get(i),
+        }
+    }
+
+    /// Asks for word `i` to be brought into the cache.
+    #[inline]
+    fn prefetch(&self, i: usize) {
+        match self {
+            StateWords::Short(_, held) => held.prefetch(i),
+            StateWords::Long(held) => held.prefetch(i),
+        }
+    }
+
+    fn len(&self) -> usize {
+        match self {
+            StateWords::Short(_, held) => held.len(),
+            StateWords::Long(held) => held.len(),
+        }
     }
 }
 
@@ -2927,6 +2999,40 @@ fn verify_runs<W: Runs + Clone>(
 
 #[cfg(test)]
 mod tests {
+    /// A graph's words are held in 6 bytes while each fits, and all in 8 from the first
+    /// that does not (a belief base more than 16 GiB below the first one's, or an agenda
+    /// numbered 2^16): either way, each is read back as it was pushed.
+    #[test]
+    fn state_words_are_short_until_one_is_not() {
+        // A word: the belief base's address divided by 8, and the agenda's number above
+        // its 44 bits (`Words::word`).
+        let word = |address: u64, rest: u64| address >> 3 | rest << 44;
+        let first = 0x7f12_3456_7000;
+        let words: Vec<u64> = (0..300_000u64)
+            .map(|k| word(first + (k * 13_331 % (1 << 30)) * 8, k % 9_000))
+            .collect();
+        for (extra, short) in [
+            (word(first + (1 << 33), 65_535), true),
+            (word(first - (1 << 33), 3), true),
+            (word(first - (1 << 34) - 8, 3), false),
+            (word(first, 1 << 16), false),
+        ] {
+            let mut held = super::StateWords::default();
+            for &w in words.iter().chain([&extra]) {
+                held.push(w).expect("memory");
+            }
+            assert_eq!(
+                matches!(held, super::StateWords::Short(..)),
+                short,
+                "{extra:x}"
+            );
+            assert_eq!(held.len(), words.len() + 1);
+            for (i, &w) in words.iter().chain([&extra]).enumerate() {
+                assert_eq!(held.get(i), w, "{extra:x}: word {i}");
+            }
+        }
+    }
+
     /// A user's frontier on the agent's stored graph holds millions of entries (a state's
     /// number and the state: 8.7 M at 6 cups): a node keeps its word whole and packed,
     /// so that an entry takes 20 bytes instead of 32.
