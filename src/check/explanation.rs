@@ -517,7 +517,7 @@ impl<'c> Runs for AloneCompiled<'c, '_, '_> {
 /// state, and the notes of each of its transitions in the graph's order. A user's search
 /// then follows the stored transitions ([`AloneStored`]) instead of running the cycle
 /// again: a user meets each agent state once per view it may have there. About 8 bytes
-/// a state: the state in a word of 6 bytes ([`Words`], [`StateWords`]), and a number per
+/// a state: the state in a word of 6 bytes ([`Words`], [`ShortWords`]), and a number per
 /// transition for its notes ([`NoteIds`]).
 #[derive(Default)]
 pub struct Stored<'c> {
