@@ -779,6 +779,13 @@ impl Hash for Node<'_> {
     }
 }
 
+impl Node<'_> {
+    /// The state's number in the agent's graph.
+    pub fn index(&self) -> u32 {
+        self.index
+    }
+}
+
 impl Debug for Node<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "state {} of the agent's graph", { self.index })

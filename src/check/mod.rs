@@ -816,20 +816,6 @@ fn stored_search<'c>(
     compiled: &'c Compiled,
     threads: usize,
 ) -> (explanation::Stored<'c>, explore::Graph) {
-    let mut stored = explanation::Stored::default();
-    let graph = plain_search(agent, compiled, threads, Some(&mut stored));
-    (stored, graph)
-}
-
-/// The agent's exact search on the compiled cycle (bounded at a million states), checking
-/// nothing, keeping its graph in `stored` if given (tests).
-#[cfg(test)]
-fn plain_search<'c>(
-    agent: &'c Agent,
-    compiled: &'c Compiled,
-    threads: usize,
-    stored: Option<&mut explanation::Stored<'c>>,
-) -> explore::Graph {
     let conditions = Conditions {
         invariants: Vec::new(),
         props: Vec::new(),
@@ -845,16 +831,17 @@ fn plain_search<'c>(
         threads,
         ..Options::default()
     };
+    let mut stored = explanation::Stored::default();
     let (graph, _, _) = agent_search(
         agent,
         Some(compiled),
         &conditions,
         (limits, &options),
         (&mut Facts::default(), &[], &mut Failures::default()),
-        stored,
+        Some(&mut stored),
         &mut |_, _, _| {},
     );
-    graph
+    (stored, graph)
 }
 
 impl Verification {
@@ -970,40 +957,11 @@ mod tests {
         assert!(!room_for_exact_users(1_000_000_000, Some(bound)));
     }
 
-    /// Once the users' graph is kept, the agent's graph gives its states' fingerprints
-    /// from their words: each one the search kept without the users' graph, state by state.
-    #[test]
-    fn fingerprints_come_from_the_stored_words_alike() {
-        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        for dir in ["specs/kitchen", "tests/verify/explain_untruthful"] {
-            let project = crate::model::project::load_project(&root.join(dir)).expect("loads");
-            let sem = Semantics::new(&project).expect("the semantics");
-            let compiled = Compiled::new(&sem).expect("a local library");
-            let agent = Agent {
-                sem: &sem,
-                symmetry: None,
-            };
-            let (_stored, derived) = stored_search(&agent, &compiled, 1);
-            assert!(derived.fingerprints_derived(), "{dir}");
-            let kept = plain_search(&agent, &compiled, 1, None);
-            assert!(
-                !kept.fingerprints_derived() && kept.len() == derived.len(),
-                "{dir}"
-            );
-            for i in 0..kept.len() as u32 {
-                assert_eq!(
-                    derived.fingerprint(i),
-                    kept.fingerprint(i),
-                    "{dir}: state {i}"
-                );
-            }
-        }
-    }
-
     /// The graph an exact search keeps for the users' searches holds every state, and from
     /// each the compiled cycle's transitions, in its order, with the very same notes: a
     /// breadth-first walk of the stored graph beside the compiled cycle meets, at every
-    /// node, the state the cycle reaches there.
+    /// node, the state the cycle reaches there. The agent's graph then gives each state's
+    /// fingerprint from its word, that state's.
     #[test]
     fn the_stored_graph_is_the_compiled_cycles() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -1020,7 +978,7 @@ mod tests {
                 symmetry: None,
             };
             let (stored, graph) = stored_search(&agent, &compiled, 2);
-            assert!(graph.complete(), "{dir}");
+            assert!(graph.complete() && graph.fingerprints_derived(), "{dir}");
             let runs = AloneStored::new(&compiled, &stored, &graph).expect("every state held");
             let mut met = HashMap::new();
             let mut queue: VecDeque<_> = runs.initial().zip(compiled.initial_iter()).collect();
@@ -1030,6 +988,12 @@ mod tests {
                     assert_eq!(first, state, "{dir}: {node:?} stands for two states");
                     continue;
                 }
+                let fingerprint = explore::fingerprint(&state);
+                assert_eq!(
+                    graph.fingerprint(node.index()),
+                    fingerprint,
+                    "{dir}: {node:?}"
+                );
                 let (kept, cycle) = (runs.successors(&node), compiled.successors(&state));
                 assert_eq!(kept.len(), cycle.len(), "{dir}: {node:?}");
                 for ((_, notes, next), (cycle_notes, cycle_next)) in kept.into_iter().zip(cycle) {
