@@ -887,14 +887,6 @@ impl WordHashes {
         let rest = self.rest.get(usize::try_from(word >> ADDRESS_BITS).ok()?)?;
         Some(part_hash(&Reborn(self.bases[at].1, rest)))
     }
-
-    /// Bytes held.
-    pub fn bytes(&self) -> usize {
-        let rest: usize = (self.rest.iter())
-            .map(|r| std::mem::size_of::<RestHashes>() + 8 * (r.events.len() + r.intentions.len()))
-            .sum();
-        self.bases.capacity() * 16 + rest
-    }
 }
 
 /// A state's hash from its belief base's hash and its agenda's ([`WordHashes`]): fed as
