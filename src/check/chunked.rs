@@ -917,17 +917,15 @@ mod tests {
         a.get(1);
     }
 
-    /// Faulting in by pieces reaches every whole page of a range that starts and ends
-    /// inside pages and spans several pieces, and nothing before it.
+    /// Runs `f` on a fresh private mapping of `len` bytes in small pages, with a function
+    /// telling which of its pages are resident.
     #[cfg(target_os = "linux")]
-    #[test]
-    fn populating_faults_in_every_whole_page_of_the_range() {
-        const LEN: usize = 4 * POPULATE_PIECE;
+    fn on_a_mapping(len: usize, f: impl FnOnce(usize, &dyn Fn() -> Vec<bool>)) {
         // SAFETY: a fresh private anonymous mapping, unmapped below; nothing else uses it.
         let base = unsafe {
             libc::mmap(
                 std::ptr::null_mut(),
-                LEN,
+                len,
                 libc::PROT_READ | libc::PROT_WRITE,
                 libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
                 -1,
@@ -935,34 +933,75 @@ mod tests {
             )
         };
         assert_ne!(base, libc::MAP_FAILED);
-        // A kernel without the advice (before Linux 5.14) faults nothing in: a hint.
-        // SAFETY: advice on the mapping made above, which is unmapped below.
-        if unsafe { libc::madvise(base, 0, libc::MADV_POPULATE_WRITE) } != 0 {
-            unsafe { libc::munmap(base, LEN) };
-            return;
-        }
         // Small pages, so that residency is told page by page.
         // SAFETY: advice on the mapping made above.
-        unsafe { libc::madvise(base, LEN, libc::MADV_NOHUGEPAGE) };
+        unsafe { libc::madvise(base, len, libc::MADV_NOHUGEPAGE) };
         let page = crate::check::slots::page();
         let resident = || {
-            let mut v = vec![0u8; LEN / page];
+            let mut v = vec![0u8; len / page];
             // SAFETY: `v` has a byte for each page of the mapping.
-            assert_eq!(unsafe { libc::mincore(base, LEN, v.as_mut_ptr()) }, 0);
+            assert_eq!(unsafe { libc::mincore(base, len, v.as_mut_ptr()) }, 0);
             v.iter().map(|b| b & 1 == 1).collect::<Vec<bool>>()
         };
-        assert!(resident().iter().all(|&r| !r));
-        // From inside the third page to inside the page three pieces and one page later.
-        let (from, n) = (2 * page + 100, 3 * POPULATE_PIECE);
-        populate_now(base as usize + from, n);
-        let r = resident();
-        let whole = (3..(from + n) / page).collect::<Vec<usize>>();
-        assert!(
-            whole.iter().all(|&p| r[p]),
-            "a whole page of the range is missing"
-        );
-        assert!(!r[0] && !r[1], "a page before the range was faulted in");
+        f(base as usize, &resident);
         // SAFETY: the mapping made above, no longer read.
-        unsafe { libc::munmap(base, LEN) };
+        unsafe { libc::munmap(base, len) };
+    }
+
+    /// Faulting in by pieces reaches every whole page of a range that starts and ends
+    /// inside pages and spans several pieces, and nothing before it.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn populating_faults_in_every_whole_page_of_the_range() {
+        const LEN: usize = 4 * POPULATE_PIECE;
+        on_a_mapping(LEN, |base, resident| {
+            // A kernel without the advice (before Linux 5.14) faults nothing in: a hint.
+            // SAFETY: advice on no bytes of the mapping.
+            if unsafe { libc::madvise(base as *mut _, 0, libc::MADV_POPULATE_WRITE) } != 0 {
+                return;
+            }
+            let page = crate::check::slots::page();
+            assert!(resident().iter().all(|&r| !r));
+            // From inside the third page to inside the page three pieces and one page later.
+            let (from, n) = (2 * page + 100, 3 * POPULATE_PIECE);
+            populate_now(base + from, n);
+            let r = resident();
+            let whole = (3..(from + n) / page).collect::<Vec<usize>>();
+            assert!(
+                whole.iter().all(|&p| r[p]),
+                "a whole page of the range is missing"
+            );
+            assert!(!r[0] && !r[1], "a page before the range was faulted in");
+        });
+    }
+
+    /// Giving pages back (`Chunked::give_back`) drops every whole page of a range from
+    /// the resident memory, and nothing else: the pages it only overlaps keep what was
+    /// written to them, and the whole ones read as zeros.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn giving_back_drops_every_whole_page_of_the_range_and_nothing_else() {
+        const LEN: usize = 2 * POPULATE_PIECE;
+        on_a_mapping(LEN, |base, resident| {
+            let page = crate::check::slots::page();
+            // SAFETY: every byte written is within the mapping, which only this test uses.
+            let bytes = unsafe { std::slice::from_raw_parts_mut(base as *mut u8, LEN) };
+            bytes.fill(7);
+            assert!(resident().iter().all(|&r| r));
+            // From inside the second page to inside the second-to-last one.
+            let (from, to) = (page + 100, LEN - page - 100);
+            dont_need((base + from) as *const u8, to - from);
+            let r = resident();
+            let pages = LEN / page;
+            let kept = [0, 1, pages - 2, pages - 1];
+            for (p, &resident) in r.iter().enumerate() {
+                assert_eq!(resident, kept.contains(&p), "page {p} of {pages}");
+            }
+            // SAFETY: as above.
+            let bytes = unsafe { std::slice::from_raw_parts(base as *const u8, LEN) };
+            assert!(bytes[..2 * page].iter().all(|&b| b == 7));
+            assert!(bytes[2 * page..LEN - 2 * page].iter().all(|&b| b == 0));
+            assert!(bytes[LEN - 2 * page..].iter().all(|&b| b == 7));
+        });
     }
 }

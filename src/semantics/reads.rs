@@ -186,8 +186,9 @@ impl Semantics<'_> {
         }
     }
 
-    /// The atoms [`Beliefs::literal_answers`] may look at for `lit`: those of its
-    /// predicate whose arguments agree with its object arguments.
+    /// The atoms [`Beliefs::literal_answers`](super::query::Beliefs::literal_answers) may
+    /// look at for `lit`: those of its predicate whose arguments agree with its object
+    /// arguments.
     fn literal_reads(&self, lit: &Term, out: &mut AtomSet) {
         let atoms = &self.project.atoms;
         let Some(p) = atoms.pred_of_literal(lit) else {

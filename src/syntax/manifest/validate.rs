@@ -236,7 +236,7 @@ impl<'a> Cx<'a> {
         );
     }
 
-    /// Reports every key of `t` not in `allowed`; `place` reads "in [agent]", "at the top
+    /// Reports every key of `t` not in `allowed`; `place` reads "in `[agent]`", "at the top
     /// level".
     pub(super) fn check_keys(&mut self, t: &DeTable, allowed: &[&str], place: &str) {
         for (k, _) in entries(t) {
